@@ -1,0 +1,215 @@
+//! The top-down binned SAH builder. Iterative, with a fixed task stack; writes only into the
+//! caller's buffers, and only after every size and limit has been checked.
+
+use super::binning::{find_split, partition};
+use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, node_capacity};
+use crate::error::{BufferKind, BuildError};
+use crate::math::Aabb;
+use crate::mesh::ValidMesh;
+
+/// What the builder produced: how many nodes it used and how deep the tree is.
+pub(super) struct Built {
+    pub node_count: usize,
+    pub depth: u32,
+}
+
+#[derive(Clone, Copy)]
+struct Task {
+    node: usize,
+    begin: usize,
+    end: usize,
+    level: u32,
+    bounds: Aabb,
+    centers: Aabb,
+}
+
+fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildError> {
+    if got < needed {
+        return Err(BuildError::BufferTooSmall {
+            buffer,
+            needed,
+            got,
+        });
+    }
+    Ok(())
+}
+
+fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
+    prims.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), p| {
+        (b.union(p.bounds), c.grown(p.center))
+    })
+}
+
+pub(super) fn build_into(
+    mesh: &ValidMesh<'_>,
+    config: &BuildConfig,
+    nodes: &mut [BvhNode],
+    order: &mut [u32],
+    scratch: &mut [PrimRef],
+) -> Result<Built, BuildError> {
+    config.check()?;
+    let n = mesh.triangle_count();
+    check_len(BufferKind::Nodes, node_capacity(n), nodes.len())?;
+    check_len(BufferKind::Order, n, order.len())?;
+    check_len(BufferKind::Scratch, n, scratch.len())?;
+    if n > config.subtree_capacity(1) {
+        return Err(BuildError::TooDeep {
+            max_depth: config.max_depth,
+            triangles: n,
+        });
+    }
+    let (Some(prims), Some(order)) = (scratch.get_mut(..n), order.get_mut(..n)) else {
+        return Ok(Built {
+            node_count: 0,
+            depth: 0,
+        });
+    };
+    if n == 0 {
+        return Ok(Built {
+            node_count: 0,
+            depth: 0,
+        });
+    }
+    for (tri, p) in (0u32..).zip(prims.iter_mut()) {
+        let bounds = mesh.triangle(tri).map_or(Aabb::EMPTY, |t| t.bounds());
+        *p = PrimRef {
+            bounds,
+            center: bounds.center(),
+            tri,
+        };
+    }
+    let (bounds, centers) = bounds_of(prims);
+
+    let mut stack = [None::<Task>; MAX_DEPTH as usize];
+    let mut sp = 0;
+    let mut next = Some(Task {
+        node: 0,
+        begin: 0,
+        end: n,
+        level: 1,
+        bounds,
+        centers,
+    });
+    let mut node_count = 1;
+    let mut depth = 0;
+    while let Some(task) = next.take() {
+        depth = depth.max(task.level);
+        let count = task.end - task.begin;
+        let Some(range) = prims.get_mut(task.begin..task.end) else {
+            break;
+        };
+        let children = split_node(config, &task, range);
+        let Some(slot) = nodes.get_mut(task.node) else {
+            break;
+        };
+        match children {
+            None => {
+                // Leaf: begin < n ≤ u32::MAX and count ≤ max_leaf_size, so both fit.
+                *slot = BvhNode::new(task.bounds.padded(), task.begin as u32, count as u32);
+            }
+            Some((left_count, (lb, lc), (rb, rc))) => {
+                let left = node_count;
+                node_count += 2;
+                *slot = BvhNode::new(task.bounds.padded(), left as u32, 0);
+                let mid = task.begin + left_count;
+                let right_task = Task {
+                    node: left + 1,
+                    begin: mid,
+                    end: task.end,
+                    level: task.level + 1,
+                    bounds: rb,
+                    centers: rc,
+                };
+                // Pending right siblings number at most one per level above, so the stack
+                // (MAX_DEPTH slots) cannot fill: the level limit was checked up front.
+                let Some(pending) = stack.get_mut(sp) else {
+                    return Err(BuildError::TooDeep {
+                        max_depth: config.max_depth,
+                        triangles: n,
+                    });
+                };
+                *pending = Some(right_task);
+                sp += 1;
+                next = Some(Task {
+                    node: left,
+                    begin: task.begin,
+                    end: mid,
+                    level: task.level + 1,
+                    bounds: lb,
+                    centers: lc,
+                });
+                continue;
+            }
+        }
+        if sp > 0 {
+            sp -= 1;
+            next = stack.get_mut(sp).and_then(Option::take);
+        }
+    }
+    for (o, p) in order.iter_mut().zip(prims.iter()) {
+        *o = p.tri;
+    }
+    Ok(Built { node_count, depth })
+}
+
+type Side = (Aabb, Aabb);
+
+/// Decides a node: `None` for a leaf, or the left count and both sides' bounds after reordering
+/// `prims` into left-then-right.
+fn split_node(
+    config: &BuildConfig,
+    task: &Task,
+    prims: &mut [PrimRef],
+) -> Option<(usize, Side, Side)> {
+    let count = prims.len();
+    if count <= 1 {
+        return None;
+    }
+    let may_be_leaf = count <= config.max_leaf_size as usize;
+    let child_capacity = config.subtree_capacity(task.level + 1);
+    let area = task.bounds.half_area();
+    if area > 0.0
+        && let Some(split) = find_split(prims, &task.centers, config.bins)
+    {
+        {
+            let split_cost = config.traversal_cost + config.triangle_cost * (split.cost / area);
+            let leaf_cost = config.triangle_cost * count as f32;
+            if may_be_leaf && split_cost >= leaf_cost {
+                return None;
+            }
+            let right_count = count - split.left_count;
+            if split.left_count <= child_capacity && right_count <= child_capacity {
+                let left_count = partition(prims, &split);
+                return Some((left_count, split.left, split.right));
+            }
+        }
+    }
+    if may_be_leaf {
+        return None;
+    }
+    Some(median_split(prims, &task.centers))
+}
+
+/// Splits at the median centroid along the widest centroid axis (by triangle index when all
+/// centroids coincide). Used when SAH finds nothing or would exceed the depth limit; halving
+/// keeps the subtree within it. A full sort with a total key makes the order independent of
+/// the sort algorithm, so builds stay bit-identical everywhere.
+fn median_split(prims: &mut [PrimRef], centers: &Aabb) -> (usize, Side, Side) {
+    let e = centers.extent();
+    let axis = if e.x >= e.y && e.x >= e.z {
+        0
+    } else if e.y >= e.z {
+        1
+    } else {
+        2
+    };
+    let key = |p: &PrimRef| match axis {
+        0 => p.center.x,
+        1 => p.center.y,
+        _ => p.center.z,
+    };
+    prims.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)).then(a.tri.cmp(&b.tri)));
+    let mid = prims.len() / 2;
+    let (l, r) = prims.split_at(mid);
+    (mid, bounds_of(l), bounds_of(r))
+}

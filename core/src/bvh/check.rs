@@ -1,0 +1,116 @@
+//! The structure validator: the one place that decides whether nodes and order can be trusted.
+
+use super::{BvhNode, MAX_DEPTH};
+use crate::error::StructureError;
+use crate::mesh::ValidMesh;
+
+/// How much to check.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum CheckLevel {
+    /// Topology and leaf ranges only (what refit needs before it rewrites the boxes).
+    Topology,
+    /// Topology, box nesting and triangle containment.
+    Full,
+}
+
+/// Checks nodes and order (and, with a mesh, the triangle indices and containment); returns the
+/// depth. Walks left-first with a fixed stack, so leaf ranges must appear in order.
+pub(super) fn check(
+    nodes: &[BvhNode],
+    order: &[u32],
+    mesh: Option<&ValidMesh<'_>>,
+    level: CheckLevel,
+) -> Result<u32, StructureError> {
+    if nodes.is_empty() || order.is_empty() {
+        return if nodes.is_empty() && order.is_empty() {
+            Ok(0)
+        } else {
+            Err(StructureError::EmptyMismatch)
+        };
+    }
+    let total = u32::try_from(nodes.len()).map_err(|_| StructureError::UnreachableNodes {
+        reached: 0,
+        total: u32::MAX,
+    })?;
+    let mut stack = [(0u32, 0u32); MAX_DEPTH as usize];
+    let mut sp = 0usize;
+    let mut current = Some((0u32, 1u32));
+    let mut reached = 0u32;
+    let mut next_slot = 0usize;
+    let mut depth = 0u32;
+    while let Some((index, node_depth)) = current.take() {
+        if node_depth > MAX_DEPTH {
+            return Err(StructureError::TooDeep { node: index });
+        }
+        depth = depth.max(node_depth);
+        reached = reached.saturating_add(1);
+        if reached > total {
+            // Only a shared subtree can be reached more often than there are nodes.
+            return Err(StructureError::LeafRangesNotContiguous { node: index });
+        }
+        let node = nodes
+            .get(index as usize)
+            .ok_or(StructureError::ChildOutOfRange { node: index })?;
+        let bounds = node.aabb();
+        if level == CheckLevel::Full && (bounds.is_empty() || !bounds.is_finite()) {
+            return Err(StructureError::BadBounds { node: index });
+        }
+        if node.is_leaf() {
+            let first = node.first as usize;
+            let tris = first
+                .checked_add(node.count as usize)
+                .and_then(|end| order.get(first..end))
+                .ok_or(StructureError::LeafRangeOutOfBounds { node: index })?;
+            if first != next_slot {
+                return Err(StructureError::LeafRangesNotContiguous { node: index });
+            }
+            next_slot = first + tris.len();
+            if let Some(mesh) = mesh {
+                for &tri in tris {
+                    let t = mesh
+                        .triangle(tri)
+                        .ok_or(StructureError::TriangleOutOfRange { node: index, tri })?;
+                    if level == CheckLevel::Full && !bounds.contains_aabb(&t.bounds()) {
+                        return Err(StructureError::TriangleOutsideLeaf { node: index, tri });
+                    }
+                }
+            }
+            current = sp.checked_sub(1).and_then(|top| {
+                sp = top;
+                stack.get(top).copied()
+            });
+        } else {
+            let left = node.first;
+            if left <= index {
+                return Err(StructureError::ChildNotAfterParent { node: index });
+            }
+            let right = left
+                .checked_add(1)
+                .filter(|&r| r < total)
+                .ok_or(StructureError::ChildOutOfRange { node: index })?;
+            if level == CheckLevel::Full {
+                for child in [left, right] {
+                    let inside = nodes
+                        .get(child as usize)
+                        .is_some_and(|c| bounds.contains_aabb(&c.aabb()));
+                    if !inside {
+                        return Err(StructureError::ChildOutsideParent { node: child });
+                    }
+                }
+            }
+            let slot = stack
+                .get_mut(sp)
+                .ok_or(StructureError::TooDeep { node: index })?;
+            *slot = (right, node_depth + 1);
+            sp += 1;
+            current = Some((left, node_depth + 1));
+        }
+    }
+    if reached != total {
+        return Err(StructureError::UnreachableNodes { reached, total });
+    }
+    if next_slot != order.len() {
+        return Err(StructureError::LeafRangesNotContiguous { node: total });
+    }
+    Ok(depth)
+}

@@ -1,0 +1,117 @@
+use serde::{Deserialize, Serialize};
+
+use super::MAX_DEPTH;
+use crate::error::BuildError;
+
+/// How a BVH is built. Use a preset ([`BuildConfig::fast`], [`BuildConfig::balanced`] — the
+/// default — or [`BuildConfig::high_quality`]) and adjust fields as needed.
+///
+/// The builder is binned SAH: at each node it sorts triangle centroids into `bins` equal
+/// slices along each axis and takes the split with the lowest cost
+/// `C = traversal_cost + (A_L·N_L + A_R·N_R)/A · triangle_cost`, or makes a leaf when
+/// `N·triangle_cost` is not more than that (and `N ≤ max_leaf_size`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BuildConfig {
+    /// Bins per axis, `2..=`[`BuildConfig::MAX_BINS`]. More bins find better splits and build
+    /// more slowly.
+    pub bins: u32,
+    /// Most triangles in a leaf, `1..=`[`BuildConfig::MAX_LEAF_SIZE`]. Larger leaves give
+    /// shallower, smaller trees and more triangle tests per ray.
+    pub max_leaf_size: u32,
+    /// Deepest level allowed, `1..=`[`MAX_DEPTH`] (the root is level 1). A build that cannot fit
+    /// fails with [`BuildError::TooDeep`]; near the limit the builder switches to median splits
+    /// so any mesh that can fit does fit. Lower it to bound traversal stacks further.
+    pub max_depth: u32,
+    /// Relative cost of visiting a node, finite and `≥ 0`.
+    pub traversal_cost: f32,
+    /// Relative cost of one ray–triangle test, finite and `> 0`.
+    pub triangle_cost: f32,
+}
+
+impl Default for BuildConfig {
+    fn default() -> Self {
+        Self::balanced()
+    }
+}
+
+impl BuildConfig {
+    /// Upper bound of [`BuildConfig::bins`].
+    pub const MAX_BINS: u32 = 64;
+    /// Upper bound of [`BuildConfig::max_leaf_size`].
+    pub const MAX_LEAF_SIZE: u32 = 64;
+
+    /// Quickest build: 8 bins, leaves of up to 8 triangles.
+    #[must_use]
+    pub const fn fast() -> Self {
+        Self {
+            bins: 8,
+            max_leaf_size: 8,
+            max_depth: MAX_DEPTH,
+            traversal_cost: 1.0,
+            triangle_cost: 1.0,
+        }
+    }
+
+    /// The default: 32 bins, leaves of up to 4 triangles.
+    #[must_use]
+    pub const fn balanced() -> Self {
+        Self {
+            bins: 32,
+            max_leaf_size: 4,
+            max_depth: MAX_DEPTH,
+            traversal_cost: 1.0,
+            triangle_cost: 1.0,
+        }
+    }
+
+    /// Best trees: 64 bins, leaves of up to 4 triangles, splitting a little more eagerly.
+    #[must_use]
+    pub const fn high_quality() -> Self {
+        Self {
+            bins: 64,
+            max_leaf_size: 4,
+            max_depth: MAX_DEPTH,
+            traversal_cost: 0.8,
+            triangle_cost: 1.0,
+        }
+    }
+
+    /// Checks every field against its documented range.
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] naming the first bad field.
+    pub fn check(&self) -> Result<(), BuildError> {
+        let bad = |field| Err(BuildError::InvalidConfig { field });
+        if !(2..=Self::MAX_BINS).contains(&self.bins) {
+            return bad("bins");
+        }
+        if !(1..=Self::MAX_LEAF_SIZE).contains(&self.max_leaf_size) {
+            return bad("max_leaf_size");
+        }
+        if !(1..=MAX_DEPTH).contains(&self.max_depth) {
+            return bad("max_depth");
+        }
+        if !(self.traversal_cost.is_finite() && self.traversal_cost >= 0.0) {
+            return bad("traversal_cost");
+        }
+        if !(self.triangle_cost.is_finite() && self.triangle_cost > 0.0) {
+            return bad("triangle_cost");
+        }
+        Ok(())
+    }
+
+    /// Most triangles a subtree whose root is at `level` can hold (saturating).
+    /// 0 below the depth limit.
+    pub(crate) fn subtree_capacity(&self, level: u32) -> usize {
+        if level > self.max_depth {
+            return 0;
+        }
+        let levels_below = self.max_depth - level;
+        let leaf = self.max_leaf_size as usize;
+        if levels_below >= usize::BITS - 8 {
+            usize::MAX
+        } else {
+            leaf.saturating_mul(1usize << levels_below)
+        }
+    }
+}

@@ -1,0 +1,260 @@
+use core::ops::ControlFlow;
+
+use glam::Vec3;
+
+use super::{Bvh, BvhNode, BvhVisitor};
+use crate::geom::{CullMode, SlabRay, TriangleHit, WatertightRay, moller_trumbore};
+use crate::math::{Ray, RayHit};
+use crate::mesh::ValidMesh;
+
+/// Which ray–triangle test a query uses. Both give bit-identical answers on every target; they
+/// differ only at edges shared by two triangles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TriangleTest {
+    /// [`intersect_ray_triangle_watertight`](crate::geom::intersect_ray_triangle_watertight):
+    /// no ray slips through a closed mesh (the default).
+    #[default]
+    Watertight,
+    /// [`intersect_ray_triangle`](crate::geom::intersect_ray_triangle) (Möller–Trumbore):
+    /// slightly fewer operations, may miss at shared edges.
+    MollerTrumbore,
+}
+
+/// Options of a ray query.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct RayOptions {
+    /// The triangle test (watertight by default).
+    pub test: TriangleTest,
+    /// Faces to ignore (none by default: both sides hit).
+    pub cull: CullMode,
+}
+
+/// Relative slack on box entry/exit distances: a box is entered when it might hold a hit within
+/// a few thousand ulps of the current best, so rounding in the slab test can never cull a
+/// triangle whose own rounded `t` would win (ties included).
+const MARGIN: f32 = 1.0 / 65_536.0;
+
+/// A ray–triangle test with an adjustable upper bound.
+trait Kernel {
+    fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit>;
+    fn shrink(&mut self, t_max: f32);
+}
+
+struct Mt {
+    ray: Ray,
+    cull: CullMode,
+}
+
+impl Kernel for Mt {
+    #[inline(always)]
+    fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit> {
+        moller_trumbore(&self.ray, a, b, c, self.cull)
+    }
+    #[inline(always)]
+    fn shrink(&mut self, t_max: f32) {
+        self.ray.t_max = t_max;
+    }
+}
+
+struct Wt {
+    ray: WatertightRay,
+    cull: CullMode,
+}
+
+impl Kernel for Wt {
+    #[inline(always)]
+    fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit> {
+        self.ray.intersect(a, b, c, self.cull)
+    }
+    #[inline(always)]
+    fn shrink(&mut self, t_max: f32) {
+        self.ray.set_t_max(t_max);
+    }
+}
+
+#[inline(always)]
+fn enter_box(slab: &SlabRay, node: &BvhNode) -> Option<f32> {
+    let (entry, exit) = slab.clip(node.min, node.max);
+    let lo = entry - entry.abs() * MARGIN;
+    let hi = exit + exit.abs() * MARGIN;
+    (lo <= hi).then_some(lo)
+}
+
+struct ClosestHit<'m, K> {
+    mesh: &'m ValidMesh<'m>,
+    slab: SlabRay,
+    kernel: K,
+    best: Option<RayHit>,
+}
+
+impl<K: Kernel> BvhVisitor for ClosestHit<'_, K> {
+    #[inline(always)]
+    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
+        enter_box(&self.slab, node)
+    }
+
+    #[inline(always)]
+    fn revisit(&self, key: f32) -> bool {
+        let t = self.slab.t_max;
+        key <= t + t.abs() * MARGIN
+    }
+
+    #[inline(always)]
+    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()> {
+        for &tri in tris {
+            let Some(corners) = self.mesh.triangle(tri) else {
+                continue;
+            };
+            let Some(h) = self.kernel.test(corners.a, corners.b, corners.c) else {
+                continue;
+            };
+            let candidate = RayHit {
+                t: h.t,
+                tri,
+                u: h.u,
+                v: h.v,
+            };
+            // The degeneracy check is only paid for a hit that would win.
+            if self.best.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
+                self.best = Some(candidate);
+                self.kernel.shrink(h.t);
+                self.slab.t_max = h.t;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+struct AnyHit<'m, K> {
+    mesh: &'m ValidMesh<'m>,
+    slab: SlabRay,
+    kernel: K,
+    found: bool,
+}
+
+impl<K: Kernel> BvhVisitor for AnyHit<'_, K> {
+    #[inline(always)]
+    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
+        enter_box(&self.slab, node)
+    }
+
+    #[inline(always)]
+    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()> {
+        for &tri in tris {
+            let Some(corners) = self.mesh.triangle(tri) else {
+                continue;
+            };
+            if self.kernel.test(corners.a, corners.b, corners.c).is_some()
+                && !corners.is_degenerate()
+            {
+                self.found = true;
+                return ControlFlow::Break(());
+            }
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+impl Bvh<'_> {
+    /// The closest hit of `ray` on `mesh` (the mesh this BVH was built from), with the
+    /// watertight test and both faces: [`RayOptions::default`].
+    ///
+    /// Conventions: `t` in units of the ray direction's length, within `[t_min, t_max]`
+    /// (inclusive); on equal `t` the lower triangle index wins, so every structure and target
+    /// returns the same hit; degenerate triangles are never hit; an invalid ray
+    /// ([`Ray::is_valid`]) hits nothing.
+    #[must_use]
+    pub fn raycast(&self, mesh: &ValidMesh<'_>, ray: &Ray) -> Option<RayHit> {
+        self.raycast_with(mesh, ray, &RayOptions::default())
+    }
+
+    /// [`Bvh::raycast`] with explicit options.
+    #[must_use]
+    pub fn raycast_with(
+        &self,
+        mesh: &ValidMesh<'_>,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> Option<RayHit> {
+        if !ray.is_valid() {
+            return None;
+        }
+        let slab = SlabRay::new(ray);
+        match options.test {
+            TriangleTest::Watertight => {
+                let kernel = Wt {
+                    ray: WatertightRay::new(ray),
+                    cull: options.cull,
+                };
+                self.closest_hit(mesh, slab, kernel)
+            }
+            TriangleTest::MollerTrumbore => {
+                let kernel = Mt {
+                    ray: *ray,
+                    cull: options.cull,
+                };
+                self.closest_hit(mesh, slab, kernel)
+            }
+        }
+    }
+
+    fn closest_hit<K: Kernel>(
+        &self,
+        mesh: &ValidMesh<'_>,
+        slab: SlabRay,
+        kernel: K,
+    ) -> Option<RayHit> {
+        let mut v = ClosestHit {
+            mesh,
+            slab,
+            kernel,
+            best: None,
+        };
+        self.traverse(&mut v);
+        v.best
+    }
+
+    /// True when `ray` hits any triangle within `[t_min, t_max]` (occlusion / line of sight),
+    /// stopping at the first hit found. Agrees with [`Bvh::raycast`]: `raycast_any` is true
+    /// exactly when `raycast` returns a hit.
+    #[must_use]
+    pub fn raycast_any(&self, mesh: &ValidMesh<'_>, ray: &Ray) -> bool {
+        self.raycast_any_with(mesh, ray, &RayOptions::default())
+    }
+
+    /// [`Bvh::raycast_any`] with explicit options.
+    #[must_use]
+    pub fn raycast_any_with(&self, mesh: &ValidMesh<'_>, ray: &Ray, options: &RayOptions) -> bool {
+        if !ray.is_valid() {
+            return false;
+        }
+        let slab = SlabRay::new(ray);
+        match options.test {
+            TriangleTest::Watertight => {
+                let kernel = Wt {
+                    ray: WatertightRay::new(ray),
+                    cull: options.cull,
+                };
+                self.any_hit(mesh, slab, kernel)
+            }
+            TriangleTest::MollerTrumbore => {
+                let kernel = Mt {
+                    ray: *ray,
+                    cull: options.cull,
+                };
+                self.any_hit(mesh, slab, kernel)
+            }
+        }
+    }
+
+    fn any_hit<K: Kernel>(&self, mesh: &ValidMesh<'_>, slab: SlabRay, kernel: K) -> bool {
+        let mut v = AnyHit {
+            mesh,
+            slab,
+            kernel,
+            found: false,
+        };
+        self.traverse(&mut v);
+        v.found
+    }
+}

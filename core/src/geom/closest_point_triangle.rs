@@ -1,0 +1,236 @@
+use glam::{Vec2, Vec3};
+
+use super::closest_point_segment;
+use crate::math::{ClosestPoint, Triangle, TriangleFeature, dot};
+
+/// The point of triangle `tri` closest to `p`, with its barycentrics and feature.
+///
+/// Classifies `p` against the Voronoi regions of the corners, the edges and the face (the
+/// region walk of Ericson, *Real-Time Collision Detection*, §5.1.5), so the answer is exact up
+/// to rounding and needs no square roots. The result's `tri` is 0; `distance_squared` is
+/// `|p − point|²`. Barycentrics follow the crate convention: `point ≈ (1 − u − v)·a + u·b + v·c`.
+///
+/// A degenerate triangle (a segment or a point) is handled as the union of its edges; its
+/// feature is then an edge or a corner, never the face.
+///
+/// ```
+/// use meshq::{geom::closest_point_triangle, math::{Triangle, TriangleFeature, Vec3}};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// let c = closest_point_triangle(Vec3::new(0.25, 0.25, 2.0), &tri);
+/// assert_eq!((c.point, c.distance_squared, c.feature), (Vec3::new(0.25, 0.25, 0.0), 4.0, TriangleFeature::Face));
+/// ```
+#[must_use]
+pub fn closest_point_triangle(p: Vec3, tri: &Triangle) -> ClosestPoint {
+    if tri.is_degenerate() {
+        return closest_point_degenerate(p, tri);
+    }
+    let (point, u, v, feature) = closest_point_regions(p, tri.a, tri.b, tri.c);
+    let d = p - point;
+    ClosestPoint {
+        point,
+        tri: 0,
+        u,
+        v,
+        distance_squared: dot(d, d),
+        feature,
+    }
+}
+
+/// The point of the 2D triangle `a, b, c` (either winding) closest to `p`, with the same
+/// barycentrics and feature as [`closest_point_triangle`] (the triangle is embedded at `z = 0`,
+/// which leaves every product and sum unchanged).
+///
+/// Returns `(point, u, v, feature)`.
+#[must_use]
+pub fn closest_point_triangle_2d(
+    p: Vec2,
+    a: Vec2,
+    b: Vec2,
+    c: Vec2,
+) -> (Vec2, f32, f32, TriangleFeature) {
+    let tri = Triangle::new(a.extend(0.0), b.extend(0.0), c.extend(0.0));
+    let r = closest_point_triangle(p.extend(0.0), &tri);
+    (r.point.truncate(), r.u, r.v, r.feature)
+}
+
+/// The Voronoi-region walk for a non-degenerate triangle. Returns `(point, u, v, feature)`.
+#[inline(always)]
+pub(crate) fn closest_point_regions(
+    p: Vec3,
+    a: Vec3,
+    b: Vec3,
+    c: Vec3,
+) -> (Vec3, f32, f32, TriangleFeature) {
+    let ab = b - a;
+    let ac = c - a;
+    let ap = p - a;
+    let d1 = dot(ab, ap);
+    let d2 = dot(ac, ap);
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, 0.0, 0.0, TriangleFeature::Vertex(0));
+    }
+    let bp = p - b;
+    let d3 = dot(ab, bp);
+    let d4 = dot(ac, bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, 1.0, 0.0, TriangleFeature::Vertex(1));
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let s = d1 / (d1 - d3);
+        return (a + ab * s, s, 0.0, TriangleFeature::Edge(0));
+    }
+    let cp = p - c;
+    let d5 = dot(ab, cp);
+    let d6 = dot(ac, cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, 0.0, 1.0, TriangleFeature::Vertex(2));
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let s = d2 / (d2 - d6);
+        return (a + ac * s, 0.0, s, TriangleFeature::Edge(2));
+    }
+    let va = d3 * d6 - d5 * d4;
+    let e = d4 - d3;
+    let f = d5 - d6;
+    if va <= 0.0 && e >= 0.0 && f >= 0.0 {
+        let s = e / (e + f);
+        return (b + (c - b) * s, 1.0 - s, s, TriangleFeature::Edge(1));
+    }
+    let inv = 1.0 / (va + vb + vc);
+    let u = vb * inv;
+    let v = vc * inv;
+    (a + ab * u + ac * v, u, v, TriangleFeature::Face)
+}
+
+/// Closest point on a zero-area triangle: the nearest of its three edges.
+fn closest_point_degenerate(p: Vec3, tri: &Triangle) -> ClosestPoint {
+    let edges = [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)];
+    let mut best: Option<ClosestPoint> = None;
+    for (i, (s, e)) in (0u8..).zip(edges) {
+        let (q, t) = closest_point_segment(p, s, e);
+        let d = p - q;
+        let d2 = dot(d, d);
+        if best.is_some_and(|b| !(d2 < b.distance_squared)) {
+            continue;
+        }
+        let (u, v) = match i {
+            0 => (t, 0.0),
+            1 => (1.0 - t, t),
+            _ => (0.0, 1.0 - t),
+        };
+        let feature = if t <= 0.0 {
+            TriangleFeature::Vertex(i)
+        } else if t >= 1.0 {
+            TriangleFeature::Vertex((i + 1) % 3)
+        } else {
+            TriangleFeature::Edge(i)
+        };
+        best = Some(ClosestPoint {
+            point: q,
+            tri: 0,
+            u,
+            v,
+            distance_squared: d2,
+            feature,
+        });
+    }
+    best.unwrap_or(ClosestPoint {
+        point: tri.a,
+        tri: 0,
+        u: 0.0,
+        v: 0.0,
+        distance_squared: f32::NAN,
+        feature: TriangleFeature::Vertex(0),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri() -> Triangle {
+        Triangle::new(
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        )
+    }
+
+    #[test]
+    fn every_voronoi_region() {
+        let t = tri();
+        let cases = [
+            (
+                Vec3::new(-1.0, -1.0, 1.0),
+                Vec3::ZERO,
+                TriangleFeature::Vertex(0),
+            ),
+            (
+                Vec3::new(3.0, -1.0, 0.0),
+                Vec3::new(2.0, 0.0, 0.0),
+                TriangleFeature::Vertex(1),
+            ),
+            (
+                Vec3::new(-1.0, 3.0, 0.0),
+                Vec3::new(0.0, 2.0, 0.0),
+                TriangleFeature::Vertex(2),
+            ),
+            (
+                Vec3::new(1.0, -3.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                TriangleFeature::Edge(0),
+            ),
+            (
+                Vec3::new(2.0, 2.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                TriangleFeature::Edge(1),
+            ),
+            (
+                Vec3::new(-3.0, 1.0, 5.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                TriangleFeature::Edge(2),
+            ),
+            (
+                Vec3::new(0.5, 0.5, -3.0),
+                Vec3::new(0.5, 0.5, 0.0),
+                TriangleFeature::Face,
+            ),
+        ];
+        for (p, q, f) in cases {
+            let c = closest_point_triangle(p, &t);
+            assert_eq!((c.point, c.feature), (q, f), "{p}");
+            assert_eq!(c.distance_squared, (p - q).length_squared(), "{p}");
+            let back = t.point_at(c.u, c.v);
+            assert!((back - q).length() < 1e-6, "barycentrics of {p}");
+        }
+    }
+
+    #[test]
+    fn degenerate_triangles_use_their_edges() {
+        let line = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::X * 3.0);
+        let c = closest_point_triangle(Vec3::new(2.0, 1.0, 0.0), &line);
+        assert_eq!(
+            (c.point, c.distance_squared),
+            (Vec3::new(2.0, 0.0, 0.0), 1.0)
+        );
+        assert!(matches!(c.feature, TriangleFeature::Edge(_)));
+        let point = Triangle::new(Vec3::ONE, Vec3::ONE, Vec3::ONE);
+        let c = closest_point_triangle(Vec3::ZERO, &point);
+        assert_eq!((c.point, c.distance_squared), (Vec3::ONE, 3.0));
+        assert!(matches!(c.feature, TriangleFeature::Vertex(_)));
+    }
+
+    #[test]
+    fn two_dimensional_variant_handles_either_winding() {
+        let (a, b, c) = (Vec2::ZERO, Vec2::new(2.0, 0.0), Vec2::new(0.0, 2.0));
+        for (a, b, c) in [(a, b, c), (a, c, b)] {
+            let (q, _, _, f) = closest_point_triangle_2d(Vec2::new(2.0, 2.0), a, b, c);
+            assert_eq!(q, Vec2::new(1.0, 1.0));
+            assert!(matches!(f, TriangleFeature::Edge(_)));
+            let (q, _, _, f) = closest_point_triangle_2d(Vec2::new(0.5, 0.5), a, b, c);
+            assert_eq!((q, f), (Vec2::new(0.5, 0.5), TriangleFeature::Face));
+        }
+    }
+}

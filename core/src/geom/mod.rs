@@ -1,0 +1,38 @@
+//! Exact pairwise tests between primitives, as free functions named `<op>_<a>_<b>`.
+//!
+//! Every function takes plain values, allocates nothing, never panics, and documents what it
+//! does with degenerate input (zero-length directions, zero-area triangles, parallel cases,
+//! NaN). Each one lives in its own file.
+
+mod closest_point_plane;
+mod closest_point_segment;
+mod closest_point_triangle;
+mod line_line;
+mod point_in_triangle;
+mod point_on_segment;
+mod ray_aabb;
+mod ray_plane;
+mod ray_triangle;
+mod ray_triangle_watertight;
+mod segment_segment;
+mod triangle_aabb;
+mod triangle_triangle;
+
+pub use closest_point_plane::closest_point_plane;
+pub use closest_point_segment::closest_point_segment;
+pub use closest_point_triangle::{closest_point_triangle, closest_point_triangle_2d};
+pub use line_line::{LineLine, intersect_line_line};
+pub use point_in_triangle::{barycentric_triangle, point_in_triangle, point_in_triangle_2d};
+pub use point_on_segment::point_on_segment;
+pub use ray_aabb::intersect_ray_aabb;
+pub use ray_plane::intersect_ray_plane;
+pub use ray_triangle::{CullMode, TriangleHit, intersect_ray_triangle};
+pub use ray_triangle_watertight::intersect_ray_triangle_watertight;
+pub use segment_segment::{SegmentSegment, closest_points_segment_segment};
+pub use triangle_aabb::overlap_triangle_aabb;
+pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
+
+pub(crate) use closest_point_triangle::closest_point_regions;
+pub(crate) use ray_aabb::SlabRay;
+pub(crate) use ray_triangle::moller_trumbore;
+pub(crate) use ray_triangle_watertight::WatertightRay;

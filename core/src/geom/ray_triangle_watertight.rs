@@ -1,0 +1,246 @@
+use glam::Vec3;
+
+use super::{CullMode, TriangleHit};
+use crate::math::{Ray, Triangle};
+
+/// A ray prepared for the watertight test: the permutation and shear that map its direction to
+/// `+z` (Woop, Benthin & Wald 2013, "Watertight Ray/Triangle Intersection", JCGT 2(1)).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WatertightRay {
+    origin: Vec3,
+    /// Axis of the largest |direction| component, and the two others in an order that keeps
+    /// the sheared frame right-handed.
+    kx: usize,
+    ky: usize,
+    kz: usize,
+    sx: f32,
+    sy: f32,
+    sz: f32,
+    t_min: f32,
+    t_max: f32,
+}
+
+#[inline(always)]
+fn axis(v: Vec3, k: usize) -> f32 {
+    match k {
+        0 => v.x,
+        1 => v.y,
+        _ => v.z,
+    }
+}
+
+impl WatertightRay {
+    #[inline]
+    pub fn new(ray: &Ray) -> Self {
+        let d = ray.dir;
+        let ad = d.abs();
+        // Ties go to the lower axis so that every target picks the same frame.
+        let kz = if ad.x >= ad.y && ad.x >= ad.z {
+            0
+        } else if ad.y >= ad.z {
+            1
+        } else {
+            2
+        };
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if axis(d, kz) < 0.0 {
+            core::mem::swap(&mut kx, &mut ky);
+        }
+        let dz = axis(d, kz);
+        Self {
+            origin: ray.origin,
+            kx,
+            ky,
+            kz,
+            sx: axis(d, kx) / dz,
+            sy: axis(d, ky) / dz,
+            sz: 1.0 / dz,
+            t_min: ray.t_min,
+            t_max: ray.t_max,
+        }
+    }
+
+    /// Lowers the accepted upper bound (a closer hit was found).
+    #[inline(always)]
+    pub fn set_t_max(&mut self, t_max: f32) {
+        self.t_max = t_max;
+    }
+
+    /// The watertight test against corners `a`, `b`, `c` (no degeneracy check).
+    #[inline(always)]
+    pub fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, cull: CullMode) -> Option<TriangleHit> {
+        let pa = a - self.origin;
+        let pb = b - self.origin;
+        let pc = c - self.origin;
+        let (az, bz, cz) = (axis(pa, self.kz), axis(pb, self.kz), axis(pc, self.kz));
+        let ax = axis(pa, self.kx) - self.sx * az;
+        let ay = axis(pa, self.ky) - self.sy * az;
+        let bx = axis(pb, self.kx) - self.sx * bz;
+        let by = axis(pb, self.ky) - self.sy * bz;
+        let cx = axis(pc, self.kx) - self.sx * cz;
+        let cy = axis(pc, self.ky) - self.sy * cz;
+
+        // Scaled barycentrics: signed edge functions of the sheared triangle at the origin.
+        let mut u = cx * by - cy * bx;
+        let mut v = ax * cy - ay * cx;
+        let mut w = bx * ay - by * ax;
+        // An exact zero may be a rounding casualty; recompute all three in f64, where the
+        // products of f32 values are exact, so neighbours sharing an edge agree on its side.
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            let f = |p: f32, q: f32, r: f32, s: f32| {
+                (f64::from(p) * f64::from(q) - f64::from(r) * f64::from(s)) as f32
+            };
+            u = f(cx, by, cy, bx);
+            v = f(ax, cy, ay, cx);
+            w = f(bx, ay, by, ax);
+        }
+        let inside = match cull {
+            CullMode::None => !((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)),
+            CullMode::Back => u >= 0.0 && v >= 0.0 && w >= 0.0,
+            CullMode::Front => u <= 0.0 && v <= 0.0 && w <= 0.0,
+        };
+        if !inside {
+            return None;
+        }
+        let det = u + v + w;
+        // NaN or zero: no hit. (In this frame det > 0 is a front-face hit, as in Möller–Trumbore.)
+        if det == 0.0 || det.is_nan() {
+            return None;
+        }
+        let t_scaled = u * (self.sz * az) + v * (self.sz * bz) + w * (self.sz * cz);
+        let inv_det = 1.0 / det;
+        let t = t_scaled * inv_det;
+        if !(t >= self.t_min && t <= self.t_max) {
+            return None;
+        }
+        Some(TriangleHit {
+            t,
+            u: v * inv_det,
+            v: w * inv_det,
+        })
+    }
+}
+
+/// Watertight ray–triangle intersection (Woop, Benthin & Wald 2013).
+///
+/// Same conventions and return value as
+/// [`intersect_ray_triangle`](super::intersect_ray_triangle), but the edge tests are exact in
+/// sign: a ray through an edge or a vertex shared by two triangles of a closed mesh hits at least
+/// one of them, with no cracks. Edge functions that round to zero are recomputed in `f64`
+/// (exact for products of `f32`), as the paper prescribes. Returns `None` for degenerate
+/// triangles, rays parallel to the plane and invalid rays.
+///
+/// ```
+/// use meshq::{geom::{intersect_ray_triangle_watertight, CullMode}, math::{Ray, Triangle, Vec3}};
+/// let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// let ray = Ray::new(Vec3::new(0.5, 0.5, 1.0), -Vec3::Z); // exactly on edge bc
+/// assert!(intersect_ray_triangle_watertight(&ray, &tri, CullMode::None).is_some());
+/// ```
+#[must_use]
+pub fn intersect_ray_triangle_watertight(
+    ray: &Ray,
+    tri: &Triangle,
+    cull: CullMode,
+) -> Option<TriangleHit> {
+    if !ray.is_valid() || tri.is_degenerate() {
+        return None;
+    }
+    WatertightRay::new(ray).intersect(tri.a, tri.b, tri.c, cull)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::intersect_ray_triangle;
+
+    fn tri() -> Triangle {
+        Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)
+    }
+
+    #[test]
+    fn agrees_with_moller_trumbore_inside() {
+        let ray = Ray::new(Vec3::new(0.5, 0.25, 2.0), Vec3::new(0.0, 0.0, -4.0));
+        let w = intersect_ray_triangle_watertight(&ray, &tri(), CullMode::None);
+        assert_eq!(
+            w,
+            Some(TriangleHit {
+                t: 0.5,
+                u: 0.5,
+                v: 0.25
+            })
+        );
+        // Every direction sign and dominant axis, against Möller–Trumbore.
+        let t = Triangle::new(
+            Vec3::new(1.0, 0.2, -0.3),
+            Vec3::new(-0.4, 1.1, 0.2),
+            Vec3::new(0.1, -0.8, 0.9),
+        );
+        let target = t.point_at(0.3, 0.3);
+        for o in [
+            Vec3::new(5.0, 0.1, 0.2),
+            Vec3::new(-5.0, 0.3, 0.1),
+            Vec3::new(0.2, 6.0, -0.1),
+            Vec3::new(0.1, -6.0, 0.3),
+            Vec3::new(0.0, 0.2, 7.0),
+            Vec3::new(0.3, 0.0, -7.0),
+        ] {
+            let ray = Ray::new(o, target - o);
+            for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
+                let a = intersect_ray_triangle(&ray, &t, cull);
+                let b = intersect_ray_triangle_watertight(&ray, &t, cull);
+                assert_eq!(a.is_some(), b.is_some(), "{o} {cull:?}");
+                if let (Some(a), Some(b)) = (a, b) {
+                    assert!((a.t - b.t).abs() < 1e-5 && (a.u - b.u).abs() < 1e-5, "{o}");
+                    assert!((a.v - b.v).abs() < 1e-5, "{o}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn culling_matches_the_counter_clockwise_front() {
+        let from_front = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
+        let from_back = Ray::new(Vec3::new(0.2, 0.2, -1.0), Vec3::Z);
+        let t = tri();
+        assert!(intersect_ray_triangle_watertight(&from_front, &t, CullMode::Back).is_some());
+        assert!(intersect_ray_triangle_watertight(&from_front, &t, CullMode::Front).is_none());
+        assert!(intersect_ray_triangle_watertight(&from_back, &t, CullMode::Back).is_none());
+        assert!(intersect_ray_triangle_watertight(&from_back, &t, CullMode::Front).is_some());
+    }
+
+    #[test]
+    fn shared_edge_is_hit_by_one_side_or_both() {
+        // Two triangles sharing the diagonal of a skewed quad; rays exactly through points of
+        // the diagonal must hit at least one of them.
+        let a = Vec3::new(0.1, 0.3, 0.7);
+        let b = Vec3::new(1.3, 0.2, 0.9);
+        let c = Vec3::new(1.1, 1.4, 0.1);
+        let d = Vec3::new(-0.2, 1.2, 0.4);
+        let t1 = Triangle::new(a, b, c);
+        let t2 = Triangle::new(a, c, d);
+        for i in 0..=64 {
+            let p = a + (c - a) * (i as f32 / 64.0);
+            let o = Vec3::new(0.37, 0.61, 5.0);
+            let ray = Ray::new(o, p - o);
+            let h1 = intersect_ray_triangle_watertight(&ray, &t1, CullMode::None);
+            let h2 = intersect_ray_triangle_watertight(&ray, &t2, CullMode::None);
+            assert!(h1.is_some() || h2.is_some(), "crack at step {i}");
+        }
+    }
+
+    #[test]
+    fn degenerate_inputs_never_hit() {
+        let down = Ray::new(Vec3::new(0.2, 0.0, 1.0), -Vec3::Z);
+        let line = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::X * 2.0);
+        assert!(intersect_ray_triangle_watertight(&down, &line, CullMode::None).is_none());
+        let parallel = Ray::new(Vec3::new(-1.0, 0.2, 0.0), Vec3::X);
+        assert!(intersect_ray_triangle_watertight(&parallel, &tri(), CullMode::None).is_none());
+        let zero = Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::ZERO);
+        assert!(intersect_ray_triangle_watertight(&zero, &tri(), CullMode::None).is_none());
+        let nan = Ray::new(Vec3::new(0.2, f32::NAN, 1.0), -Vec3::Z);
+        assert!(intersect_ray_triangle_watertight(&nan, &tri(), CullMode::None).is_none());
+        let behind = Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::Z);
+        assert!(intersect_ray_triangle_watertight(&behind, &tri(), CullMode::None).is_none());
+    }
+}

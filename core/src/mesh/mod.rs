@@ -1,0 +1,17 @@
+//! Borrowed triangle meshes and their validation.
+//!
+//! A [`MeshRef`] borrows positions and triangle indices (as arrays of triples or, without
+//! copying, as the flat buffers three.js uses) and is never mutated. [`MeshRef::validate`] checks
+//! every index and coordinate once and returns a [`ValidMesh`], the only form the structures
+//! accept, so no query ever re-checks its input.
+
+mod mesh_ref;
+mod valid_mesh;
+
+pub use mesh_ref::MeshRef;
+pub use valid_mesh::ValidMesh;
+
+/// The largest coordinate magnitude a valid mesh may have: 2⁵⁰ ≈ 1.1·10¹⁵.
+///
+/// Edge vectors and their cross products stay far from `f32` overflow below this bound.
+pub const MAX_COORDINATE: f32 = 1_125_899_906_842_624.0;

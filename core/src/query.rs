@@ -1,0 +1,54 @@
+//! The queries every acceleration structure answers, as one trait, so code (and the test suite)
+//! can run over any structure.
+
+use glam::Vec3;
+
+use crate::bvh::{Bvh, RayOptions};
+use crate::math::{ClosestPoint, Ray, RayHit};
+use crate::mesh::ValidMesh;
+
+/// Ray and point queries over a mesh through an acceleration structure.
+///
+/// Every implementation returns exactly what a linear scan over all triangles with the same
+/// primitive test would return, bits included, under the crate's tie rule (lower triangle index
+/// wins on equal `t` or distance). Degenerate triangles are never returned.
+pub trait MeshQuery {
+    /// The closest hit of `ray` (see [`Bvh::raycast`] for the conventions).
+    fn raycast_with(&self, mesh: &ValidMesh<'_>, ray: &Ray, options: &RayOptions)
+    -> Option<RayHit>;
+
+    /// Whether `ray` hits anything; true exactly when [`MeshQuery::raycast_with`] is `Some`.
+    fn raycast_any_with(&self, mesh: &ValidMesh<'_>, ray: &Ray, options: &RayOptions) -> bool;
+
+    /// The closest point within `max_distance` (see [`Bvh::closest_point`]).
+    fn closest_point(
+        &self,
+        mesh: &ValidMesh<'_>,
+        point: Vec3,
+        max_distance: f32,
+    ) -> Option<ClosestPoint>;
+}
+
+impl MeshQuery for Bvh<'_> {
+    fn raycast_with(
+        &self,
+        mesh: &ValidMesh<'_>,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> Option<RayHit> {
+        Bvh::raycast_with(self, mesh, ray, options)
+    }
+
+    fn raycast_any_with(&self, mesh: &ValidMesh<'_>, ray: &Ray, options: &RayOptions) -> bool {
+        Bvh::raycast_any_with(self, mesh, ray, options)
+    }
+
+    fn closest_point(
+        &self,
+        mesh: &ValidMesh<'_>,
+        point: Vec3,
+        max_distance: f32,
+    ) -> Option<ClosestPoint> {
+        Bvh::closest_point(self, mesh, point, max_distance)
+    }
+}

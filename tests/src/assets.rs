@@ -1,0 +1,71 @@
+//! The meshes bundled in `assets/` (see the README for credits).
+
+use std::path::PathBuf;
+
+/// Every bundled mesh, by file stem.
+pub const MESHES: [&str; 5] = ["stanford-bunny", "fandisk", "spot", "cow", "teapot"];
+
+/// A mesh loaded into owned buffers.
+#[derive(Clone, Debug)]
+pub struct LoadedMesh {
+    /// File stem.
+    pub name: String,
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Triangles (polygons fan-triangulated by the loader).
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl LoadedMesh {
+    /// The validated view.
+    ///
+    /// # Panics
+    /// If the mesh is invalid (the bundled ones are not).
+    #[must_use]
+    pub fn valid(&self) -> meshq::mesh::ValidMesh<'_> {
+        meshq::mesh::MeshRef::new(&self.positions, &self.triangles)
+            .validate()
+            .expect("bundled meshes are valid")
+    }
+}
+
+/// The repository's `assets/` folder.
+#[must_use]
+pub fn assets_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets")
+}
+
+/// Loads `assets/<name>.obj` (positions and faces only; texture coordinates and normals are
+/// ignored, polygons fan-triangulated).
+///
+/// # Panics
+/// If the file is missing or unreadable.
+#[must_use]
+pub fn load_mesh(name: &str) -> LoadedMesh {
+    let path = assets_dir().join(format!("{name}.obj"));
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, _) = tobj::load_obj(&path, &options)
+        .unwrap_or_else(|e| panic!("cannot load {}: {e}", path.display()));
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for m in models {
+        let base = u32::try_from(positions.len()).expect("vertex count fits u32");
+        positions.extend(m.mesh.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+        triangles.extend(
+            m.mesh
+                .indices
+                .chunks_exact(3)
+                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+        );
+    }
+    LoadedMesh {
+        name: name.to_owned(),
+        positions,
+        triangles,
+    }
+}

@@ -1,0 +1,40 @@
+//! A BVH with owned buffers, for std code.
+
+use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::error::{BuildError, StructureError};
+use meshq::mesh::ValidMesh;
+
+/// Node and order buffers sized for a mesh, plus the depth of the built tree.
+#[derive(Clone, Debug)]
+pub struct OwnedBvh {
+    /// The used nodes.
+    pub nodes: Vec<BvhNode>,
+    /// The triangle order.
+    pub order: Vec<u32>,
+}
+
+impl OwnedBvh {
+    /// Builds a BVH of `mesh` into freshly allocated, exactly sized buffers.
+    ///
+    /// # Errors
+    /// The builder's error.
+    pub fn build(mesh: &ValidMesh<'_>, config: &BuildConfig) -> Result<Self, BuildError> {
+        let n = mesh.triangle_count();
+        let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
+        let mut order = vec![0u32; n];
+        let mut scratch = vec![PrimRef::EMPTY; n];
+        let used = Bvh::build(mesh, config, &mut nodes, &mut order, &mut scratch)?
+            .nodes()
+            .len();
+        nodes.truncate(used);
+        Ok(Self { nodes, order })
+    }
+
+    /// The validated view.
+    ///
+    /// # Errors
+    /// The validator's error.
+    pub fn view<'a>(&'a self, mesh: &ValidMesh<'_>) -> Result<Bvh<'a>, StructureError> {
+        Bvh::from_parts(&self.nodes, &self.order, mesh)
+    }
+}

@@ -1,0 +1,56 @@
+//! Closest-point queries on every bundled mesh equal a brute-force scan (same bits, same
+//! triangle under the tie rule), with and without a maximum distance.
+
+use meshq::bvh::BuildConfig;
+use meshq_tests::oracle::BruteForce;
+use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
+
+const QUERIES: usize = 10_000;
+/// Queries that also run with a maximum distance.
+const LIMITED_QUERIES: usize = 2_000;
+
+#[test]
+fn closest_point_matches_brute_force_on_every_mesh() {
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
+        let brute = BruteForce::new(&mesh);
+        let (_, r, _) = workload::centre_radius(&loaded.positions);
+        let points = workload::closest_points(&loaded.positions, QUERIES, 0xC105E);
+        let mut limited_hits = 0;
+        for (i, &p) in points.iter().enumerate() {
+            let key = |c: Option<meshq::math::ClosestPoint>| {
+                c.map(|c| {
+                    (
+                        c.distance_squared.to_bits(),
+                        c.tri,
+                        c.point.to_array().map(f32::to_bits),
+                    )
+                })
+            };
+            let expected = brute.closest_point(p, f32::INFINITY);
+            assert!(expected.is_some());
+            let got = bvh.closest_point(&mesh, p, f32::INFINITY);
+            assert_eq!(key(got), key(expected), "{name}: point {i} {p}");
+            if i >= LIMITED_QUERIES {
+                continue;
+            }
+            // A maximum distance of 5 % of the radius: some queries find nothing.
+            let max = 0.05 * r;
+            let expected = brute.closest_point(p, max);
+            let got = bvh.closest_point(&mesh, p, max);
+            assert_eq!(
+                key(got),
+                key(expected),
+                "{name}: point {i} {p} within {max}"
+            );
+            limited_hits += usize::from(got.is_some());
+        }
+        assert!(
+            limited_hits > 0 && limited_hits < LIMITED_QUERIES,
+            "{name}: {limited_hits}"
+        );
+    }
+}
