@@ -105,6 +105,8 @@ pub enum BufferKind {
     Order,
     /// The build scratch (one [`PrimRef`](crate::bvh::PrimRef) per triangle).
     Scratch,
+    /// Packed triangles (one [`PackedTriangle`](crate::bvh::PackedTriangle) per triangle).
+    Packed,
 }
 
 /// Why a structure could not be built.
@@ -150,6 +152,7 @@ impl fmt::Display for BuildError {
                     BufferKind::Nodes => "node",
                     BufferKind::Order => "order",
                     BufferKind::Scratch => "scratch",
+                    BufferKind::Packed => "packed triangle",
                 };
                 write!(f, "{which} buffer too small: needed {needed}, got {got}")
             }

@@ -4,45 +4,96 @@
 use glam::Vec3;
 use meshq::bvh::{RayOptions, TriangleTest};
 use meshq::geom::{
-    closest_point_triangle, intersect_ray_triangle, intersect_ray_triangle_watertight,
-    overlap_triangle_aabb,
+    closest_point_triangle, intersect_ray_aabb, intersect_ray_triangle,
+    intersect_ray_triangle_watertight, overlap_triangle_aabb,
 };
 use meshq::math::{Aabb, ClosestPoint, Ray, RayHit, Triangle};
 use meshq::mesh::ValidMesh;
 
 /// A mesh's triangles by value, gathered once so the scans below spend their time in the
 /// primitive tests.
+///
+/// Scans skip whole chunks of `CHUNK` triangles, neighbours in Morton order of their
+/// centroids, when a conservative bound rules them out: the union of the chunk's triangle boxes, each
+/// grown by 10⁻⁴ of the mesh's size. A ray hit lies on its triangle up to a few ulps, far
+/// inside that margin, and a chunk is skipped for a closest point only when even its box is
+/// strictly farther than the best so far, so no answer or tie is ever dropped. The box tests
+/// are the public division-based ones, sharing no code with the trees' traversal.
 #[derive(Clone, Debug)]
 pub struct BruteForce {
-    tris: Vec<Triangle>,
+    /// Every triangle with its mesh index, in Morton order.
+    tris: Vec<(u32, Triangle)>,
+    chunks: Vec<Aabb>,
 }
+
+/// Spreads the low 10 bits of `v` to every third bit.
+fn spread(v: u32) -> u64 {
+    (0..10).fold(0u64, |acc, i| acc | ((u64::from(v) >> i & 1) << (3 * i)))
+}
+
+const CHUNK: usize = 32;
 
 impl BruteForce {
     /// Gathers every triangle of `mesh`.
     #[must_use]
     pub fn new(mesh: &ValidMesh<'_>) -> Self {
-        let tris = (0..mesh.triangle_count() as u32)
-            .map(|i| mesh.triangle(i).expect("index in range"))
+        let bounds = mesh.bounds();
+        let size = bounds.extent().max_element();
+        let cell = |x: f32, lo: f32| (((x - lo) / size.max(f32::MIN_POSITIVE)) * 1023.0) as u32;
+        let mut tris: Vec<(u32, Triangle)> = (0..mesh.triangle_count() as u32)
+            .map(|i| (i, mesh.triangle(i).expect("index in range")))
             .collect();
-        Self { tris }
+        tris.sort_by_key(|(i, t)| {
+            let c = t.bounds().center();
+            let key = spread(cell(c.x, bounds.min.x))
+                | spread(cell(c.y, bounds.min.y)) << 1
+                | spread(cell(c.z, bounds.min.z)) << 2;
+            (key, *i)
+        });
+        let margin = Vec3::splat(size * 1e-4);
+        let chunks = tris
+            .chunks(CHUNK)
+            .map(|c| {
+                let b = c.iter().fold(Aabb::EMPTY, |b, (_, t)| b.union(t.bounds()));
+                Aabb::new(b.min - margin, b.max + margin)
+            })
+            .collect();
+        Self { tris, chunks }
     }
 
     fn indexed(&self) -> impl Iterator<Item = (u32, &Triangle)> {
-        (0u32..).zip(&self.tris)
+        self.tris.iter().map(|(i, t)| (*i, t))
+    }
+
+    /// The triangles of the chunks `keep` accepts, with their indices, in index order.
+    fn chunked<'a>(
+        &'a self,
+        mut keep: impl FnMut(&Aabb) -> bool + 'a,
+    ) -> impl Iterator<Item = (u32, &'a Triangle)> + 'a {
+        self.chunks
+            .iter()
+            .enumerate()
+            .filter(move |(_, b)| keep(b))
+            .flat_map(move |(k, _)| {
+                let first = k * CHUNK;
+                self.tris[first..(first + CHUNK).min(self.tris.len())]
+                    .iter()
+                    .map(|(i, t)| (*i, t))
+            })
     }
 
     /// The closest hit over all triangles (lower index on equal `t`).
     #[must_use]
     pub fn raycast(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
         let mut best: Option<RayHit> = None;
-        for (tri, t) in self.indexed() {
+        for (tri, t) in self.chunked(|b| intersect_ray_aabb(ray, b).is_some()) {
             let hit = match options.test {
                 TriangleTest::Watertight => intersect_ray_triangle_watertight(ray, t, options.cull),
                 TriangleTest::MollerTrumbore => intersect_ray_triangle(ray, t, options.cull),
             };
             if let Some(h) = hit {
-                // Strictly smaller t wins; scanning in index order keeps the lower index on ties.
-                if best.is_none_or(|b| h.t < b.t) {
+                // Smaller t wins; on equal t, the lower triangle index.
+                if best.is_none_or(|b| h.t < b.t || (h.t == b.t && tri < b.tri)) {
                     best = Some(RayHit {
                         t: h.t,
                         tri,
@@ -61,16 +112,26 @@ impl BruteForce {
     pub fn closest_point(&self, p: Vec3, max_distance: f32) -> Option<ClosestPoint> {
         let limit = max_distance * max_distance;
         let mut best: Option<ClosestPoint> = None;
-        for (tri, t) in self.indexed() {
-            if t.is_degenerate() {
+        for (k, chunk) in self.chunks.iter().enumerate() {
+            let bound = best.map_or(limit, |b| b.distance_squared);
+            // Strictly farther than the best: nothing in the chunk can win or tie.
+            if chunk.distance_squared_to_point(p) > bound * 1.001 {
                 continue;
             }
-            let mut c = closest_point_triangle(p, t);
-            c.tri = tri;
-            if c.distance_squared <= limit
-                && best.is_none_or(|b| c.distance_squared < b.distance_squared)
-            {
-                best = Some(c);
+            let first = k * CHUNK;
+            for &(tri, ref t) in &self.tris[first..(first + CHUNK).min(self.tris.len())] {
+                if t.is_degenerate() {
+                    continue;
+                }
+                let mut c = closest_point_triangle(p, t);
+                c.tri = tri;
+                let wins = |b: ClosestPoint| {
+                    c.distance_squared < b.distance_squared
+                        || (c.distance_squared == b.distance_squared && tri < b.tri)
+                };
+                if c.distance_squared <= limit && best.is_none_or(wins) {
+                    best = Some(c);
+                }
             }
         }
         best
@@ -82,6 +143,8 @@ impl BruteForce {
         self.indexed()
             .filter(|(_, t)| !t.is_degenerate() && overlap_triangle_aabb(t, aabb))
             .map(|(i, _)| i)
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
             .collect()
     }
 
@@ -94,6 +157,8 @@ impl BruteForce {
                     && closest_point_triangle(center, t).distance_squared <= radius * radius
             })
             .map(|(i, _)| i)
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
             .collect()
     }
 }

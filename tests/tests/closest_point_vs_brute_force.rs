@@ -1,7 +1,7 @@
 //! Closest-point queries on every bundled mesh equal a brute-force scan (same bits, same
 //! triangle under the tie rule), with and without a maximum distance.
 
-use meshq::bvh::BuildConfig;
+use meshq::bvh::{BuildConfig, PackedTriangle};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
 
@@ -16,6 +16,8 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         let mesh = loaded.valid();
         let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
         let bvh = owned.view(&mesh).unwrap();
+        let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+        let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let points = workload::closest_points(&loaded.positions, QUERIES, 0xC105E);
@@ -34,6 +36,8 @@ fn closest_point_matches_brute_force_on_every_mesh() {
             assert!(expected.is_some());
             let got = bvh.closest_point(&mesh, p, f32::INFINITY);
             assert_eq!(key(got), key(expected), "{name}: point {i} {p}");
+            let from_packed = bvh.closest_point(&packed, p, f32::INFINITY);
+            assert_eq!(key(from_packed), key(expected), "{name}: packed, point {i}");
             if i >= LIMITED_QUERIES {
                 continue;
             }

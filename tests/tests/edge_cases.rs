@@ -2,7 +2,7 @@
 //! triangles, and extreme coordinate scales.
 
 use glam::Vec3;
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef, RayOptions};
+use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, RayOptions};
 use meshq::error::{BufferKind, BuildError, FlatSlice, MeshError};
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
@@ -352,5 +352,31 @@ fn tiny_and_huge_coordinate_scales_stay_exact() {
                 key(brute.closest_point(p, f32::INFINITY))
             );
         }
+    }
+}
+
+#[test]
+fn packing_needs_one_slot_per_triangle() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    let n = mesh.triangle_count();
+    let mut short = vec![PackedTriangle::EMPTY; n - 1];
+    assert_eq!(
+        bvh.pack_triangles(&mesh, &mut short).map(|_| ()),
+        Err(BuildError::BufferTooSmall {
+            buffer: BufferKind::Packed,
+            needed: n,
+            got: n - 1
+        })
+    );
+    assert!(short.iter().all(|t| *t == PackedTriangle::EMPTY));
+    let mut storage = vec![PackedTriangle::EMPTY; n];
+    let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
+    // Slot i holds triangle order[i].
+    for (slot, &tri) in bvh.order().iter().enumerate() {
+        let t = mesh.triangle(tri).unwrap();
+        assert_eq!(packed.as_slice()[slot].b, t.b.to_array());
     }
 }

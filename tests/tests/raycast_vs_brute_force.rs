@@ -2,7 +2,7 @@
 //! with the same primitive: identical `t` bits, the same triangle (lower index on ties), the
 //! same barycentrics.
 
-use meshq::bvh::{BuildConfig, Bvh, RayOptions, TriangleTest};
+use meshq::bvh::{BuildConfig, Bvh, PackedTriangle, PackedTriangles, RayOptions, TriangleTest};
 use meshq::geom::CullMode;
 use meshq::math::Ray;
 use meshq::mesh::ValidMesh;
@@ -17,6 +17,7 @@ const MOLLER_TRUMBORE_RAYS: usize = 25_000;
 fn assert_same(
     bvh: &Bvh<'_>,
     mesh: &ValidMesh<'_>,
+    packed: &PackedTriangles<'_>,
     brute: &BruteForce,
     rays: &[Ray],
     options: &RayOptions,
@@ -30,10 +31,16 @@ fn assert_same(
             h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
         };
         assert_eq!(bits(got), bits(expected), "{what}: ray {i} {ray:?}");
+        let from_packed = bvh.raycast_with(packed, ray, options);
+        assert_eq!(bits(from_packed), bits(expected), "{what}: packed, ray {i}");
         assert_eq!(
             bvh.raycast_any_with(mesh, ray, options),
             expected.is_some(),
             "{what}: any-hit disagrees on ray {i}"
+        );
+        assert_eq!(
+            bvh.raycast_any_with(packed, ray, options),
+            expected.is_some()
         );
         hits += usize::from(expected.is_some());
     }
@@ -45,6 +52,8 @@ fn run(name: &str, test: TriangleTest) {
     let mesh = loaded.valid();
     let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let bvh = owned.view(&mesh).unwrap();
+    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+    let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
     let options = RayOptions {
         test,
         cull: CullMode::None,
@@ -55,12 +64,12 @@ fn run(name: &str, test: TriangleTest) {
     };
     let brute = BruteForce::new(&mesh);
     let rays = workload::random_rays(&loaded.positions, count, 0x5EED_0001);
-    let hits = assert_same(&bvh, &mesh, &brute, &rays, &options, name);
+    let hits = assert_same(&bvh, &mesh, &packed, &brute, &rays, &options, name);
     // The workload aims every ray at the bounding box: a good share must hit, or the test
     // would prove little.
     assert!(hits > count / 5, "{name}: only {hits} hits");
     let camera = workload::camera_rays(&loaded.positions, 64, 64);
-    assert_same(&bvh, &mesh, &brute, &camera, &options, name);
+    assert_same(&bvh, &mesh, &packed, &brute, &camera, &options, name);
 }
 
 #[test]
@@ -94,6 +103,8 @@ fn culling_and_ray_ranges_match_brute_force() {
         let mesh = loaded.valid();
         let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
         let bvh = owned.view(&mesh).unwrap();
+        let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+        let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let rays: Vec<Ray> = workload::random_rays(&loaded.positions, 3_000, 7)
@@ -108,7 +119,15 @@ fn culling_and_ray_ranges_match_brute_force() {
             .collect();
         for test in [TriangleTest::Watertight, TriangleTest::MollerTrumbore] {
             for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
-                assert_same(&bvh, &mesh, &brute, &rays, &RayOptions { test, cull }, name);
+                assert_same(
+                    &bvh,
+                    &mesh,
+                    &packed,
+                    &brute,
+                    &rays,
+                    &RayOptions { test, cull },
+                    name,
+                );
             }
         }
     }

@@ -18,7 +18,7 @@ pub(super) struct Binner {
 }
 
 impl Binner {
-    pub fn new(centers: &Aabb, bins: u32) -> Self {
+    fn new(centers: &Aabb, bins: u32) -> Self {
         let e = centers.extent();
         let k = bins as f32;
         // An axis with no extent gets scale 0: every centroid lands in bin 0 and no split
@@ -32,7 +32,7 @@ impl Binner {
     }
 
     #[inline(always)]
-    pub fn bin(&self, c: Vec3, axis: usize) -> u32 {
+    fn bin(&self, c: Vec3, axis: usize) -> u32 {
         let f = match axis {
             0 => (c.x - self.origin.x) * self.scale.x,
             1 => (c.y - self.origin.y) * self.scale.y,
@@ -46,108 +46,157 @@ impl Binner {
 #[derive(Clone, Copy)]
 struct Bin {
     bounds: Aabb,
-    centers: Aabb,
     count: u32,
 }
 
 const EMPTY_BIN: Bin = Bin {
     bounds: Aabb::EMPTY,
-    centers: Aabb::EMPTY,
     count: 0,
 };
 
-/// The cheapest split found, with the exact bounds of both sides.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Split {
-    pub binner: Binner,
-    pub axis: usize,
-    /// Triangles whose bin is below this go left.
-    pub bin: u32,
-    /// `A_L·N_L + A_R·N_R` (half areas).
-    pub cost: f32,
-    pub left_count: usize,
-    pub left: (Aabb, Aabb),
-    pub right: (Aabb, Aabb),
-}
-
-/// Bins `prims` by centroid on all three axes in one pass and returns the split with the lowest
-/// SAH cost (ties: lower axis, then lower bin), or `None` when no axis separates the centroids.
-pub(super) fn find_split(prims: &[PrimRef], centers: &Aabb, bins: u32) -> Option<Split> {
-    let binner = Binner::new(centers, bins);
-    let nbins = (bins as usize).min(MAX_BINS);
-    let mut acc = [[EMPTY_BIN; MAX_BINS]; 3];
-    for p in prims {
-        for (axis, axis_bins) in acc.iter_mut().enumerate() {
-            if let Some(b) = axis_bins.get_mut(binner.bin(p.center, axis) as usize) {
-                b.bounds = b.bounds.union(p.bounds);
-                b.centers = b.centers.grown(p.center);
-                b.count += 1;
-            }
-        }
-    }
-    let mut best: Option<Split> = None;
-    for (axis, axis_bins) in acc.iter().enumerate() {
-        let Some(axis_bins) = axis_bins.get(..nbins) else {
-            continue;
-        };
-        // Prefix sweep: left side of a split before bin i is bins [0, i).
-        let mut prefix = [EMPTY_BIN; MAX_BINS];
-        let mut run = EMPTY_BIN;
-        for (slot, b) in prefix.iter_mut().zip(axis_bins) {
-            run = merge(run, *b);
-            *slot = run;
-        }
-        let mut right = EMPTY_BIN;
-        for i in (1..nbins).rev() {
-            let (Some(b), Some(left)) = (axis_bins.get(i), prefix.get(i - 1)) else {
-                continue;
-            };
-            right = merge(right, *b);
-            if left.count == 0 || right.count == 0 {
-                continue;
-            }
-            let cost = left.bounds.half_area() * left.count as f32
-                + right.bounds.half_area() * right.count as f32;
-            let better = match &best {
-                None => true,
-                Some(s) => cost < s.cost || (cost == s.cost && s.axis == axis),
-            };
-            if better {
-                best = Some(Split {
-                    binner,
-                    axis,
-                    bin: i as u32,
-                    cost,
-                    left_count: left.count as usize,
-                    left: (left.bounds, left.centers),
-                    right: (right.bounds, right.centers),
-                });
-            }
-        }
-    }
-    best
-}
-
-fn merge(a: Bin, b: Bin) -> Bin {
+fn merge(a: Bin, b: &Bin) -> Bin {
     Bin {
         bounds: a.bounds.union(b.bounds),
-        centers: a.centers.union(b.centers),
         count: a.count + b.count,
     }
 }
 
-/// Reorders `prims` so that those binned below `split.bin` come first; returns how many.
-pub(super) fn partition(prims: &mut [PrimRef], split: &Split) -> usize {
-    let goes_left = |p: &PrimRef| split.binner.bin(p.center, split.axis) < split.bin;
+/// The cheapest split found, with the exact bounds of both sides (their centroid bounds come
+/// from [`partition`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Split {
+    binner: Binner,
+    axis: usize,
+    /// Triangles whose bin is below this go left.
+    bin: u32,
+    /// `A_L·N_L + A_R·N_R` (half areas).
+    pub cost: f32,
+    pub left_count: usize,
+    pub left: Aabb,
+    pub right: Aabb,
+}
+
+/// Bin storage reused across every node of a build, so a node only resets the bins it uses.
+pub(super) struct Binning {
+    bins: [[Bin; MAX_BINS]; 3],
+    /// Half area and count of bins `[0, i]` on the axis being swept.
+    prefix_area: [f32; MAX_BINS],
+    prefix_count: [u32; MAX_BINS],
+}
+
+impl Binning {
+    pub const fn new() -> Self {
+        Self {
+            bins: [[EMPTY_BIN; MAX_BINS]; 3],
+            prefix_area: [0.0; MAX_BINS],
+            prefix_count: [0; MAX_BINS],
+        }
+    }
+
+    /// Bins `prims` by centroid on all three axes in one pass and returns the split with the
+    /// lowest SAH cost (ties: lower axis, then lower bin), or `None` when no axis separates the
+    /// centroids. Small nodes use at most one bin per triangle: more bins would mostly stay
+    /// empty and only cost sweep time.
+    pub fn find_split(&mut self, prims: &[PrimRef], centers: &Aabb, bins: u32) -> Option<Split> {
+        let wanted = (bins as usize).min(prims.len()).clamp(2, MAX_BINS);
+        let binner = Binner::new(centers, wanted as u32);
+        for axis_bins in &mut self.bins {
+            if let Some(used) = axis_bins.get_mut(..wanted) {
+                used.fill(EMPTY_BIN);
+            }
+        }
+        let [xs, ys, zs] = &mut self.bins;
+        for p in prims {
+            let slots = [
+                xs.get_mut(binner.bin(p.center, 0) as usize),
+                ys.get_mut(binner.bin(p.center, 1) as usize),
+                zs.get_mut(binner.bin(p.center, 2) as usize),
+            ];
+            for b in slots.into_iter().flatten() {
+                b.bounds = b.bounds.union(p.bounds);
+                b.count += 1;
+            }
+        }
+        let mut best: Option<(usize, u32, f32, usize)> = None;
+        for axis in 0..3 {
+            let Some(axis_bins) = self.bins.get(axis).and_then(|b| b.get(..wanted)) else {
+                continue;
+            };
+            let mut run = EMPTY_BIN;
+            for ((area, count), b) in self
+                .prefix_area
+                .iter_mut()
+                .zip(self.prefix_count.iter_mut())
+                .zip(axis_bins)
+            {
+                if b.count > 0 {
+                    run = merge(run, b);
+                }
+                *area = run.bounds.half_area();
+                *count = run.count;
+            }
+            let mut right = EMPTY_BIN;
+            for i in (1..wanted).rev() {
+                let (Some(b), Some(&left_area), Some(&left_count)) = (
+                    axis_bins.get(i),
+                    self.prefix_area.get(i - 1),
+                    self.prefix_count.get(i - 1),
+                ) else {
+                    continue;
+                };
+                if b.count > 0 {
+                    right = merge(right, b);
+                }
+                if left_count == 0 || right.count == 0 {
+                    continue;
+                }
+                let cost =
+                    left_area * left_count as f32 + right.bounds.half_area() * right.count as f32;
+                // Sweeping down, `<=` keeps the lowest bin among equal costs of this axis; a
+                // later axis must be strictly better.
+                let better = best.is_none_or(|(a, _, c, _)| cost < c || (cost == c && a == axis));
+                if better {
+                    best = Some((axis, i as u32, cost, left_count as usize));
+                }
+            }
+        }
+        let (axis, bin, cost, left_count) = best?;
+        // Rebuild both sides' exact bounds from the chosen axis's bins.
+        let axis_bins = self.bins.get(axis)?.get(..wanted)?;
+        let (left_bins, right_bins) = axis_bins.split_at(bin as usize);
+        let left = left_bins.iter().fold(EMPTY_BIN, merge);
+        let right = right_bins.iter().fold(EMPTY_BIN, merge);
+        Some(Split {
+            binner,
+            axis,
+            bin,
+            cost,
+            left_count,
+            left: left.bounds,
+            right: right.bounds,
+        })
+    }
+}
+
+/// Reorders `prims` so that those binned below `split.bin` come first; returns how many, and
+/// the centroid bounds of both sides (gathered here, in the pass that touches every triangle
+/// anyway).
+pub(super) fn partition(prims: &mut [PrimRef], split: &Split) -> (usize, Aabb, Aabb) {
     let mut i = 0;
     let mut j = prims.len();
+    let (mut left, mut right) = (Aabb::EMPTY, Aabb::EMPTY);
     while i < j {
-        if prims.get(i).is_some_and(goes_left) {
+        let Some(p) = prims.get(i) else {
+            break;
+        };
+        if split.binner.bin(p.center, split.axis) < split.bin {
+            left = left.grown(p.center);
             i += 1;
         } else {
+            right = right.grown(p.center);
             j -= 1;
             prims.swap(i, j);
         }
     }
-    i
+    (i, left, right)
 }

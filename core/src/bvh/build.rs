@@ -1,7 +1,7 @@
 //! The top-down binned SAH builder. Iterative, with a fixed task stack; writes only into the
 //! caller's buffers, and only after every size and limit has been checked.
 
-use super::binning::{find_split, partition};
+use super::binning::{Binning, partition};
 use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, node_capacity};
 use crate::error::{BufferKind, BuildError};
 use crate::math::Aabb;
@@ -92,13 +92,14 @@ pub(super) fn build_into(
     });
     let mut node_count = 1;
     let mut depth = 0;
+    let mut binning = Binning::new();
     while let Some(task) = next.take() {
         depth = depth.max(task.level);
         let count = task.end - task.begin;
         let Some(range) = prims.get_mut(task.begin..task.end) else {
             break;
         };
-        let children = split_node(config, &task, range);
+        let children = split_node(config, &task, range, &mut binning);
         let Some(slot) = nodes.get_mut(task.node) else {
             break;
         };
@@ -160,6 +161,7 @@ fn split_node(
     config: &BuildConfig,
     task: &Task,
     prims: &mut [PrimRef],
+    binning: &mut Binning,
 ) -> Option<(usize, Side, Side)> {
     let count = prims.len();
     if count <= 1 {
@@ -169,7 +171,7 @@ fn split_node(
     let child_capacity = config.subtree_capacity(task.level + 1);
     let area = task.bounds.half_area();
     if area > 0.0
-        && let Some(split) = find_split(prims, &task.centers, config.bins)
+        && let Some(split) = binning.find_split(prims, &task.centers, config.bins)
     {
         {
             let split_cost = config.traversal_cost + config.triangle_cost * (split.cost / area);
@@ -179,8 +181,12 @@ fn split_node(
             }
             let right_count = count - split.left_count;
             if split.left_count <= child_capacity && right_count <= child_capacity {
-                let left_count = partition(prims, &split);
-                return Some((left_count, split.left, split.right));
+                let (left_count, left_centers, right_centers) = partition(prims, &split);
+                return Some((
+                    left_count,
+                    (split.left, left_centers),
+                    (split.right, right_centers),
+                ));
             }
         }
     }

@@ -1,29 +1,34 @@
 use core::ops::ControlFlow;
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
-use super::{Bvh, BvhNode, BvhVisitor};
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangles};
 use crate::geom::closest_point_regions;
 use crate::math::{ClosestPoint, dot};
-use crate::mesh::ValidMesh;
 
 /// Relative slack on box distances (as in ray traversal): a box is entered when it might hold
 /// a point within a few thousand ulps of the current best, so rounding can never cull the
 /// winner or a tie.
 const MARGIN: f32 = 1.0 / 65_536.0;
 
-struct Closest<'m> {
-    mesh: &'m ValidMesh<'m>,
+struct Closest<'m, S: ?Sized> {
+    source: &'m S,
     point: Vec3,
+    /// The same point in SIMD lanes, for box distances (see [`box_distance_squared`]).
+    lanes: Vec3A,
     /// Current bound on the squared distance: the best so far, or the caller's maximum.
     limit: f32,
     best: Option<ClosestPoint>,
 }
 
-impl BvhVisitor for Closest<'_> {
+impl<S: LeafTriangles + ?Sized> BvhVisitor for Closest<'_, S> {
     #[inline(always)]
     fn enter(&mut self, node: &BvhNode) -> Option<f32> {
-        let d2 = node.aabb().distance_squared_to_point(self.point);
+        let d2 = box_distance_squared(
+            Vec3A::from_array(node.min),
+            Vec3A::from_array(node.max),
+            self.lanes,
+        );
         let lo = d2 - d2 * MARGIN;
         (lo <= self.limit).then_some(lo)
     }
@@ -33,11 +38,18 @@ impl BvhVisitor for Closest<'_> {
         key <= self.limit
     }
 
-    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()> {
-        for &tri in tris {
-            let Some(t) = self.mesh.triangle(tri) else {
+    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
+        for (slot, &tri) in (first_slot..).zip(tris) {
+            let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
+            // The triangle's own box is a cheap lower bound on its distance: skip the full
+            // region walk when even the box is beyond the best so far.
+            let (a, b, c) = (Vec3A::from(t.a), Vec3A::from(t.b), Vec3A::from(t.c));
+            let d2 = box_distance_squared(a.min(b).min(c), a.max(b).max(c), self.lanes);
+            if d2 - d2 * MARGIN > self.limit {
+                continue;
+            }
             let (q, u, v, feature) = closest_point_regions(self.point, t.a, t.b, t.c);
             let d = self.point - q;
             let candidate = ClosestPoint {
@@ -60,8 +72,19 @@ impl BvhVisitor for Closest<'_> {
     }
 }
 
+/// Squared distance from `p` to the box `[min, max]`, in SIMD lanes where the target has them.
+///
+/// Used only to decide what to visit (with [`MARGIN`] of slack), never for a reported
+/// distance, so lane-wise rounding cannot change an answer: the answer is the minimum under a
+/// total order (distance, then triangle index), whatever order triangles are visited in.
+#[inline(always)]
+fn box_distance_squared(min: Vec3A, max: Vec3A, p: Vec3A) -> f32 {
+    let d = (min - p).max(p - max).max(Vec3A::ZERO);
+    d.dot(d)
+}
+
 impl Bvh<'_> {
-    /// The point of `mesh` closest to `point`, if one lies within `max_distance` (inclusive;
+    /// The point of `source` (the mesh, or its packed triangles) closest to `point`, if one lies within `max_distance` (inclusive;
     /// pass `f32::INFINITY` for no limit).
     ///
     /// Exact up to rounding: the answer equals the minimum of
@@ -73,9 +96,9 @@ impl Bvh<'_> {
     /// The search is depth first, nearer box first, and skips boxes farther than the best
     /// distance so far.
     #[must_use]
-    pub fn closest_point(
+    pub fn closest_point<S: LeafTriangles + ?Sized>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         point: Vec3,
         max_distance: f32,
     ) -> Option<ClosestPoint> {
@@ -83,8 +106,9 @@ impl Bvh<'_> {
             return None;
         }
         let mut v = Closest {
-            mesh,
+            source,
             point,
+            lanes: point.into(),
             limit: max_distance * max_distance,
             best: None,
         };

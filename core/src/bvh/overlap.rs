@@ -2,10 +2,9 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{Bvh, BvhNode, BvhVisitor};
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangles};
 use crate::geom::{closest_point_regions, overlap_triangle_aabb};
 use crate::math::{Aabb, dot};
-use crate::mesh::ValidMesh;
 
 /// How many triangles an `*_into` overlap query found and how many fit in the buffer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -25,15 +24,16 @@ impl OverlapCount {
 }
 
 /// Visits leaves whose box passes `enter_box`, reporting triangles that pass `hits`.
-struct Overlap<'m, B, T, F> {
-    mesh: &'m ValidMesh<'m>,
+struct Overlap<'m, S: ?Sized, B, T, F> {
+    source: &'m S,
     enter_box: B,
     hits: T,
     report: F,
 }
 
-impl<B, T, F> BvhVisitor for Overlap<'_, B, T, F>
+impl<S, B, T, F> BvhVisitor for Overlap<'_, S, B, T, F>
 where
+    S: LeafTriangles + ?Sized,
     B: Fn(&BvhNode) -> bool,
     T: Fn(&crate::math::Triangle) -> bool,
     F: FnMut(u32) -> ControlFlow<()>,
@@ -42,9 +42,9 @@ where
         (self.enter_box)(node).then_some(0.0)
     }
 
-    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()> {
-        for &tri in tris {
-            let Some(t) = self.mesh.triangle(tri) else {
+    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
+        for (slot, &tri) in (first_slot..).zip(tris) {
+            let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
             if !t.is_degenerate() && (self.hits)(&t) {
@@ -59,9 +59,9 @@ impl Bvh<'_> {
     /// Calls `report` with the index of every non-degenerate triangle that shares a point with
     /// `aabb` (exact triangle–box test; touching counts), in traversal order, until it returns
     /// `Break`.
-    pub fn overlap_aabb<F: FnMut(u32) -> ControlFlow<()>>(
+    pub fn overlap_aabb<S: LeafTriangles + ?Sized, F: FnMut(u32) -> ControlFlow<()>>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         aabb: &Aabb,
         report: F,
     ) {
@@ -70,7 +70,7 @@ impl Bvh<'_> {
         }
         let query = *aabb;
         let mut v = Overlap {
-            mesh,
+            source,
             enter_box: |n: &BvhNode| n.aabb().overlaps(&query),
             hits: |t: &crate::math::Triangle| overlap_triangle_aabb(t, &query),
             report,
@@ -81,9 +81,9 @@ impl Bvh<'_> {
     /// Calls `report` with the index of every non-degenerate triangle within `radius`
     /// (inclusive) of `center`, in traversal order, until it returns `Break`. A non-finite
     /// center or a negative or NaN radius reports nothing.
-    pub fn overlap_sphere<F: FnMut(u32) -> ControlFlow<()>>(
+    pub fn overlap_sphere<S: LeafTriangles + ?Sized, F: FnMut(u32) -> ControlFlow<()>>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         center: Vec3,
         radius: f32,
         report: F,
@@ -93,7 +93,7 @@ impl Bvh<'_> {
         }
         let r2 = radius * radius;
         let mut v = Overlap {
-            mesh,
+            source,
             enter_box: |n: &BvhNode| n.aabb().distance_squared_to_point(center) <= r2,
             hits: |t: &crate::math::Triangle| {
                 let (q, ..) = closest_point_regions(center, t.a, t.b, t.c);
@@ -107,9 +107,9 @@ impl Bvh<'_> {
 
     /// [`Bvh::overlap_aabb`] writing triangle indices into `out`; keeps counting past its end
     /// so the result says how large a buffer would have been needed.
-    pub fn overlap_aabb_into(
+    pub fn overlap_aabb_into<S: LeafTriangles + ?Sized>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         aabb: &Aabb,
         out: &mut [u32],
     ) -> OverlapCount {
@@ -117,15 +117,15 @@ impl Bvh<'_> {
             written: 0,
             total: 0,
         };
-        self.overlap_aabb(mesh, aabb, |tri| push(out, &mut count, tri));
+        self.overlap_aabb(source, aabb, |tri| push(out, &mut count, tri));
         count
     }
 
     /// [`Bvh::overlap_sphere`] writing triangle indices into `out`; keeps counting past its
     /// end so the result says how large a buffer would have been needed.
-    pub fn overlap_sphere_into(
+    pub fn overlap_sphere_into<S: LeafTriangles + ?Sized>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         center: Vec3,
         radius: f32,
         out: &mut [u32],
@@ -134,7 +134,7 @@ impl Bvh<'_> {
             written: 0,
             total: 0,
         };
-        self.overlap_sphere(mesh, center, radius, |tri| push(out, &mut count, tri));
+        self.overlap_sphere(source, center, radius, |tri| push(out, &mut count, tri));
         count
     }
 }

@@ -2,10 +2,9 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{Bvh, BvhNode, BvhVisitor};
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangles};
 use crate::geom::{CullMode, SlabRay, TriangleHit, WatertightRay, moller_trumbore};
 use crate::math::{Ray, RayHit};
-use crate::mesh::ValidMesh;
 
 /// Which ray–triangle test a query uses. Both give bit-identical answers on every target; they
 /// differ only at edges shared by two triangles.
@@ -80,14 +79,14 @@ fn enter_box(slab: &SlabRay, node: &BvhNode) -> Option<f32> {
     (lo <= hi).then_some(lo)
 }
 
-struct ClosestHit<'m, K> {
-    mesh: &'m ValidMesh<'m>,
+struct ClosestHit<'m, S: ?Sized, K> {
+    source: &'m S,
     slab: SlabRay,
     kernel: K,
     best: Option<RayHit>,
 }
 
-impl<K: Kernel> BvhVisitor for ClosestHit<'_, K> {
+impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for ClosestHit<'_, S, K> {
     #[inline(always)]
     fn enter(&mut self, node: &BvhNode) -> Option<f32> {
         enter_box(&self.slab, node)
@@ -100,9 +99,9 @@ impl<K: Kernel> BvhVisitor for ClosestHit<'_, K> {
     }
 
     #[inline(always)]
-    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()> {
-        for &tri in tris {
-            let Some(corners) = self.mesh.triangle(tri) else {
+    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
+        for (slot, &tri) in (first_slot..).zip(tris) {
+            let Some(corners) = self.source.corners(slot, tri) else {
                 continue;
             };
             let Some(h) = self.kernel.test(corners.a, corners.b, corners.c) else {
@@ -125,23 +124,23 @@ impl<K: Kernel> BvhVisitor for ClosestHit<'_, K> {
     }
 }
 
-struct AnyHit<'m, K> {
-    mesh: &'m ValidMesh<'m>,
+struct AnyHit<'m, S: ?Sized, K> {
+    source: &'m S,
     slab: SlabRay,
     kernel: K,
     found: bool,
 }
 
-impl<K: Kernel> BvhVisitor for AnyHit<'_, K> {
+impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for AnyHit<'_, S, K> {
     #[inline(always)]
     fn enter(&mut self, node: &BvhNode) -> Option<f32> {
         enter_box(&self.slab, node)
     }
 
     #[inline(always)]
-    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()> {
-        for &tri in tris {
-            let Some(corners) = self.mesh.triangle(tri) else {
+    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
+        for (slot, &tri) in (first_slot..).zip(tris) {
+            let Some(corners) = self.source.corners(slot, tri) else {
                 continue;
             };
             if self.kernel.test(corners.a, corners.b, corners.c).is_some()
@@ -156,23 +155,26 @@ impl<K: Kernel> BvhVisitor for AnyHit<'_, K> {
 }
 
 impl Bvh<'_> {
-    /// The closest hit of `ray` on `mesh` (the mesh this BVH was built from), with the
-    /// watertight test and both faces: [`RayOptions::default`].
+    /// The closest hit of `ray` on the triangles of `source` — the [`ValidMesh`] this BVH was
+    /// built from, or its [`PackedTriangles`](super::PackedTriangles) (same answer, bit for
+    /// bit) — with the watertight test and both faces: [`RayOptions::default`].
+    ///
+    /// [`ValidMesh`]: crate::mesh::ValidMesh
     ///
     /// Conventions: `t` in units of the ray direction's length, within `[t_min, t_max]`
     /// (inclusive); on equal `t` the lower triangle index wins, so every structure and target
     /// returns the same hit; degenerate triangles are never hit; an invalid ray
     /// ([`Ray::is_valid`]) hits nothing.
     #[must_use]
-    pub fn raycast(&self, mesh: &ValidMesh<'_>, ray: &Ray) -> Option<RayHit> {
-        self.raycast_with(mesh, ray, &RayOptions::default())
+    pub fn raycast<S: LeafTriangles + ?Sized>(&self, source: &S, ray: &Ray) -> Option<RayHit> {
+        self.raycast_with(source, ray, &RayOptions::default())
     }
 
     /// [`Bvh::raycast`] with explicit options.
     #[must_use]
-    pub fn raycast_with(
+    pub fn raycast_with<S: LeafTriangles + ?Sized>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         ray: &Ray,
         options: &RayOptions,
     ) -> Option<RayHit> {
@@ -186,26 +188,26 @@ impl Bvh<'_> {
                     ray: WatertightRay::new(ray),
                     cull: options.cull,
                 };
-                self.closest_hit(mesh, slab, kernel)
+                self.closest_hit(source, slab, kernel)
             }
             TriangleTest::MollerTrumbore => {
                 let kernel = Mt {
                     ray: *ray,
                     cull: options.cull,
                 };
-                self.closest_hit(mesh, slab, kernel)
+                self.closest_hit(source, slab, kernel)
             }
         }
     }
 
-    fn closest_hit<K: Kernel>(
+    fn closest_hit<S: LeafTriangles + ?Sized, K: Kernel>(
         &self,
-        mesh: &ValidMesh<'_>,
+        source: &S,
         slab: SlabRay,
         kernel: K,
     ) -> Option<RayHit> {
         let mut v = ClosestHit {
-            mesh,
+            source,
             slab,
             kernel,
             best: None,
@@ -218,13 +220,18 @@ impl Bvh<'_> {
     /// stopping at the first hit found. Agrees with [`Bvh::raycast`]: `raycast_any` is true
     /// exactly when `raycast` returns a hit.
     #[must_use]
-    pub fn raycast_any(&self, mesh: &ValidMesh<'_>, ray: &Ray) -> bool {
-        self.raycast_any_with(mesh, ray, &RayOptions::default())
+    pub fn raycast_any<S: LeafTriangles + ?Sized>(&self, source: &S, ray: &Ray) -> bool {
+        self.raycast_any_with(source, ray, &RayOptions::default())
     }
 
     /// [`Bvh::raycast_any`] with explicit options.
     #[must_use]
-    pub fn raycast_any_with(&self, mesh: &ValidMesh<'_>, ray: &Ray, options: &RayOptions) -> bool {
+    pub fn raycast_any_with<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> bool {
         if !ray.is_valid() {
             return false;
         }
@@ -235,21 +242,26 @@ impl Bvh<'_> {
                     ray: WatertightRay::new(ray),
                     cull: options.cull,
                 };
-                self.any_hit(mesh, slab, kernel)
+                self.any_hit(source, slab, kernel)
             }
             TriangleTest::MollerTrumbore => {
                 let kernel = Mt {
                     ray: *ray,
                     cull: options.cull,
                 };
-                self.any_hit(mesh, slab, kernel)
+                self.any_hit(source, slab, kernel)
             }
         }
     }
 
-    fn any_hit<K: Kernel>(&self, mesh: &ValidMesh<'_>, slab: SlabRay, kernel: K) -> bool {
+    fn any_hit<S: LeafTriangles + ?Sized, K: Kernel>(
+        &self,
+        source: &S,
+        slab: SlabRay,
+        kernel: K,
+    ) -> bool {
         let mut v = AnyHit {
-            mesh,
+            source,
             slab,
             kernel,
             found: false,

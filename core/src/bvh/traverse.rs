@@ -21,8 +21,12 @@ pub trait BvhVisitor {
         true
     }
 
-    /// Visits a leaf's triangles (mesh triangle indices). `Break` ends the traversal.
-    fn leaf(&mut self, tris: &[u32]) -> ControlFlow<()>;
+    /// Visits a leaf: its triangles' mesh indices `tris`, which occupy order slots
+    /// `first_slot..first_slot + tris.len()` (the slots index [`PackedTriangles`]).
+    /// `Break` ends the traversal.
+    ///
+    /// [`PackedTriangles`]: super::PackedTriangles
+    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()>;
 }
 
 impl Bvh<'_> {
@@ -45,15 +49,18 @@ impl Bvh<'_> {
             if node.is_leaf() {
                 let first = node.first as usize;
                 if let Some(tris) = self.order.get(first..first + node.count as usize)
-                    && visitor.leaf(tris).is_break()
+                    && visitor.leaf(first, tris).is_break()
                 {
                     return;
                 }
             } else {
                 let l = node.first;
                 let r = l.wrapping_add(1);
-                let (Some(left), Some(right)) =
-                    (self.nodes.get(l as usize), self.nodes.get(r as usize))
+                let first = l as usize;
+                let Some([left, right]) = self
+                    .nodes
+                    .get(first..first.wrapping_add(2))
+                    .and_then(|pair| <&[BvhNode; 2]>::try_from(pair).ok())
                 else {
                     return;
                 };

@@ -1,4 +1,4 @@
-use glam::Vec3;
+use glam::Vec3A;
 
 use crate::math::{Aabb, Ray, max_f32, min_f32};
 
@@ -9,10 +9,15 @@ use crate::math::{Aabb, Ray, max_f32, min_f32};
 /// behaves like an exactly axis-parallel ray for any `t` a mesh can produce and keeps every slab
 /// value a number. (It would miss a ray lying exactly in a `max` face plane; tree boxes are
 /// padded beyond their triangles, so that plane never holds a triangle.)
+///
+/// The slab arithmetic runs on `Vec3A` (SIMD lanes where the target has them). That is safe for
+/// bit-identical answers: box tests only decide which leaves a query visits, conservatively
+/// (see the margins in the queries), and a query's answer is the minimum under a total order
+/// (distance, then triangle index), whatever order leaves are visited in.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SlabRay {
-    pub origin: Vec3,
-    pub inv_dir: Vec3,
+    pub origin: Vec3A,
+    pub inv_dir: Vec3A,
     pub t_min: f32,
     pub t_max: f32,
 }
@@ -31,8 +36,8 @@ impl SlabRay {
     #[inline(always)]
     pub fn new(ray: &Ray) -> Self {
         Self {
-            origin: ray.origin,
-            inv_dir: Vec3::new(
+            origin: ray.origin.into(),
+            inv_dir: Vec3A::new(
                 padded_inverse(ray.dir.x),
                 padded_inverse(ray.dir.y),
                 padded_inverse(ray.dir.z),
@@ -45,20 +50,10 @@ impl SlabRay {
     /// Entry and exit of the box clipped to `[t_min, t_max]`; entry > exit means a miss.
     #[inline(always)]
     pub fn clip(&self, min: [f32; 3], max: [f32; 3]) -> (f32, f32) {
-        let tx0 = (min[0] - self.origin.x) * self.inv_dir.x;
-        let tx1 = (max[0] - self.origin.x) * self.inv_dir.x;
-        let ty0 = (min[1] - self.origin.y) * self.inv_dir.y;
-        let ty1 = (max[1] - self.origin.y) * self.inv_dir.y;
-        let tz0 = (min[2] - self.origin.z) * self.inv_dir.z;
-        let tz1 = (max[2] - self.origin.z) * self.inv_dir.z;
-        let entry = max_f32(
-            max_f32(min_f32(tx0, tx1), min_f32(ty0, ty1)),
-            max_f32(min_f32(tz0, tz1), self.t_min),
-        );
-        let exit = min_f32(
-            min_f32(max_f32(tx0, tx1), max_f32(ty0, ty1)),
-            min_f32(max_f32(tz0, tz1), self.t_max),
-        );
+        let t0 = (Vec3A::from_array(min) - self.origin) * self.inv_dir;
+        let t1 = (Vec3A::from_array(max) - self.origin) * self.inv_dir;
+        let entry = max_f32(t0.min(t1).max_element(), self.t_min);
+        let exit = min_f32(t0.max(t1).min_element(), self.t_max);
         (entry, exit)
     }
 }
@@ -109,6 +104,7 @@ pub fn intersect_ray_aabb(ray: &Ray, aabb: &Aabb) -> Option<(f32, f32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     const UNIT: Aabb = Aabb::new(Vec3::ZERO, Vec3::ONE);
 
