@@ -70,16 +70,19 @@ impl WatertightRay {
     /// The watertight test against corners `a`, `b`, `c` (no degeneracy check).
     #[inline(always)]
     pub fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, cull: CullMode) -> Option<TriangleHit> {
-        let pa = a - self.origin;
-        let pb = b - self.origin;
-        let pc = c - self.origin;
-        let (az, bz, cz) = (axis(pa, self.kz), axis(pb, self.kz), axis(pc, self.kz));
-        let ax = axis(pa, self.kx) - self.sx * az;
-        let ay = axis(pa, self.ky) - self.sy * az;
-        let bx = axis(pb, self.kx) - self.sx * bz;
-        let by = axis(pb, self.ky) - self.sy * bz;
-        let cx = axis(pc, self.kx) - self.sx * cz;
-        let cy = axis(pc, self.ky) - self.sy * cz;
+        // Components are picked through arrays indexed by the ray's permutation (a store and
+        // three indexed loads), cheaper than a three-way select per component.
+        let pa = (a - self.origin).to_array();
+        let pb = (b - self.origin).to_array();
+        let pc = (c - self.origin).to_array();
+        let pick = |v: &[f32; 3], k: usize| v.get(k).copied().unwrap_or(0.0);
+        let (az, bz, cz) = (pick(&pa, self.kz), pick(&pb, self.kz), pick(&pc, self.kz));
+        let ax = pick(&pa, self.kx) - self.sx * az;
+        let ay = pick(&pa, self.ky) - self.sy * az;
+        let bx = pick(&pb, self.kx) - self.sx * bz;
+        let by = pick(&pb, self.ky) - self.sy * bz;
+        let cx = pick(&pc, self.kx) - self.sx * cz;
+        let cy = pick(&pc, self.ky) - self.sy * cz;
 
         // Scaled barycentrics: signed edge functions of the sheared triangle at the origin.
         let mut u = cx * by - cy * bx;
