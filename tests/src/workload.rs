@@ -14,8 +14,8 @@ pub fn centre_radius(positions: &[[f32; 3]]) -> (Vec3, f32, Aabb) {
     (b.center(), b.extent().length() * 0.5, b)
 }
 
-/// A point uniform on the unit sphere.
-fn unit_sphere(rng: &mut SplitMix64) -> Vec3 {
+/// A direction uniform on the unit sphere.
+pub fn unit_sphere(rng: &mut SplitMix64) -> Vec3 {
     loop {
         let v = Vec3::new(
             rng.range(-1.0, 1.0),

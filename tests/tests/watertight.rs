@@ -28,24 +28,11 @@ fn assert_closed(m: &LoadedMesh) {
     );
 }
 
-fn random_direction(rng: &mut SplitMix64) -> Vec3 {
-    loop {
-        let v = Vec3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        );
-        if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
-            return v;
-        }
-    }
-}
-
 /// Inside by parity: the number of crossings along three unrelated directions is odd for all
 /// three (a brute-force count, independent of any tree).
 fn is_inside(tris: &[Triangle], p: Vec3, rng: &mut SplitMix64) -> bool {
     (0..3).all(|_| {
-        let ray = Ray::new(p, random_direction(rng));
+        let ray = Ray::new(p, workload::unit_sphere(rng));
         let crossings = tris
             .iter()
             .filter(|t| intersect_ray_triangle_watertight(&ray, t, CullMode::None).is_some())
@@ -84,7 +71,7 @@ fn run(name: &str) -> (usize, usize) {
             let t = &loaded.triangles[rng.below(loaded.triangles.len() as u64) as usize];
             let [a, b] = [t[0], t[1]].map(|i| Vec3::from_array(loaded.positions[i as usize]));
             let dir = match k % 4 {
-                0 | 1 => random_direction(&mut rng),
+                0 | 1 => workload::unit_sphere(&mut rng),
                 2 => a - p,
                 _ => a.lerp(b, rng.next_f32()) - p,
             };

@@ -181,39 +181,7 @@ impl Bvh<'_> {
         if !ray.is_valid() {
             return None;
         }
-        let slab = SlabRay::new(ray);
-        match options.test {
-            TriangleTest::Watertight => {
-                let kernel = Wt {
-                    ray: WatertightRay::new(ray),
-                    cull: options.cull,
-                };
-                self.closest_hit(source, slab, kernel)
-            }
-            TriangleTest::MollerTrumbore => {
-                let kernel = Mt {
-                    ray: *ray,
-                    cull: options.cull,
-                };
-                self.closest_hit(source, slab, kernel)
-            }
-        }
-    }
-
-    fn closest_hit<S: LeafTriangles + ?Sized, K: Kernel>(
-        &self,
-        source: &S,
-        slab: SlabRay,
-        kernel: K,
-    ) -> Option<RayHit> {
-        let mut v = ClosestHit {
-            source,
-            slab,
-            kernel,
-            best: None,
-        };
-        self.traverse(&mut v);
-        v.best
+        with_kernel(ray, options, ClosestQuery { bvh: self, source })
     }
 
     /// True when `ray` hits any triangle within `[t_min, t_max]` (occlusion / line of sight),
@@ -235,38 +203,73 @@ impl Bvh<'_> {
         if !ray.is_valid() {
             return false;
         }
-        let slab = SlabRay::new(ray);
-        match options.test {
-            TriangleTest::Watertight => {
-                let kernel = Wt {
-                    ray: WatertightRay::new(ray),
-                    cull: options.cull,
-                };
-                self.any_hit(source, slab, kernel)
-            }
-            TriangleTest::MollerTrumbore => {
-                let kernel = Mt {
-                    ray: *ray,
-                    cull: options.cull,
-                };
-                self.any_hit(source, slab, kernel)
-            }
-        }
+        with_kernel(ray, options, AnyQuery { bvh: self, source })
     }
+}
 
-    fn any_hit<S: LeafTriangles + ?Sized, K: Kernel>(
-        &self,
-        source: &S,
-        slab: SlabRay,
-        kernel: K,
-    ) -> bool {
+/// A ray query, run with whichever kernel the options name: the choice is made once per ray
+/// and each kernel gets its own monomorphized traversal.
+trait WithKernel {
+    type Output;
+    fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> Self::Output;
+}
+
+fn with_kernel<W: WithKernel>(ray: &Ray, options: &RayOptions, query: W) -> W::Output {
+    let slab = SlabRay::new(ray);
+    match options.test {
+        TriangleTest::Watertight => query.run(
+            slab,
+            Wt {
+                ray: WatertightRay::new(ray),
+                cull: options.cull,
+            },
+        ),
+        TriangleTest::MollerTrumbore => query.run(
+            slab,
+            Mt {
+                ray: *ray,
+                cull: options.cull,
+            },
+        ),
+    }
+}
+
+struct ClosestQuery<'q, 'a, S: ?Sized> {
+    bvh: &'q Bvh<'a>,
+    source: &'q S,
+}
+
+impl<S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, '_, S> {
+    type Output = Option<RayHit>;
+
+    fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> Option<RayHit> {
+        let mut v = ClosestHit {
+            source: self.source,
+            slab,
+            kernel,
+            best: None,
+        };
+        self.bvh.traverse(&mut v);
+        v.best
+    }
+}
+
+struct AnyQuery<'q, 'a, S: ?Sized> {
+    bvh: &'q Bvh<'a>,
+    source: &'q S,
+}
+
+impl<S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, '_, S> {
+    type Output = bool;
+
+    fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> bool {
         let mut v = AnyHit {
-            source,
+            source: self.source,
             slab,
             kernel,
             found: false,
         };
-        self.traverse(&mut v);
+        self.bvh.traverse(&mut v);
         v.found
     }
 }
