@@ -31,3 +31,16 @@ for component in rustfmt clippy; do
     rustup component add "$component"
   fi
 done
+
+# cargo-fuzz, only where a nightly toolchain exists (fuzzing needs it; nothing else does).
+CARGO_FUZZ_VERSION=0.13.2
+if rustup toolchain list | grep -q '^nightly'; then
+  if cargo fuzz --version 2>/dev/null | grep -q " $CARGO_FUZZ_VERSION\$"; then
+    log "cargo-fuzz $CARGO_FUZZ_VERSION: present"
+  else
+    log "cargo-fuzz $CARGO_FUZZ_VERSION: installing (about 2 minutes)"
+    cargo install cargo-fuzz --version "$CARGO_FUZZ_VERSION" --locked
+  fi
+else
+  log "no nightly toolchain: fuzzing will be skipped"
+fi

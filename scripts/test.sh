@@ -16,13 +16,23 @@ cargo clippy --locked --workspace --all-targets -- -D warnings
 step "docs (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --locked --workspace --no-deps
 
-step "no_std core for Cortex-M4F and WebAssembly"
-cargo build --locked -p meshq --target thumbv7em-none-eabihf
-cargo build --locked -p meshq --target wasm32-unknown-unknown
-cargo clippy --locked -p meshq --target thumbv7em-none-eabihf -- -D warnings
+step "no_std core (with blobs) and workloads for Cortex-M4F and WebAssembly"
+for target in thumbv7em-none-eabihf wasm32-unknown-unknown; do
+  cargo build --locked -p meshq --target "$target"
+  cargo build --locked -p meshq --features blob --target "$target"
+  cargo build --locked -p meshq-workload --target "$target"
+done
+cargo clippy --locked -p meshq --features blob --target thumbv7em-none-eabihf -- -D warnings
 
 step "tests (optimised test profile)"
 cargo test --locked --workspace
 
 step "benchmarks compile"
 cargo bench --locked --workspace --no-run
+
+step "fuzz blob parsing briefly"
+if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null 2>&1; then
+  ./scripts/fuzz.sh "${MESHQ_FUZZ_SECONDS:-45}"
+else
+  echo "skipped: no nightly toolchain"
+fi

@@ -1,10 +1,14 @@
-//! The main job until the CLI lands: load the bundled bunny, build its BVH, cast the DESIGN.md
-//! random-ray and camera workloads and closest-point queries, and print the figures.
+//! In-process figures on the bundled bunny: build times per preset, the DESIGN.md random-ray
+//! and camera workloads and closest-point queries on the in-memory BVH, and random rays from
+//! blob views queried in place (`cargo run --release -p meshq-bench --example bunny`). The
+//! random rays are those of `meshq workload --kind random-rays` (seed 1), so `meshq raycast`
+//! figures compare directly.
 
 use std::time::Instant;
 
+use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
-use meshq_tests::{OwnedBvh, load_mesh, workload};
+use meshq_tests::{OwnedBvh, encode, load_mesh, workload};
 
 fn main() {
     let loaded = load_mesh("stanford-bunny");
@@ -64,4 +68,20 @@ fn main() {
         "closest point: {found} queries, {:.2} M queries/s",
         points.len() as f64 / start.elapsed().as_secs_f64() / 1e6
     );
+    for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
+        let bytes = encode(&bvh, &mesh, &BuildConfig::default(), layout)
+            .unwrap_or_else(|e| panic!("encode: {e}"));
+        let start = Instant::now();
+        let view = BlobView::parse(&bytes).unwrap_or_else(|e| panic!("parse: {e}"));
+        let parse = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let hits = rays.iter().filter(|r| view.raycast(r).is_some()).count();
+        println!(
+            "blob {layout:?}: {} bytes ({:.1} per triangle), validated in {:.1} ms; random rays in place: {hits} hits, {:.2} M rays/s",
+            bytes.len(),
+            bytes.len() as f64 / mesh.triangle_count() as f64,
+            parse * 1e3,
+            rays.len() as f64 / start.elapsed().as_secs_f64() / 1e6
+        );
+    }
 }

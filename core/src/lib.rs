@@ -47,8 +47,10 @@
 //! - Counter-clockwise triangles face the side their normal `(b − a) × (c − a)` points to.
 //!
 //! ## Features
-//! None yet: the crate has one fixed layout and numeric behaviour. Future features add API only;
-//! none will change a layout, a wire format or a result.
+//! - `blob`: prebuilt blobs ([`blob`]): encode a BVH and its mesh with postcard and query them
+//!   in place from bytes. Adds `postcard` and `crc` (both `no_std`, no allocation).
+//!
+//! Features add API only; none changes a layout, a wire format or a result.
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -63,6 +65,8 @@
     )
 )]
 
+#[cfg(feature = "blob")]
+pub mod blob;
 pub mod bvh;
 pub mod error;
 pub mod geom;

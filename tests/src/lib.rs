@@ -6,9 +6,8 @@
 pub mod assets;
 pub mod oracle;
 pub mod owned;
-pub mod rng;
 pub mod workload;
 
 pub use assets::{LoadedMesh, MESHES, load_mesh};
-pub use owned::OwnedBvh;
-pub use rng::SplitMix64;
+pub use meshq_workload::SplitMix64;
+pub use owned::{OwnedBvh, bake, encode};

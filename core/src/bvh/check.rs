@@ -1,34 +1,33 @@
 //! The structure validator: the one place that decides whether nodes and order can be trusted.
 
-use super::{BvhNode, MAX_DEPTH};
+use super::{LeafTriangles, MAX_DEPTH, TreeArrays};
 use crate::error::StructureError;
-use crate::mesh::ValidMesh;
 
 /// How much to check.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum CheckLevel {
+pub(crate) enum CheckLevel {
     /// Topology and leaf ranges only (what refit needs before it rewrites the boxes).
     Topology,
     /// Topology, box nesting and triangle containment.
     Full,
 }
 
-/// Checks nodes and order (and, with a mesh, the triangle indices and containment); returns the
-/// depth. Walks left-first with a fixed stack, so leaf ranges must appear in order.
-pub(super) fn check(
-    nodes: &[BvhNode],
-    order: &[u32],
-    mesh: Option<&ValidMesh<'_>>,
+/// Checks nodes and order (and, with a triangle source, the triangle indices and containment);
+/// returns the depth. Walks left-first with a fixed stack, so leaf ranges must appear in order.
+pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    mesh: Option<&S>,
     level: CheckLevel,
 ) -> Result<u32, StructureError> {
-    if nodes.is_empty() || order.is_empty() {
-        return if nodes.is_empty() && order.is_empty() {
+    let (node_count, slot_count) = (tree.node_count(), tree.slot_count());
+    if node_count == 0 || slot_count == 0 {
+        return if node_count == 0 && slot_count == 0 {
             Ok(0)
         } else {
             Err(StructureError::EmptyMismatch)
         };
     }
-    let total = u32::try_from(nodes.len()).map_err(|_| StructureError::UnreachableNodes {
+    let total = u32::try_from(node_count).map_err(|_| StructureError::UnreachableNodes {
         reached: 0,
         total: u32::MAX,
     })?;
@@ -48,8 +47,8 @@ pub(super) fn check(
             // Only a shared subtree can be reached more often than there are nodes.
             return Err(StructureError::LeafRangesNotContiguous { node: index });
         }
-        let node = nodes
-            .get(index as usize)
+        let node = tree
+            .node(index as usize)
             .ok_or(StructureError::ChildOutOfRange { node: index })?;
         let bounds = node.aabb();
         if level == CheckLevel::Full && (bounds.is_empty() || !bounds.is_finite()) {
@@ -57,18 +56,17 @@ pub(super) fn check(
         }
         if node.is_leaf() {
             let first = node.first as usize;
-            let tris = first
-                .checked_add(node.count as usize)
-                .and_then(|end| order.get(first..end))
+            let tris = tree
+                .leaf_triangles(first, node.count as usize)
                 .ok_or(StructureError::LeafRangeOutOfBounds { node: index })?;
             if first != next_slot {
                 return Err(StructureError::LeafRangesNotContiguous { node: index });
             }
             next_slot = first + tris.len();
             if let Some(mesh) = mesh {
-                for &tri in tris {
+                for (slot, tri) in tris {
                     let t = mesh
-                        .triangle(tri)
+                        .corners(slot, tri)
                         .ok_or(StructureError::TriangleOutOfRange { node: index, tri })?;
                     if level == CheckLevel::Full && !bounds.contains_aabb(&t.bounds()) {
                         return Err(StructureError::TriangleOutsideLeaf { node: index, tri });
@@ -90,8 +88,8 @@ pub(super) fn check(
                 .ok_or(StructureError::ChildOutOfRange { node: index })?;
             if level == CheckLevel::Full {
                 for child in [left, right] {
-                    let inside = nodes
-                        .get(child as usize)
+                    let inside = tree
+                        .node(child as usize)
                         .is_some_and(|c| bounds.contains_aabb(&c.aabb()));
                     if !inside {
                         return Err(StructureError::ChildOutsideParent { node: child });
@@ -109,7 +107,7 @@ pub(super) fn check(
     if reached != total {
         return Err(StructureError::UnreachableNodes { reached, total });
     }
-    if next_slot != order.len() {
+    if next_slot != slot_count {
         return Err(StructureError::LeafRangesNotContiguous { node: total });
     }
     Ok(depth)

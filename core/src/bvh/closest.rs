@@ -2,7 +2,8 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec3A};
 
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangles};
+use super::traverse::traverse;
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, TreeArrays};
 use crate::geom::closest_point_regions;
 use crate::math::{ClosestPoint, dot};
 
@@ -38,8 +39,8 @@ impl<S: LeafTriangles + ?Sized> BvhVisitor for Closest<'_, S> {
         key <= self.limit
     }
 
-    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
-        for (slot, &tri) in (first_slot..).zip(tris) {
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        for (slot, tri) in tris {
             let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
@@ -102,17 +103,27 @@ impl Bvh<'_> {
         point: Vec3,
         max_distance: f32,
     ) -> Option<ClosestPoint> {
-        if !point.is_finite() || !(max_distance >= 0.0) {
-            return None;
-        }
-        let mut v = Closest {
-            source,
-            point,
-            lanes: point.into(),
-            limit: max_distance * max_distance,
-            best: None,
-        };
-        self.traverse(&mut v);
-        v.best
+        closest_point(self, source, point, max_distance)
     }
+}
+
+/// [`Bvh::closest_point`] over any storage.
+pub(crate) fn closest_point<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    source: &S,
+    point: Vec3,
+    max_distance: f32,
+) -> Option<ClosestPoint> {
+    if !point.is_finite() || !(max_distance >= 0.0) {
+        return None;
+    }
+    let mut v = Closest {
+        source,
+        point,
+        lanes: point.into(),
+        limit: max_distance * max_distance,
+        best: None,
+    };
+    traverse(tree, &mut v);
+    v.best
 }

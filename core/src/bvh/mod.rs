@@ -18,26 +18,30 @@
 //! node adjacent and always after their parent; leaves name a range of the `order` array, which
 //! maps back to the mesh's own triangle indices (the mesh itself is never reordered).
 
+mod arrays;
 mod binning;
 mod build;
-mod check;
-mod closest;
+pub(crate) mod check;
+pub(crate) mod closest;
 mod config;
 mod node;
-mod overlap;
+pub(crate) mod overlap;
 mod packed;
 mod prim_ref;
-mod raycast;
+pub(crate) mod raycast;
 mod refit;
-mod traverse;
+mod stats;
+pub(crate) mod traverse;
 mod tree;
 
+pub use arrays::{LeafTriangleIds, TreeArrays};
 pub use config::BuildConfig;
 pub use node::BvhNode;
 pub use overlap::OverlapCount;
 pub use packed::{LeafTriangles, PackedTriangle, PackedTriangles};
 pub use prim_ref::PrimRef;
 pub use raycast::{RayOptions, TriangleTest};
+pub use stats::{LEAF_HISTOGRAM_LEN, TreeStats};
 pub use traverse::BvhVisitor;
 pub use tree::Bvh;
 

@@ -2,7 +2,8 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangles};
+use super::traverse::traverse;
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, TreeArrays};
 use crate::geom::{closest_point_regions, overlap_triangle_aabb};
 use crate::math::{Aabb, dot};
 
@@ -42,8 +43,8 @@ where
         (self.enter_box)(node).then_some(0.0)
     }
 
-    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
-        for (slot, &tri) in (first_slot..).zip(tris) {
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        for (slot, tri) in tris {
             let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
@@ -65,17 +66,7 @@ impl Bvh<'_> {
         aabb: &Aabb,
         report: F,
     ) {
-        if aabb.is_empty() || !aabb.is_finite() {
-            return;
-        }
-        let query = *aabb;
-        let mut v = Overlap {
-            source,
-            enter_box: |n: &BvhNode| n.aabb().overlaps(&query),
-            hits: |t: &crate::math::Triangle| overlap_triangle_aabb(t, &query),
-            report,
-        };
-        self.traverse(&mut v);
+        overlap_aabb(self, source, aabb, report);
     }
 
     /// Calls `report` with the index of every non-degenerate triangle within `radius`
@@ -88,21 +79,7 @@ impl Bvh<'_> {
         radius: f32,
         report: F,
     ) {
-        if !center.is_finite() || !(radius >= 0.0) {
-            return;
-        }
-        let r2 = radius * radius;
-        let mut v = Overlap {
-            source,
-            enter_box: |n: &BvhNode| n.aabb().distance_squared_to_point(center) <= r2,
-            hits: |t: &crate::math::Triangle| {
-                let (q, ..) = closest_point_regions(center, t.a, t.b, t.c);
-                let d = center - q;
-                dot(d, d) <= r2
-            },
-            report,
-        };
-        self.traverse(&mut v);
+        overlap_sphere(self, source, center, radius, report);
     }
 
     /// [`Bvh::overlap_aabb`] writing triangle indices into `out`; keeps counting past its end
@@ -113,12 +90,7 @@ impl Bvh<'_> {
         aabb: &Aabb,
         out: &mut [u32],
     ) -> OverlapCount {
-        let mut count = OverlapCount {
-            written: 0,
-            total: 0,
-        };
-        self.overlap_aabb(source, aabb, |tri| push(out, &mut count, tri));
-        count
+        overlap_aabb_into(self, source, aabb, out)
     }
 
     /// [`Bvh::overlap_sphere`] writing triangle indices into `out`; keeps counting past its
@@ -130,12 +102,7 @@ impl Bvh<'_> {
         radius: f32,
         out: &mut [u32],
     ) -> OverlapCount {
-        let mut count = OverlapCount {
-            written: 0,
-            total: 0,
-        };
-        self.overlap_sphere(source, center, radius, |tri| push(out, &mut count, tri));
-        count
+        overlap_sphere_into(self, source, center, radius, out)
     }
 }
 
@@ -146,4 +113,89 @@ fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> 
     }
     count.total += 1;
     ControlFlow::Continue(())
+}
+
+/// [`Bvh::overlap_aabb`] over any storage.
+pub(crate) fn overlap_aabb<A, S, F>(tree: &A, source: &S, aabb: &Aabb, report: F)
+where
+    A: TreeArrays + ?Sized,
+    S: LeafTriangles + ?Sized,
+    F: FnMut(u32) -> ControlFlow<()>,
+{
+    if aabb.is_empty() || !aabb.is_finite() {
+        return;
+    }
+    let query = *aabb;
+    let mut v = Overlap {
+        source,
+        enter_box: |n: &BvhNode| n.aabb().overlaps(&query),
+        hits: |t: &crate::math::Triangle| overlap_triangle_aabb(t, &query),
+        report,
+    };
+    traverse(tree, &mut v);
+}
+
+/// [`Bvh::overlap_sphere`] over any storage.
+pub(crate) fn overlap_sphere<A, S, F>(tree: &A, source: &S, center: Vec3, radius: f32, report: F)
+where
+    A: TreeArrays + ?Sized,
+    S: LeafTriangles + ?Sized,
+    F: FnMut(u32) -> ControlFlow<()>,
+{
+    if !center.is_finite() || !(radius >= 0.0) {
+        return;
+    }
+    let r2 = radius * radius;
+    let mut v = Overlap {
+        source,
+        enter_box: |n: &BvhNode| n.aabb().distance_squared_to_point(center) <= r2,
+        hits: |t: &crate::math::Triangle| {
+            let (q, ..) = closest_point_regions(center, t.a, t.b, t.c);
+            let d = center - q;
+            dot(d, d) <= r2
+        },
+        report,
+    };
+    traverse(tree, &mut v);
+}
+
+/// [`Bvh::overlap_aabb_into`] over any storage.
+pub(crate) fn overlap_aabb_into<A, S>(
+    tree: &A,
+    source: &S,
+    aabb: &Aabb,
+    out: &mut [u32],
+) -> OverlapCount
+where
+    A: TreeArrays + ?Sized,
+    S: LeafTriangles + ?Sized,
+{
+    let mut count = OverlapCount {
+        written: 0,
+        total: 0,
+    };
+    overlap_aabb(tree, source, aabb, |tri| push(out, &mut count, tri));
+    count
+}
+
+/// [`Bvh::overlap_sphere_into`] over any storage.
+pub(crate) fn overlap_sphere_into<A, S>(
+    tree: &A,
+    source: &S,
+    center: Vec3,
+    radius: f32,
+    out: &mut [u32],
+) -> OverlapCount
+where
+    A: TreeArrays + ?Sized,
+    S: LeafTriangles + ?Sized,
+{
+    let mut count = OverlapCount {
+        written: 0,
+        total: 0,
+    };
+    overlap_sphere(tree, source, center, radius, |tri| {
+        push(out, &mut count, tri)
+    });
+    count
 }

@@ -38,6 +38,12 @@ pub struct PackedTriangles<'a> {
 }
 
 impl<'a> PackedTriangles<'a> {
+    /// Wraps triangles known to be in a tree's leaf order.
+    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
+    pub(crate) const fn from_leaf_order(tris: &'a [PackedTriangle]) -> Self {
+        Self { tris }
+    }
+
     /// The packed triangles, in leaf order.
     #[must_use]
     pub const fn as_slice(&self) -> &'a [PackedTriangle] {

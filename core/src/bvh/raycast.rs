@@ -2,7 +2,8 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangles};
+use super::traverse::traverse;
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, TreeArrays};
 use crate::geom::{CullMode, SlabRay, TriangleHit, WatertightRay, moller_trumbore};
 use crate::math::{Ray, RayHit};
 
@@ -99,8 +100,8 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for ClosestHit<'_, S, K> {
     }
 
     #[inline(always)]
-    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
-        for (slot, &tri) in (first_slot..).zip(tris) {
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        for (slot, tri) in tris {
             let Some(corners) = self.source.corners(slot, tri) else {
                 continue;
             };
@@ -138,8 +139,8 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for AnyHit<'_, S, K> {
     }
 
     #[inline(always)]
-    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()> {
-        for (slot, &tri) in (first_slot..).zip(tris) {
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        for (slot, tri) in tris {
             let Some(corners) = self.source.corners(slot, tri) else {
                 continue;
             };
@@ -178,10 +179,7 @@ impl Bvh<'_> {
         ray: &Ray,
         options: &RayOptions,
     ) -> Option<RayHit> {
-        if !ray.is_valid() {
-            return None;
-        }
-        with_kernel(ray, options, ClosestQuery { bvh: self, source })
+        raycast_with(self, source, ray, options)
     }
 
     /// True when `ray` hits any triangle within `[t_min, t_max]` (occlusion / line of sight),
@@ -200,11 +198,36 @@ impl Bvh<'_> {
         ray: &Ray,
         options: &RayOptions,
     ) -> bool {
-        if !ray.is_valid() {
-            return false;
-        }
-        with_kernel(ray, options, AnyQuery { bvh: self, source })
+        raycast_any_with(self, source, ray, options)
     }
+}
+
+/// [`Bvh::raycast_with`] over any storage.
+#[inline]
+pub(crate) fn raycast_with<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    source: &S,
+    ray: &Ray,
+    options: &RayOptions,
+) -> Option<RayHit> {
+    if !ray.is_valid() {
+        return None;
+    }
+    with_kernel(ray, options, ClosestQuery { tree, source })
+}
+
+/// [`Bvh::raycast_any_with`] over any storage.
+#[inline]
+pub(crate) fn raycast_any_with<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    source: &S,
+    ray: &Ray,
+    options: &RayOptions,
+) -> bool {
+    if !ray.is_valid() {
+        return false;
+    }
+    with_kernel(ray, options, AnyQuery { tree, source })
 }
 
 /// A ray query, run with whichever kernel the options name: the choice is made once per ray
@@ -234,12 +257,12 @@ fn with_kernel<W: WithKernel>(ray: &Ray, options: &RayOptions, query: W) -> W::O
     }
 }
 
-struct ClosestQuery<'q, 'a, S: ?Sized> {
-    bvh: &'q Bvh<'a>,
+struct ClosestQuery<'q, A: ?Sized, S: ?Sized> {
+    tree: &'q A,
     source: &'q S,
 }
 
-impl<S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, '_, S> {
+impl<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, A, S> {
     type Output = Option<RayHit>;
 
     fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> Option<RayHit> {
@@ -249,17 +272,17 @@ impl<S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, '_, S> {
             kernel,
             best: None,
         };
-        self.bvh.traverse(&mut v);
+        traverse(self.tree, &mut v);
         v.best
     }
 }
 
-struct AnyQuery<'q, 'a, S: ?Sized> {
-    bvh: &'q Bvh<'a>,
+struct AnyQuery<'q, A: ?Sized, S: ?Sized> {
+    tree: &'q A,
     source: &'q S,
 }
 
-impl<S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, '_, S> {
+impl<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, A, S> {
     type Output = bool;
 
     fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> bool {
@@ -269,7 +292,7 @@ impl<S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, '_, S> {
             kernel,
             found: false,
         };
-        self.bvh.traverse(&mut v);
+        traverse(self.tree, &mut v);
         v.found
     }
 }

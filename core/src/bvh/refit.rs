@@ -20,7 +20,12 @@ impl<'a> Bvh<'a> {
         order: &'a [u32],
         mesh: &ValidMesh<'_>,
     ) -> Result<Self, StructureError> {
-        let depth = check(nodes, order, Some(mesh), CheckLevel::Topology)?;
+        let unchecked = Bvh {
+            nodes: &*nodes,
+            order,
+            depth: 0,
+        };
+        let depth = check(&unchecked, Some(mesh), CheckLevel::Topology)?;
         for i in (0..nodes.len()).rev() {
             let Some(&node) = nodes.get(i) else {
                 continue;

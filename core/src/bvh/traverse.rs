@@ -1,6 +1,6 @@
 use core::ops::ControlFlow;
 
-use super::{Bvh, BvhNode, MAX_DEPTH};
+use super::{Bvh, BvhNode, LeafTriangleIds, MAX_DEPTH, TreeArrays};
 
 /// A query over a BVH, driven by [`Bvh::traverse`]: the tree supplies boxes and triangle
 /// indices, the visitor decides where to go and does the triangle work.
@@ -21,84 +21,86 @@ pub trait BvhVisitor {
         true
     }
 
-    /// Visits a leaf: its triangles' mesh indices `tris`, which occupy order slots
-    /// `first_slot..first_slot + tris.len()` (the slots index [`PackedTriangles`]).
-    /// `Break` ends the traversal.
+    /// Visits a leaf: its triangles as `(order slot, mesh triangle index)` pairs (the slots
+    /// index [`PackedTriangles`]). `Break` ends the traversal.
     ///
     /// [`PackedTriangles`]: super::PackedTriangles
-    fn leaf(&mut self, first_slot: usize, tris: &[u32]) -> ControlFlow<()>;
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;
 }
 
 impl Bvh<'_> {
     /// Runs `visitor` over the tree: depth first, nearer child (smaller key) first, with a
     /// fixed stack of [`MAX_DEPTH`] entries on the call stack and no allocation.
     pub fn traverse<V: BvhVisitor>(&self, visitor: &mut V) {
-        let Some(root) = self.nodes.first() else {
-            return;
-        };
-        if visitor.enter(root).is_none() {
-            return;
-        }
-        let mut stack = [(0u32, 0.0f32); MAX_DEPTH as usize];
-        let mut sp = 0usize;
-        let mut current = 0u32;
-        loop {
-            let Some(node) = self.nodes.get(current as usize) else {
+        traverse(self, visitor);
+    }
+}
+
+/// [`Bvh::traverse`] over any storage. A validated tree is at most [`MAX_DEPTH`] deep, so the
+/// stack never fills; on anything else (which validation rules out) the walk just stops.
+#[inline(always)]
+pub(crate) fn traverse<A: TreeArrays + ?Sized, V: BvhVisitor>(tree: &A, visitor: &mut V) {
+    let Some(root) = tree.node(0) else {
+        return;
+    };
+    if visitor.enter(&root).is_none() {
+        return;
+    }
+    let mut stack = [(0u32, 0.0f32); MAX_DEPTH as usize];
+    let mut sp = 0usize;
+    let mut node = root;
+    loop {
+        if node.is_leaf() {
+            if let Some(tris) = tree.leaf_triangles(node.first as usize, node.count as usize)
+                && visitor.leaf(tris).is_break()
+            {
+                return;
+            }
+        } else {
+            let l = node.first;
+            let Some([left, right]) = tree.node_pair(l as usize) else {
                 return;
             };
-            if node.is_leaf() {
-                let first = node.first as usize;
-                if let Some(tris) = self.order.get(first..first + node.count as usize)
-                    && visitor.leaf(first, tris).is_break()
-                {
-                    return;
+            match (visitor.enter(&left), visitor.enter(&right)) {
+                (Some(kl), Some(kr)) => {
+                    let (near, far, far_key) = if kr < kl {
+                        (right, l, kl)
+                    } else {
+                        (left, l.wrapping_add(1), kr)
+                    };
+                    // At most one deferred node per level: the slot always exists.
+                    if let Some(slot) = stack.get_mut(sp) {
+                        *slot = (far, far_key);
+                        sp += 1;
+                    }
+                    node = near;
+                    continue;
                 }
-            } else {
-                let l = node.first;
-                let r = l.wrapping_add(1);
-                let first = l as usize;
-                let Some([left, right]) = self
-                    .nodes
-                    .get(first..first.wrapping_add(2))
-                    .and_then(|pair| <&[BvhNode; 2]>::try_from(pair).ok())
-                else {
-                    return;
-                };
-                match (visitor.enter(left), visitor.enter(right)) {
-                    (Some(kl), Some(kr)) => {
-                        let (near, far, far_key) = if kr < kl { (r, l, kl) } else { (l, r, kr) };
-                        // A validated tree is at most MAX_DEPTH deep and holds at most one
-                        // deferred node per level, so the slot always exists.
-                        if let Some(slot) = stack.get_mut(sp) {
-                            *slot = (far, far_key);
-                            sp += 1;
-                        }
-                        current = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        current = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        current = r;
-                        continue;
-                    }
-                    (None, None) => {}
+                (Some(_), None) => {
+                    node = left;
+                    continue;
                 }
+                (None, Some(_)) => {
+                    node = right;
+                    continue;
+                }
+                (None, None) => {}
             }
-            loop {
-                if sp == 0 {
-                    return;
-                }
-                sp -= 1;
-                let Some(&(node, key)) = stack.get(sp) else {
+        }
+        loop {
+            if sp == 0 {
+                return;
+            }
+            sp -= 1;
+            let Some(&(index, key)) = stack.get(sp) else {
+                return;
+            };
+            if visitor.revisit(key) {
+                let Some(next) = tree.node(index as usize) else {
                     return;
                 };
-                if visitor.revisit(key) {
-                    current = node;
-                    break;
-                }
+                node = next;
+                break;
             }
         }
     }

@@ -56,12 +56,23 @@ impl<'a> Bvh<'a> {
         order: &'a [u32],
         mesh: &ValidMesh<'_>,
     ) -> Result<Self, StructureError> {
-        let depth = check(nodes, order, Some(mesh), CheckLevel::Full)?;
-        Ok(Self {
+        let mut bvh = Self {
+            nodes,
+            order,
+            depth: 0,
+        };
+        bvh.depth = check(&bvh, Some(mesh), CheckLevel::Full)?;
+        Ok(bvh)
+    }
+
+    /// A view over arrays already known to be valid (decoded from a validated blob).
+    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
+    pub(crate) const fn from_validated(nodes: &'a [BvhNode], order: &'a [u32], depth: u32) -> Self {
+        Self {
             nodes,
             order,
             depth,
-        })
+        }
     }
 
     /// Validates the structure against `mesh`: children after parents and in range, depth
@@ -73,7 +84,7 @@ impl<'a> Bvh<'a> {
     /// # Errors
     /// The first [`StructureError`] found.
     pub fn check(&self, mesh: &ValidMesh<'_>) -> Result<(), StructureError> {
-        check(self.nodes, self.order, Some(mesh), CheckLevel::Full).map(|_| ())
+        check(self, Some(mesh), CheckLevel::Full).map(|_| ())
     }
 
     /// The nodes, root first.

@@ -73,26 +73,42 @@ impl<'a> MeshRef<'a> {
         u32::try_from(self.triangles.len()).map_err(|_| MeshError::TooManyTriangles {
             count: self.triangles.len(),
         })?;
-        for (vertex, p) in (0u32..).zip(self.positions) {
-            if p.iter().any(|c| !c.is_finite()) {
-                return Err(MeshError::NonFiniteCoordinate { vertex });
-            }
-            if p.iter().any(|c| c.abs() > MAX_COORDINATE) {
-                return Err(MeshError::CoordinateTooLarge { vertex });
-            }
+        for (vertex, &p) in (0u32..).zip(self.positions) {
+            check_vertex(vertex, p)?;
         }
-        for (triangle, t) in (0u32..).zip(self.triangles) {
-            if let Some(&index) = t.iter().find(|&&i| i >= vertex_count) {
-                return Err(MeshError::IndexOutOfRange {
-                    triangle,
-                    index,
-                    vertex_count,
-                });
-            }
+        for (triangle, &t) in (0u32..).zip(self.triangles) {
+            check_triangle(triangle, t, vertex_count)?;
         }
         Ok(ValidMesh::new_unchecked_by_validate(
             self.positions,
             self.triangles,
         ))
+    }
+}
+
+/// The rule every stored vertex obeys: finite coordinates within ±[`MAX_COORDINATE`].
+pub(crate) fn check_vertex(vertex: u32, p: [f32; 3]) -> Result<(), MeshError> {
+    if p.iter().any(|c| !c.is_finite()) {
+        return Err(MeshError::NonFiniteCoordinate { vertex });
+    }
+    if p.iter().any(|c| c.abs() > MAX_COORDINATE) {
+        return Err(MeshError::CoordinateTooLarge { vertex });
+    }
+    Ok(())
+}
+
+/// The rule every stored triangle obeys: its three indices name existing vertices.
+pub(crate) fn check_triangle(
+    triangle: u32,
+    t: [u32; 3],
+    vertex_count: u32,
+) -> Result<(), MeshError> {
+    match t.into_iter().find(|&i| i >= vertex_count) {
+        Some(index) => Err(MeshError::IndexOutOfRange {
+            triangle,
+            index,
+            vertex_count,
+        }),
+        None => Ok(()),
     }
 }

@@ -9,6 +9,8 @@ mod mesh_ref;
 mod valid_mesh;
 
 pub use mesh_ref::MeshRef;
+#[cfg(feature = "blob")]
+pub(crate) use mesh_ref::{check_triangle, check_vertex};
 pub use valid_mesh::ValidMesh;
 
 /// The largest coordinate magnitude a valid mesh may have: 2⁵⁰ ≈ 1.1·10¹⁵.

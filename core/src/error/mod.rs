@@ -281,3 +281,8 @@ impl fmt::Display for StructureError {
 }
 
 impl core::error::Error for StructureError {}
+
+#[cfg(feature = "blob")]
+mod blob;
+#[cfg(feature = "blob")]
+pub use blob::{BlobError, BlobSection};

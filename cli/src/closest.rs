@@ -1,0 +1,89 @@
+//! `meshq closest`: points from a file, one closest-point record per point.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Result;
+use clap::Args;
+use meshq::math::Vec3;
+use serde::Serialize;
+
+use crate::raycast::per_second;
+use crate::records::{RecordReader, ResultWriter};
+use crate::structure::{QueryInput, with_structure};
+use crate::{output, progress};
+
+/// Points read and queried per chunk (12 MB of input).
+const CHUNK: usize = 1 << 20;
+
+#[derive(Args, Debug)]
+pub struct ClosestArgs {
+    #[command(flatten)]
+    pub input: QueryInput,
+    /// Points: raw little-endian float32, 3 per point (x y z), no header.
+    #[arg(long)]
+    pub points: PathBuf,
+    /// Results: per point, float32 distance then uint32 triangle (+inf and 0xFFFFFFFF when the
+    /// mesh is empty or the point is not finite).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print the figures as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize)]
+struct Summary {
+    points: u64,
+    build_seconds: f64,
+    query_seconds: f64,
+    points_per_second: f64,
+}
+
+pub fn run(args: &ClosestArgs) -> Result<()> {
+    let mut reader = RecordReader::open(&args.points, 3, "point")?;
+    let mut writer = ResultWriter::create(&args.out)?;
+    let summary = with_structure(&args.input, |s| {
+        let bar = progress::bar(reader.count, "points");
+        let mut floats = Vec::new();
+        let mut results: Vec<(f32, u32)> = Vec::with_capacity(CHUNK);
+        let mut query_seconds = 0.0f64;
+        while reader.next_chunk(CHUNK, &mut floats)? > 0 {
+            let (points, _) = floats.as_chunks::<3>();
+            results.clear();
+            let start = Instant::now();
+            results.extend(points.iter().map(|&p| {
+                s.tree
+                    .closest_point(&s.triangles, Vec3::from_array(p), f32::INFINITY)
+                    .map_or((f32::INFINITY, u32::MAX), |c| {
+                        (c.distance_squared.sqrt(), c.tri)
+                    })
+            }));
+            query_seconds += start.elapsed().as_secs_f64();
+            for &(d, tri) in &results {
+                writer.write(d, tri)?;
+            }
+            bar.inc(points.len() as u64);
+        }
+        bar.finish_and_clear();
+        Ok(Summary {
+            points: reader.count,
+            build_seconds: s.prepare_seconds,
+            query_seconds,
+            points_per_second: per_second(reader.count, query_seconds),
+        })
+    })?;
+    writer.finish()?;
+    if args.json {
+        output::json(&summary)
+    } else {
+        println!(
+            "{} points, prepared in {:.3} s, queries {:.3} s: {:.2} M points/s",
+            summary.points,
+            summary.build_seconds,
+            summary.query_seconds,
+            summary.points_per_second / 1e6
+        );
+        Ok(())
+    }
+}

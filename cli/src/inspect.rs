@@ -1,0 +1,156 @@
+//! `meshq inspect`: what a blob holds, after full validation of its tree.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use meshq::blob::{BlobHeader, BlobTree, MeshLayout};
+use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
+use serde::Serialize;
+
+use crate::output;
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    /// The blob.
+    pub blob: PathBuf,
+    /// Print everything as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize)]
+struct Report {
+    format_version: u16,
+    structure: String,
+    mesh_layout: String,
+    triangles: u32,
+    vertices: u32,
+    nodes: u32,
+    leaves: usize,
+    depth: u32,
+    bounds_min: [f32; 3],
+    bounds_max: [f32; 3],
+    config: Config,
+    sah_cost: f64,
+    /// `[leaf size, leaves]` pairs for every size that occurs.
+    leaf_sizes: Vec<[usize; 2]>,
+    bytes: Bytes,
+    mesh_checksum: String,
+    checksum: String,
+}
+
+#[derive(Serialize)]
+struct Config {
+    bins: u32,
+    max_leaf_size: u32,
+    max_depth: u32,
+    traversal_cost: f32,
+    triangle_cost: f32,
+}
+
+#[derive(Serialize)]
+struct Bytes {
+    total: usize,
+    header: usize,
+    nodes: usize,
+    order: usize,
+    mesh: usize,
+    per_triangle: f64,
+}
+
+pub fn run(args: &InspectArgs) -> Result<()> {
+    let bytes = std::fs::read(&args.blob)
+        .with_context(|| format!("cannot read {}", args.blob.display()))?;
+    let (header, tree) = BlobTree::parse(&bytes)
+        .with_context(|| format!("{}: invalid blob", args.blob.display()))?;
+    let report = report(&header, &tree, bytes.len());
+    if args.json {
+        return output::json(&report);
+    }
+    print(&report);
+    Ok(())
+}
+
+fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
+    let stats = TreeStats::of(tree, &h.config);
+    let nodes = 32 * h.node_count as usize;
+    let order = 4 * h.triangle_count as usize;
+    let leaf_sizes = (0..LEAF_HISTOGRAM_LEN)
+        .filter_map(|k| {
+            let n = *stats.leaf_sizes.get(k)?;
+            (n > 0).then_some([k, n])
+        })
+        .collect();
+    Report {
+        format_version: h.version,
+        structure: format!("{:?}", h.kind).to_lowercase(),
+        mesh_layout: match h.mesh {
+            MeshLayout::Indexed => "indexed",
+            MeshLayout::Packed => "packed",
+            MeshLayout::Omitted => "omitted",
+        }
+        .to_owned(),
+        triangles: h.triangle_count,
+        vertices: h.vertex_count,
+        nodes: h.node_count,
+        leaves: stats.leaves,
+        depth: h.depth,
+        bounds_min: h.bounds.min.to_array(),
+        bounds_max: h.bounds.max.to_array(),
+        config: Config {
+            bins: h.config.bins,
+            max_leaf_size: h.config.max_leaf_size,
+            max_depth: h.config.max_depth,
+            traversal_cost: h.config.traversal_cost,
+            triangle_cost: h.config.triangle_cost,
+        },
+        sah_cost: stats.sah_cost,
+        leaf_sizes,
+        bytes: Bytes {
+            total,
+            header: h.header_len,
+            nodes,
+            order,
+            // Everything else, with the varint lengths of the sequences.
+            mesh: total.saturating_sub(h.header_len + nodes + order),
+            per_triangle: if h.triangle_count > 0 {
+                total as f64 / f64::from(h.triangle_count)
+            } else {
+                0.0
+            },
+        },
+        mesh_checksum: format!("{:08x}", h.mesh_checksum),
+        checksum: format!("{:08x}", h.checksum),
+    }
+}
+
+fn print(r: &Report) {
+    println!(
+        "meshq blob, format version {}: {} with mesh {}",
+        r.format_version, r.structure, r.mesh_layout
+    );
+    println!(
+        "  {} triangles, {} vertices, {} nodes ({} leaves), depth {}",
+        r.triangles, r.vertices, r.nodes, r.leaves, r.depth
+    );
+    println!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
+    let c = &r.config;
+    println!(
+        "  built with {} bins, leaves up to {}, max depth {}, costs traversal {} / triangle {}",
+        c.bins, c.max_leaf_size, c.max_depth, c.traversal_cost, c.triangle_cost
+    );
+    println!("  SAH cost {:.2}", r.sah_cost);
+    let sizes: Vec<String> = r
+        .leaf_sizes
+        .iter()
+        .map(|[size, n]| format!("{size}: {n}"))
+        .collect();
+    println!("  leaf sizes (triangles: leaves) {}", sizes.join(", "));
+    let b = &r.bytes;
+    println!(
+        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, mesh {}",
+        b.total, b.per_triangle, b.header, b.nodes, b.order, b.mesh
+    );
+    println!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);
+}

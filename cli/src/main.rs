@@ -1,0 +1,59 @@
+//! `meshq`: bake acceleration-structure blobs offline, inspect them, and run ray and
+//! closest-point queries from files.
+
+mod bake;
+mod closest;
+mod inspect;
+mod mesh_file;
+mod output;
+mod progress;
+mod quality;
+mod raycast;
+mod records;
+mod structure;
+mod workload;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser, Debug)]
+#[command(name = "meshq", version, about = "Bake, inspect and query meshq blobs")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Build an acceleration structure over a mesh and write it as a blob.
+    Bake(bake::BakeArgs),
+    /// Validate a blob and show its header, shape and size.
+    Inspect(inspect::InspectArgs),
+    /// Cast rays from a file at a mesh or blob.
+    Raycast(raycast::RaycastArgs),
+    /// Find the closest surface point for points from a file.
+    Closest(closest::ClosestArgs),
+    /// Write a reproducible ray or point set for a mesh (the DESIGN.md workloads).
+    Workload(workload::WorkloadArgs),
+}
+
+fn main() -> ExitCode {
+    // clap prints usage errors itself and exits with status 2.
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Bake(args) => bake::run(args),
+        Command::Inspect(args) => inspect::run(args),
+        Command::Raycast(args) => raycast::run(args),
+        Command::Closest(args) => closest::run(args),
+        Command::Workload(args) => workload::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One line: the context chain joined with ": ".
+            eprintln!("meshq: error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! `meshq workload`: writes the DESIGN.md query workloads for a mesh as raw files that
+//! `raycast` and `closest` read.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+use meshq_workload::{CameraRays, QueryPoints, RandomRays, centre_radius};
+
+use crate::mesh_file::read_mesh;
+
+/// `--kind`: which workload.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Kind {
+    /// Rays from a sphere of radius 1.5·r toward points in the box (6 float32 per ray).
+    RandomRays,
+    /// A pinhole camera's rays, row-major (6 float32 per ray).
+    CameraRays,
+    /// Points in the box grown by 10 % (3 float32 per point).
+    Points,
+}
+
+#[derive(Args, Debug)]
+pub struct WorkloadArgs {
+    /// The mesh whose bounding box places the workload.
+    pub mesh: PathBuf,
+    /// Which workload.
+    #[arg(long, value_enum, default_value_t = Kind::RandomRays)]
+    pub kind: Kind,
+    /// How many rays or points (random rays and points).
+    #[arg(long, default_value_t = 1_000_000)]
+    pub count: usize,
+    /// Image size `WIDTHxHEIGHT` (camera rays).
+    #[arg(long, default_value = "1024x1024")]
+    pub image: String,
+    /// Generator seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Where to write the records.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
+pub fn run(args: &WorkloadArgs) -> Result<()> {
+    let data = read_mesh(&args.mesh)?;
+    let (_, _, bounds) = centre_radius(&data.positions);
+    let file = File::create(&args.output)
+        .with_context(|| format!("cannot create {}", args.output.display()))?;
+    let mut out = BufWriter::with_capacity(1 << 20, file);
+    let mut floats = |values: &[f32]| -> Result<()> {
+        for v in values {
+            out.write_all(&v.to_le_bytes())?;
+        }
+        Ok(())
+    };
+    let written = match args.kind {
+        Kind::RandomRays => {
+            for r in RandomRays::new(bounds, args.seed).take(args.count) {
+                floats(&[
+                    r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+                ])?;
+            }
+            args.count
+        }
+        Kind::CameraRays => {
+            let (w, h) = args
+                .image
+                .split_once('x')
+                .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+                .with_context(|| format!("--image {}: expected WIDTHxHEIGHT", args.image))?;
+            for r in CameraRays::new(bounds, w, h) {
+                floats(&[
+                    r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+                ])?;
+            }
+            w * h
+        }
+        Kind::Points => {
+            for p in QueryPoints::new(bounds, args.seed).take(args.count) {
+                floats(&p.to_array())?;
+            }
+            args.count
+        }
+    };
+    out.flush()?;
+    println!("wrote {written} records to {}", args.output.display());
+    Ok(())
+}

@@ -1,0 +1,363 @@
+//! The `meshq` command end to end: files in, files out, compared with the library's answers
+//! and with brute force; errors are one line and a non-zero status, never a panic.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use meshq::bvh::{BuildConfig, RayOptions};
+use meshq::geom::{CullMode, closest_point_triangle, intersect_ray_triangle_watertight};
+use meshq::math::{Ray, Vec3};
+use meshq::mesh::MeshRef;
+use meshq_tests::{OwnedBvh, load_mesh, workload};
+
+fn meshq(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_meshq"))
+        .args(args.iter().map(|a| a.as_ref()))
+        .output()
+        .expect("meshq runs")
+}
+
+fn ok(args: &[&dyn AsRef<std::ffi::OsStr>]) -> String {
+    let out = meshq(args);
+    assert!(
+        out.status.success(),
+        "meshq failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn asset(name: &str) -> PathBuf {
+    meshq_tests::assets::assets_dir().join(name)
+}
+
+fn write_f32s(path: &Path, values: impl IntoIterator<Item = f32>) {
+    let bytes: Vec<u8> = values.into_iter().flat_map(f32::to_le_bytes).collect();
+    std::fs::write(path, bytes).unwrap();
+}
+
+fn read_records(path: &Path) -> Vec<(f32, u32)> {
+    let bytes = std::fs::read(path).unwrap();
+    let (records, rest) = bytes.as_chunks::<8>();
+    assert!(rest.is_empty());
+    records
+        .iter()
+        .map(|r| {
+            let [a, b, c, d, e, f, g, h] = *r;
+            (
+                f32::from_le_bytes([a, b, c, d]),
+                u32::from_le_bytes([e, f, g, h]),
+            )
+        })
+        .collect()
+}
+
+fn ray_floats(rays: &[Ray]) -> Vec<f32> {
+    rays.iter()
+        .flat_map(|r| {
+            [
+                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+            ]
+        })
+        .collect()
+}
+
+#[test]
+fn bake_inspect_raycast_and_closest_agree_with_the_library_and_brute_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("teapot");
+    let mesh = loaded.valid();
+    let obj = asset("teapot.obj");
+    let blob = dir.path().join("teapot.meshq");
+    let bake = ok(&[
+        &"bake",
+        &obj,
+        &"-o",
+        &blob,
+        &"--quality",
+        &"high",
+        &"--json",
+    ]);
+    let bake: serde_json::Value = serde_json::from_str(&bake).unwrap();
+    assert_eq!(bake["triangles"], mesh.triangle_count());
+    assert_eq!(bake["bytes"], std::fs::metadata(&blob).unwrap().len());
+
+    let inspect: serde_json::Value =
+        serde_json::from_str(&ok(&[&"inspect", &blob, &"--json"])).unwrap();
+    assert_eq!(inspect["triangles"], mesh.triangle_count());
+    assert_eq!(inspect["vertices"], mesh.vertex_count());
+    assert_eq!(inspect["mesh_layout"], "indexed");
+    assert_eq!(inspect["config"]["bins"], 64);
+    let leaves: u64 = inspect["leaf_sizes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[1].as_u64().unwrap())
+        .sum();
+    assert_eq!(inspect["leaves"], leaves);
+    assert!(inspect["sah_cost"].as_f64().unwrap() > 1.0);
+    assert!(ok(&[&"inspect", &blob]).contains("leaf sizes"));
+
+    // The library's answers on the same rays, built in-process.
+    let rays = workload::random_rays(&loaded.positions, 5_000, 77);
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let owned = OwnedBvh::build(&mesh, &BuildConfig::high_quality()).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    let expected: Vec<(f32, u32)> = rays
+        .iter()
+        .map(|r| {
+            bvh.raycast(&mesh, r)
+                .map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.tri))
+        })
+        .collect();
+    for input in [&blob, &obj] {
+        let hits = dir.path().join("hits.bin");
+        let summary: serde_json::Value = serde_json::from_str(&ok(&[
+            &"raycast", input, &"--rays", &ray_file, &"--out", &hits, &"--json",
+        ]))
+        .unwrap();
+        assert_eq!(summary["rays"], 5_000);
+        let got = read_records(&hits);
+        let key = |v: &[(f32, u32)]| v.iter().map(|(t, i)| (t.to_bits(), *i)).collect::<Vec<_>>();
+        assert_eq!(key(&got), key(&expected), "{}", input.display());
+        assert_eq!(
+            summary["hits"],
+            got.iter().filter(|h| h.0.is_finite()).count()
+        );
+        for key in ["build_seconds", "query_seconds", "rays_per_second"] {
+            assert!(summary[key].as_f64().unwrap() >= 0.0, "{key}");
+        }
+
+        let any = dir.path().join("any.bin");
+        ok(&[
+            &"raycast", input, &"--rays", &ray_file, &"--out", &any, &"--any",
+        ]);
+        for (a, e) in read_records(&any).iter().zip(&expected) {
+            let expect = if e.0.is_finite() {
+                (0.0, 0)
+            } else {
+                (f32::INFINITY, u32::MAX)
+            };
+            assert_eq!(*a, expect);
+        }
+    }
+    // Brute force on a sample: every triangle, watertight test, lower index on ties.
+    for (r, e) in rays.iter().zip(&expected).step_by(25) {
+        let mut best: Option<(f32, u32)> = None;
+        for tri in 0..mesh.triangle_count() as u32 {
+            let t = mesh.triangle(tri).unwrap();
+            if t.is_degenerate() {
+                continue;
+            }
+            if let Some(h) = intersect_ray_triangle_watertight(r, &t, CullMode::None)
+                && best.is_none_or(|b| h.t < b.0)
+            {
+                best = Some((h.t, tri));
+            }
+        }
+        assert_eq!(best.unwrap_or((f32::INFINITY, u32::MAX)), *e);
+    }
+    let _ = RayOptions::default();
+
+    let points = workload::closest_points(&loaded.positions, 400, 78);
+    let point_file = dir.path().join("points.bin");
+    write_f32s(&point_file, points.iter().flat_map(|p| p.to_array()));
+    let out = dir.path().join("closest.bin");
+    let summary: serde_json::Value = serde_json::from_str(&ok(&[
+        &"closest",
+        &blob,
+        &"--points",
+        &point_file,
+        &"--out",
+        &out,
+        &"--json",
+    ]))
+    .unwrap();
+    assert_eq!(summary["points"], 400);
+    for (p, (d, tri)) in points.iter().zip(read_records(&out)) {
+        let best = (0..mesh.triangle_count() as u32)
+            .filter_map(|i| {
+                let t = mesh.triangle(i)?;
+                (!t.is_degenerate()).then(|| (closest_point_triangle(*p, &t).distance_squared, i))
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            .unwrap();
+        assert_eq!((d, tri), (best.0.sqrt(), best.1));
+    }
+}
+
+/// A quad and a pentagon in the plane z = 0, as OBJ, ASCII PLY and (pre-triangulated) STL.
+const QUAD_AND_PENTAGON_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+v 2 0 0\nv 3 0 0\nv 3.5 1 0\nv 2.5 2 0\nv 2 1 0\n\
+vt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1 4/1/1\nf 5 6 7 8 9\n";
+
+const QUAD_AND_PENTAGON_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 9\n\
+property float x\nproperty float y\nproperty float z\nproperty uchar red\n\
+element face 2\nproperty list uchar int vertex_indices\nend_header\n\
+0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n2 0 0 1\n3 0 0 1\n3.5 1 0 1\n2.5 2 0 1\n2 1 0 1\n\
+4 0 1 2 3\n5 4 5 6 7 8\n";
+
+#[test]
+fn triangle_indices_follow_the_file_after_fan_triangulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("shapes.obj");
+    std::fs::write(&obj, QUAD_AND_PENTAGON_OBJ).unwrap();
+    let ply = dir.path().join("shapes.ply");
+    std::fs::write(&ply, QUAD_AND_PENTAGON_PLY).unwrap();
+    // The fans: quad → 0:(1,2,3) 1:(1,3,4); pentagon → 2:(5,6,7) 3:(5,7,8) 4:(5,8,9).
+    let corners: [[usize; 3]; 5] = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7], [4, 7, 8]];
+    let p = [
+        [0.0f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [3.0, 0.0, 0.0],
+        [3.5, 1.0, 0.0],
+        [2.5, 2.0, 0.0],
+        [2.0, 1.0, 0.0],
+    ];
+    let stl = dir.path().join("shapes.stl");
+    let mut text = String::from("solid shapes\n");
+    for c in corners {
+        text.push_str("facet normal 0 0 1\nouter loop\n");
+        for i in c {
+            text.push_str(&format!("vertex {} {} {}\n", p[i][0], p[i][1], p[i][2]));
+        }
+        text.push_str("endloop\nendfacet\n");
+    }
+    text.push_str("endsolid shapes\n");
+    std::fs::write(&stl, text).unwrap();
+
+    // One ray straight down through each fan triangle's centroid.
+    let rays: Vec<Ray> = corners
+        .iter()
+        .map(|c| {
+            let centroid = c
+                .iter()
+                .fold(Vec3::ZERO, |s, &i| s + Vec3::from_array(p[i]))
+                / 3.0;
+            Ray::new(centroid + Vec3::Z, -Vec3::Z)
+        })
+        .collect();
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    for input in [&obj, &ply, &stl] {
+        let hits = dir.path().join("hits.bin");
+        ok(&[&"raycast", input, &"--rays", &ray_file, &"--out", &hits]);
+        let got: Vec<(f32, u32)> = read_records(&hits);
+        assert_eq!(
+            got,
+            (0..5).map(|i| (1.0, i)).collect::<Vec<_>>(),
+            "{}",
+            input.display()
+        );
+        // A blob baked from the file answers the same.
+        let blob = dir.path().join("shapes.meshq");
+        ok(&[&"bake", input, &"-o", &blob, &"--packed"]);
+        ok(&[&"raycast", &blob, &"--rays", &ray_file, &"--out", &hits]);
+        assert_eq!(read_records(&hits), got);
+    }
+    let _ = MeshRef::new(&p, &[]);
+}
+
+fn fails(args: &[&dyn AsRef<std::ffi::OsStr>], status: i32, needle: &str) {
+    let out = meshq(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(status), "{stderr}");
+    assert!(stderr.contains(needle), "{stderr:?} lacks {needle:?}");
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("backtrace"),
+        "{stderr}"
+    );
+    if status == 1 {
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    }
+}
+
+#[test]
+fn errors_are_one_line_and_a_status_never_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = asset("teapot.obj");
+    let blob = dir.path().join("t.meshq");
+    ok(&[&"bake", &obj, &"-o", &blob]);
+    let rays = dir.path().join("rays.bin");
+    write_f32s(&rays, [0.0; 12]);
+    let out = dir.path().join("out.bin");
+
+    fails(
+        &[&"bake", &"no/such/file.obj", &"-o", &blob],
+        1,
+        "no/such/file.obj",
+    );
+    fails(&[&"bake", &rays, &"-o", &blob], 1, "unknown mesh format");
+    let broken = dir.path().join("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nf 1 2 3\n").unwrap();
+    fails(
+        &[&"bake", &broken, &"-o", &blob.with_extension("x")],
+        1,
+        "broken.obj",
+    );
+    fails(&[&"inspect", &"missing.meshq"], 1, "missing.meshq");
+
+    let mut bytes = std::fs::read(&blob).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x10;
+    let corrupt = dir.path().join("corrupt.meshq");
+    std::fs::write(&corrupt, &bytes).unwrap();
+    fails(&[&"inspect", &corrupt], 1, "checksum mismatch");
+    fails(
+        &[&"raycast", &corrupt, &"--rays", &rays, &"--out", &out],
+        1,
+        "checksum",
+    );
+    std::fs::write(&corrupt, &bytes[..mid]).unwrap();
+    fails(&[&"inspect", &corrupt], 1, "truncated");
+
+    let odd = dir.path().join("odd.bin");
+    std::fs::write(&odd, [0u8; 25]).unwrap();
+    fails(
+        &[&"raycast", &blob, &"--rays", &odd, &"--out", &out],
+        1,
+        "bad ray file length",
+    );
+    fails(
+        &[&"closest", &blob, &"--points", &odd, &"--out", &out],
+        1,
+        "bad point file length",
+    );
+
+    let bare = dir.path().join("bare.meshq");
+    ok(&[&"bake", &obj, &"-o", &bare, &"--no-mesh"]);
+    fails(
+        &[&"raycast", &bare, &"--rays", &rays, &"--out", &out],
+        1,
+        "--mesh",
+    );
+    ok(&[
+        &"raycast", &bare, &"--mesh", &obj, &"--rays", &rays, &"--out", &out,
+    ]);
+    fails(
+        &[
+            &"raycast",
+            &bare,
+            &"--mesh",
+            &asset("spot.obj"),
+            &"--rays",
+            &rays,
+            &"--out",
+            &out,
+        ],
+        1,
+        "not the one the blob was baked from",
+    );
+    assert!(ok(&[&"inspect", &bare]).contains("omitted"));
+
+    fails(&[&"raycast", &blob, &"--bogus"], 2, "--bogus");
+    fails(
+        &[&"bake", &obj, &"-o", &blob, &"--no-mesh", &"--packed"],
+        2,
+        "cannot be used",
+    );
+}

@@ -1,0 +1,242 @@
+//! Writing a blob: sizing first, then encoding into the caller's buffer.
+
+use postcard::ser_flavors::{Size, Slice};
+use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
+
+use super::checksum::{digest, mesh_checksum};
+use super::format::{
+    CHECKSUM_BYTES, FORMAT_VERSION, FixedU32, HeaderFields, MAGIC, MeshLayout, NodeRecord,
+    StructureKind, TriangleRecord,
+};
+use crate::bvh::{BuildConfig, Bvh, PackedTriangle};
+use crate::error::{BlobError, BlobSection};
+use crate::mesh::ValidMesh;
+
+/// What to put in a blob besides the tree.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EncodeOptions {
+    /// How to store the mesh (indexed by default; packed for the fastest in-place queries;
+    /// omitted when the reader already has the mesh).
+    pub mesh: MeshLayout,
+    /// The config the tree was built with, recorded in the header for tools to show. It does not
+    /// affect queries.
+    pub config: BuildConfig,
+}
+
+/// The exact number of bytes [`encode_into`] writes for this tree, mesh and options.
+///
+/// # Errors
+/// [`BlobError::TooLarge`] when a count does not fit the format.
+pub fn encoded_len(
+    bvh: &Bvh<'_>,
+    mesh: &ValidMesh<'_>,
+    options: &EncodeOptions,
+) -> Result<usize, BlobError> {
+    let payload = Payload::new(bvh, mesh, options.mesh);
+    let payload_len = size_of_value(&payload)?;
+    let header = header(bvh, mesh, options, payload_len, 0)?;
+    size_of_value(&header)?
+        .checked_add(payload_len)
+        .ok_or(BlobError::TooLarge)
+}
+
+/// Encodes `bvh`, built from `mesh`, into the front of `out` and returns the number of bytes
+/// written ([`encoded_len`]).
+///
+/// The bytes depend only on the tree, the mesh and the options, never on the host: every
+/// number is little-endian, so a deterministic build gives the same blob on every target. The
+/// tree is validated against the mesh first, so an invalid blob is never written.
+///
+/// # Errors
+/// [`BlobError::BufferTooSmall`] (nothing written) when `out` is shorter than
+/// [`encoded_len`]; [`BlobError::InvalidNode`] when `bvh` does not validate against `mesh`;
+/// [`BlobError::HeaderMismatch`] for an out-of-range config; [`BlobError::TooLarge`].
+pub fn encode_into(
+    bvh: &Bvh<'_>,
+    mesh: &ValidMesh<'_>,
+    options: &EncodeOptions,
+    out: &mut [u8],
+) -> Result<usize, BlobError> {
+    options
+        .config
+        .check()
+        .map_err(|_| BlobError::HeaderMismatch { field: "config" })?;
+    bvh.check(mesh)?;
+    let payload = Payload::new(bvh, mesh, options.mesh);
+    let payload_len = size_of_value(&payload)?;
+    let header = header(bvh, mesh, options, payload_len, 0)?;
+    let header_len = size_of_value(&header)?;
+    let total = header_len
+        .checked_add(payload_len)
+        .ok_or(BlobError::TooLarge)?;
+    let got = out.len();
+    let out = out.get_mut(..total).ok_or(BlobError::BufferTooSmall {
+        section: BlobSection::Header,
+        needed: total,
+        got,
+    })?;
+    let (head, body) = out.split_at_mut(header_len);
+    write_value(&payload, body)?;
+    write_value(&header, head)?;
+    reseal(out)?;
+    Ok(total)
+}
+
+/// Recomputes a blob's checksum in place (after the blob was edited deliberately, for example by
+/// a test that corrupts it). Only the header is read; nothing else is validated.
+///
+/// # Errors
+/// Whatever [`BlobHeader::read`](super::BlobHeader::read) reports.
+pub fn reseal(blob: &mut [u8]) -> Result<(), BlobError> {
+    let header = super::BlobHeader::read(blob)?;
+    let crc = blob_checksum(blob, header.header_len);
+    let at = header.header_len.saturating_sub(CHECKSUM_BYTES);
+    if let Some(slot) = blob.get_mut(at..header.header_len) {
+        slot.copy_from_slice(&crc.to_le_bytes());
+    }
+    Ok(())
+}
+
+/// The blob checksum: CRC-32 of every byte except the checksum itself (the last four header
+/// bytes, ending at `header_len`).
+pub(crate) fn blob_checksum(blob: &[u8], header_len: usize) -> u32 {
+    let at = header_len.saturating_sub(CHECKSUM_BYTES);
+    let mut d = digest();
+    d.update(blob.get(..at).unwrap_or_default());
+    d.update(blob.get(header_len..).unwrap_or_default());
+    d.finalize()
+}
+
+/// The header as written: magic, version, fields, checksum (a placeholder until resealed).
+#[derive(serde::Serialize)]
+struct Header {
+    magic: [u8; 4],
+    version: u16,
+    fields: HeaderFields,
+    checksum: FixedU32,
+}
+
+fn header(
+    bvh: &Bvh<'_>,
+    mesh: &ValidMesh<'_>,
+    options: &EncodeOptions,
+    payload_len: usize,
+    checksum: u32,
+) -> Result<Header, BlobError> {
+    let count = |n: usize| u32::try_from(n).map_err(|_| BlobError::TooLarge);
+    let bounds = bvh.bounds();
+    Ok(Header {
+        magic: MAGIC,
+        version: FORMAT_VERSION,
+        fields: HeaderFields {
+            kind: StructureKind::Bvh.tag(),
+            mesh: options.mesh.tag(),
+            triangle_count: count(mesh.triangle_count())?,
+            vertex_count: count(mesh.vertex_count())?,
+            node_count: count(bvh.nodes().len())?,
+            depth: bvh.depth(),
+            bounds_min: bounds.min.to_array(),
+            bounds_max: bounds.max.to_array(),
+            config: options.config,
+            mesh_checksum: mesh_checksum(mesh),
+            payload_len: u64::try_from(payload_len).map_err(|_| BlobError::TooLarge)?,
+        },
+        checksum: FixedU32(checksum),
+    })
+}
+
+/// Everything after the header: nodes, order, then the mesh section.
+struct Payload<'q, 'a> {
+    bvh: &'q Bvh<'a>,
+    mesh: &'q ValidMesh<'a>,
+    layout: MeshLayout,
+}
+
+impl<'q, 'a> Payload<'q, 'a> {
+    fn new(bvh: &'q Bvh<'a>, mesh: &'q ValidMesh<'a>, layout: MeshLayout) -> Self {
+        Self { bvh, mesh, layout }
+    }
+}
+
+impl Serialize for Payload<'_, '_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeTuple;
+        let mut t = s.serialize_tuple(3)?;
+        t.serialize_element(&Seq(self.bvh.nodes().iter().map(NodeRecord::from)))?;
+        t.serialize_element(&Seq(self.bvh.order().iter().map(|&i| FixedU32(i))))?;
+        t.serialize_element(&MeshSection {
+            bvh: self.bvh,
+            mesh: self.mesh,
+            layout: self.layout,
+        })?;
+        t.end()
+    }
+}
+
+/// The mesh section: an enum whose variant index is the [`MeshLayout`] tag.
+struct MeshSection<'q, 'a> {
+    bvh: &'q Bvh<'a>,
+    mesh: &'q ValidMesh<'a>,
+    layout: MeshLayout,
+}
+
+impl Serialize for MeshSection<'_, '_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        const NAME: &str = "MeshSection";
+        match self.layout {
+            MeshLayout::Indexed => {
+                let mut v = s.serialize_tuple_variant(NAME, 0, "Indexed", 2)?;
+                v.serialize_field(&Seq(self.mesh.positions().iter()))?;
+                v.serialize_field(&Seq(self
+                    .mesh
+                    .triangles()
+                    .iter()
+                    .map(|&[a, b, c]| TriangleRecord(a, b, c))))?;
+                v.end()
+            }
+            MeshLayout::Packed => {
+                let mesh = self.mesh;
+                let mut v = s.serialize_tuple_variant(NAME, 1, "Packed", 1)?;
+                v.serialize_field(&Seq(self.bvh.order().iter().map(|&tri| {
+                    mesh.triangle(tri)
+                        .map_or(PackedTriangle::EMPTY, |t| PackedTriangle {
+                            a: t.a.to_array(),
+                            b: t.b.to_array(),
+                            c: t.c.to_array(),
+                        })
+                })))?;
+                v.end()
+            }
+            MeshLayout::Omitted => s.serialize_unit_variant(NAME, 2, "Omitted"),
+        }
+    }
+}
+
+/// A sequence serialized from a cloneable, exactly sized iterator (postcard needs the length
+/// up front).
+struct Seq<I>(I);
+
+impl<I> Serialize for Seq<I>
+where
+    I: Iterator + Clone,
+    I::Item: Serialize,
+{
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.clone())
+    }
+}
+
+fn size_of_value<T: Serialize>(value: &T) -> Result<usize, BlobError> {
+    postcard::serialize_with_flavor(value, Size::default()).map_err(|_| BlobError::TooLarge)
+}
+
+fn write_value<T: Serialize>(value: &T, out: &mut [u8]) -> Result<(), BlobError> {
+    let got = out.len();
+    postcard::serialize_with_flavor(value, Slice::new(out))
+        .map(|_| ())
+        .map_err(|_| BlobError::BufferTooSmall {
+            section: BlobSection::Header,
+            needed: got,
+            got,
+        })
+}

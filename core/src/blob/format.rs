@@ -1,0 +1,227 @@
+//! The wire types: the header and the fixed-width records, as serde types postcard encodes.
+//!
+//! Postcard writes struct fields back to back, integers as varints unless marked fixed-width,
+//! `f32` as 4 little-endian bytes, arrays element by element and sequences as a varint length
+//! followed by the elements. Records mark every integer fixed-width, so every record of a kind
+//! has the same size and the view can index it in place.
+
+use serde::{Deserialize, Serialize};
+
+use crate::bvh::{BuildConfig, BvhNode};
+
+/// The first four bytes of every blob.
+pub const MAGIC: [u8; 4] = *b"MSHQ";
+
+/// The format version this build writes.
+pub const FORMAT_VERSION: u16 = 1;
+
+/// The oldest format version this build reads.
+pub const OLDEST_READABLE_VERSION: u16 = 1;
+
+/// Bytes of one node record.
+pub(crate) const NODE_BYTES: usize = 32;
+/// Bytes of one order entry.
+pub(crate) const ORDER_BYTES: usize = 4;
+/// Bytes of one position.
+pub(crate) const POSITION_BYTES: usize = 12;
+/// Bytes of one vertex-index triple.
+pub(crate) const TRIANGLE_BYTES: usize = 12;
+/// Bytes of one packed triangle.
+pub(crate) const PACKED_BYTES: usize = 36;
+/// Bytes of the trailing header checksum.
+pub(crate) const CHECKSUM_BYTES: usize = 4;
+
+/// Which acceleration structure a blob holds.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StructureKind {
+    /// A binned-SAH BVH ([`Bvh`](crate::bvh::Bvh)), wire tag 0.
+    Bvh,
+}
+
+/// How a blob stores the mesh its structure was built from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum MeshLayout {
+    /// Positions and vertex-index triples in the input's order: 12 bytes per vertex plus 12 per
+    /// triangle, and the mesh can be recovered exactly. Wire tag 0. The default.
+    #[default]
+    Indexed,
+    /// Each triangle's three corners, copied in leaf order: 36 bytes per triangle, fastest
+    /// queries from a blob (a leaf reads one contiguous run). Wire tag 1.
+    Packed,
+    /// No mesh: the caller supplies it at load
+    /// ([`BlobView::parse_with_mesh`](super::BlobView::parse_with_mesh)), checked against the
+    /// header's mesh checksum. Wire tag 2.
+    Omitted,
+}
+
+impl StructureKind {
+    /// The wire tag.
+    #[must_use]
+    pub const fn tag(self) -> u32 {
+        match self {
+            Self::Bvh => 0,
+        }
+    }
+
+    /// The kind with wire tag `tag`, if this build knows it.
+    #[must_use]
+    pub const fn from_tag(tag: u32) -> Option<Self> {
+        match tag {
+            0 => Some(Self::Bvh),
+            _ => None,
+        }
+    }
+}
+
+impl MeshLayout {
+    /// The wire tag.
+    #[must_use]
+    pub const fn tag(self) -> u32 {
+        match self {
+            Self::Indexed => 0,
+            Self::Packed => 1,
+            Self::Omitted => 2,
+        }
+    }
+
+    /// The layout with wire tag `tag`, if this build knows it.
+    #[must_use]
+    pub const fn from_tag(tag: u32) -> Option<Self> {
+        match tag {
+            0 => Some(Self::Indexed),
+            1 => Some(Self::Packed),
+            2 => Some(Self::Omitted),
+            _ => None,
+        }
+    }
+}
+
+/// The fields after the magic and version (version 1), up to the checksum.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct HeaderFields {
+    /// [`StructureKind`] tag.
+    pub kind: u32,
+    /// [`MeshLayout`] tag.
+    pub mesh: u32,
+    pub triangle_count: u32,
+    pub vertex_count: u32,
+    pub node_count: u32,
+    pub depth: u32,
+    pub bounds_min: [f32; 3],
+    pub bounds_max: [f32; 3],
+    pub config: BuildConfig,
+    #[serde(with = "postcard::fixint::le")]
+    pub mesh_checksum: u32,
+    #[serde(with = "postcard::fixint::le")]
+    pub payload_len: u64,
+}
+
+/// A node record: [`BvhNode`] with fixed-width little-endian integers (32 bytes).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct NodeRecord {
+    pub min: [f32; 3],
+    #[serde(with = "postcard::fixint::le")]
+    pub first: u32,
+    pub max: [f32; 3],
+    #[serde(with = "postcard::fixint::le")]
+    pub count: u32,
+}
+
+impl From<&BvhNode> for NodeRecord {
+    fn from(n: &BvhNode) -> Self {
+        Self {
+            min: n.min,
+            first: n.first,
+            max: n.max,
+            count: n.count,
+        }
+    }
+}
+
+/// A fixed-width little-endian `u32` (an order entry).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub(crate) struct FixedU32(#[serde(with = "postcard::fixint::le")] pub u32);
+
+/// A vertex-index triple with fixed-width little-endian indices (12 bytes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub(crate) struct TriangleRecord(
+    #[serde(with = "postcard::fixint::le")] pub u32,
+    #[serde(with = "postcard::fixint::le")] pub u32,
+    #[serde(with = "postcard::fixint::le")] pub u32,
+);
+
+/// Decodes a node record from its 32 bytes.
+#[inline(always)]
+pub(crate) fn node_from_bytes(b: &[u8; NODE_BYTES]) -> BvhNode {
+    let [
+        a0,
+        a1,
+        a2,
+        a3,
+        b0,
+        b1,
+        b2,
+        b3,
+        c0,
+        c1,
+        c2,
+        c3,
+        f0,
+        f1,
+        f2,
+        f3,
+        d0,
+        d1,
+        d2,
+        d3,
+        e0,
+        e1,
+        e2,
+        e3,
+        g0,
+        g1,
+        g2,
+        g3,
+        n0,
+        n1,
+        n2,
+        n3,
+    ] = *b;
+    BvhNode {
+        min: [
+            f32::from_le_bytes([a0, a1, a2, a3]),
+            f32::from_le_bytes([b0, b1, b2, b3]),
+            f32::from_le_bytes([c0, c1, c2, c3]),
+        ],
+        first: u32::from_le_bytes([f0, f1, f2, f3]),
+        max: [
+            f32::from_le_bytes([d0, d1, d2, d3]),
+            f32::from_le_bytes([e0, e1, e2, e3]),
+            f32::from_le_bytes([g0, g1, g2, g3]),
+        ],
+        count: u32::from_le_bytes([n0, n1, n2, n3]),
+    }
+}
+
+/// Decodes three little-endian `f32`s.
+#[inline(always)]
+pub(crate) fn f32x3_from_bytes(b: &[u8; 12]) -> [f32; 3] {
+    let [a0, a1, a2, a3, b0, b1, b2, b3, c0, c1, c2, c3] = *b;
+    [
+        f32::from_le_bytes([a0, a1, a2, a3]),
+        f32::from_le_bytes([b0, b1, b2, b3]),
+        f32::from_le_bytes([c0, c1, c2, c3]),
+    ]
+}
+
+/// Decodes three little-endian `u32`s.
+#[inline(always)]
+pub(crate) fn u32x3_from_bytes(b: &[u8; 12]) -> [u32; 3] {
+    let [a0, a1, a2, a3, b0, b1, b2, b3, c0, c1, c2, c3] = *b;
+    [
+        u32::from_le_bytes([a0, a1, a2, a3]),
+        u32::from_le_bytes([b0, b1, b2, b3]),
+        u32::from_le_bytes([c0, c1, c2, c3]),
+    ]
+}

@@ -1,0 +1,74 @@
+//! Prebuilt blobs (feature `blob`): a BVH (and, by default, its mesh) encoded once, offline, and
+//! queried in place from the bytes — in RAM, from a `fetch`, or in flash.
+//!
+//! ```
+//! use meshq::{blob::{self, BlobView, EncodeOptions}, bvh::{self, Bvh, BuildConfig, BvhNode, PrimRef},
+//!             math::{Ray, Vec3}, mesh::MeshRef};
+//! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+//! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
+//! let (mut nodes, mut order, mut scratch) =
+//!     ([BvhNode::EMPTY; bvh::node_capacity(1)], [0u32; 1], [PrimRef::EMPTY; 1]);
+//! let bvh = Bvh::build(&mesh, &BuildConfig::default(), &mut nodes, &mut order, &mut scratch)?;
+//!
+//! let options = EncodeOptions::default();
+//! let mut bytes = [0u8; 256];
+//! let n = blob::encode_into(&bvh, &mesh, &options, &mut bytes)?;
+//! assert_eq!(n, blob::encoded_len(&bvh, &mesh, &options)?);
+//!
+//! let view = BlobView::parse(&bytes[..n])?;
+//! let hit = view.raycast(&Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z));
+//! assert_eq!(hit, bvh.raycast(&mesh, &Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Format (version 1)
+//!
+//! One [postcard](https://docs.rs/postcard) message, fields back to back. *varint* is postcard's
+//! LEB128-style unsigned varint; *fixed* integers are little-endian of the stated width; every
+//! `f32` is 4 little-endian bytes. A sequence is a varint element count followed by the
+//! elements.
+//!
+//! | field | encoding | meaning |
+//! |---|---|---|
+//! | magic | 4 bytes | `MSHQ` |
+//! | version | varint `u16` | [`FORMAT_VERSION`]; read before anything else |
+//! | kind | varint `u32` | [`StructureKind`] tag: 0 = BVH |
+//! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
+//! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and tree |
+//! | bounds | 6 × `f32` | root box min xyz, max xyz (padded) |
+//! | config | varint `u32` × 3, `f32` × 2 | [`BuildConfig`](crate::bvh::BuildConfig): bins, max_leaf_size, max_depth, traversal_cost, triangle_cost |
+//! | mesh_checksum | fixed `u32` | [`mesh_checksum`] of the mesh baked from |
+//! | payload_len | fixed `u64` | bytes after the header |
+//! | checksum | fixed `u32` | CRC-32/ISO-HDLC of every blob byte except these four |
+//! | nodes | sequence of 32-byte records | [`BvhNode`](crate::bvh::BvhNode): min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32` |
+//! | order | sequence of fixed `u32` | leaf slot → input triangle index |
+//! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples in leaf order; omitted: nothing |
+//!
+//! Fixed-width records let a view index node `i` at a known offset without decoding the ones
+//! before it. Nothing is aligned; reads go through `from_le_bytes`, so the bytes can sit anywhere.
+//!
+//! # Versioning
+//! The version is the second field and is read before anything else. A change to any field or
+//! record increments [`FORMAT_VERSION`]; a reader refuses versions outside
+//! [`OLDEST_READABLE_VERSION`]`..=`[`FORMAT_VERSION`] with
+//! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
+//! Within a version the bytes are stable: the same mesh and config give the same blob on every
+//! target and every release that writes that version.
+
+mod checksum;
+mod decode;
+mod encode;
+mod format;
+mod header;
+mod mesh;
+mod reader;
+mod tree;
+mod view;
+
+pub use checksum::mesh_checksum;
+pub use encode::{EncodeOptions, encode_into, encoded_len, reseal};
+pub use format::{FORMAT_VERSION, MAGIC, MeshLayout, OLDEST_READABLE_VERSION, StructureKind};
+pub use header::BlobHeader;
+pub use mesh::BlobMesh;
+pub use tree::BlobTree;
+pub use view::BlobView;

@@ -1,0 +1,88 @@
+//! The tree of a blob, read in place from its bytes.
+
+use glam::Vec3;
+
+use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
+use crate::bvh::{BvhNode, LeafTriangleIds, LeafTriangles, RayOptions, TreeArrays};
+use crate::math::{ClosestPoint, Ray, RayHit};
+use crate::query::MeshQuery;
+
+/// A BVH whose nodes and order are read straight out of a validated blob's bytes (in RAM or in
+/// flash): no copy, 32 bytes decoded per node visited.
+///
+/// Obtained from [`BlobView::tree`](super::BlobView::tree), so it is always valid. Answers every
+/// query exactly as the [`Bvh`](crate::bvh::Bvh) it was encoded from, bit for bit.
+#[derive(Clone, Copy, Debug)]
+pub struct BlobTree<'a> {
+    pub(super) nodes: &'a [[u8; NODE_BYTES]],
+    pub(super) order: &'a [[u8; ORDER_BYTES]],
+    pub(super) depth: u32,
+}
+
+impl BlobTree<'_> {
+    /// Levels in the tree (0 when empty).
+    #[must_use]
+    pub const fn depth(&self) -> u32 {
+        self.depth
+    }
+}
+
+impl TreeArrays for BlobTree<'_> {
+    #[inline(always)]
+    fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    #[inline(always)]
+    fn slot_count(&self) -> usize {
+        self.order.len()
+    }
+
+    #[inline(always)]
+    fn node(&self, index: usize) -> Option<BvhNode> {
+        self.nodes.get(index).map(node_from_bytes)
+    }
+
+    #[inline(always)]
+    fn node_pair(&self, first: usize) -> Option<[BvhNode; 2]> {
+        match self.nodes.get(first..first.wrapping_add(2))? {
+            [left, right] => Some([node_from_bytes(left), node_from_bytes(right)]),
+            _ => None,
+        }
+    }
+
+    #[inline(always)]
+    fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
+        let ids = self.order.get(first..first.checked_add(count)?)?;
+        Some(LeafTriangleIds::from_le_bytes(first, ids))
+    }
+}
+
+impl MeshQuery for BlobTree<'_> {
+    fn raycast_with<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> Option<RayHit> {
+        crate::bvh::raycast::raycast_with(self, source, ray, options)
+    }
+
+    fn raycast_any_with<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> bool {
+        crate::bvh::raycast::raycast_any_with(self, source, ray, options)
+    }
+
+    fn closest_point<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        point: Vec3,
+        max_distance: f32,
+    ) -> Option<ClosestPoint> {
+        crate::bvh::closest::closest_point(self, source, point, max_distance)
+    }
+}

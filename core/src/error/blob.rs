@@ -1,0 +1,211 @@
+//! Errors of the blob format (feature `blob`).
+
+use core::fmt;
+
+use super::{MeshError, StructureError};
+
+/// A part of a blob, named in [`BlobError`]s.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BlobSection {
+    /// The header (everything before the node array).
+    Header,
+    /// The node records.
+    Nodes,
+    /// The triangle order (leaf slot → input triangle index).
+    Order,
+    /// The vertex positions of a self-contained, indexed blob.
+    Positions,
+    /// The vertex-index triples of a self-contained, indexed blob.
+    Triangles,
+    /// The leaf-ordered triangle corners of a self-contained, packed blob.
+    PackedTriangles,
+    /// The tag saying how (or whether) the mesh is stored.
+    MeshLayout,
+}
+
+impl fmt::Display for BlobSection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Header => "header",
+            Self::Nodes => "nodes",
+            Self::Order => "triangle order",
+            Self::Positions => "positions",
+            Self::Triangles => "triangles",
+            Self::PackedTriangles => "packed triangles",
+            Self::MeshLayout => "mesh layout",
+        })
+    }
+}
+
+/// Why a blob could not be written, read or attached to a mesh.
+///
+/// Byte offsets count from the start of the blob.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BlobError {
+    /// The bytes do not start with the blob magic `MSHQ`: not a meshq blob.
+    BadMagic,
+    /// The blob ends early. Fix: the file was cut short; copy it again.
+    Truncated {
+        /// Where the data ran out.
+        offset: usize,
+        /// The section being read.
+        section: BlobSection,
+    },
+    /// A field does not decode (a bad varint or enum tag, a non-UTF-8-free postcard value).
+    Malformed {
+        /// Offset of the section that failed to decode.
+        offset: usize,
+        /// The section.
+        section: BlobSection,
+    },
+    /// Written by another format version. Fix: re-bake the blob with this version of meshq.
+    UnsupportedVersion {
+        /// The version in the blob.
+        found: u16,
+        /// Oldest version this build reads.
+        oldest: u16,
+        /// Newest version this build reads.
+        newest: u16,
+    },
+    /// The structure kind is not one this build can query.
+    UnsupportedStructure {
+        /// The kind tag in the blob.
+        kind: u32,
+    },
+    /// The checksum does not match the bytes: the blob is corrupt.
+    ChecksumMismatch {
+        /// The checksum stored in the header.
+        stored: u32,
+        /// The checksum of the bytes as read.
+        computed: u32,
+    },
+    /// A count in the header disagrees with the arrays or the byte length.
+    CountMismatch {
+        /// The section whose length is wrong.
+        section: BlobSection,
+        /// The count the header implies.
+        expected: u64,
+        /// The count found.
+        found: u64,
+    },
+    /// Bytes are left over after the last section.
+    TrailingBytes {
+        /// Where the extra bytes start.
+        offset: usize,
+    },
+    /// A header field contradicts the arrays (depth, root bounds, mesh layout) or is out of
+    /// range (the build config).
+    HeaderMismatch {
+        /// The header field.
+        field: &'static str,
+    },
+    /// A node or leaf fails validation; the payload names it.
+    InvalidNode(StructureError),
+    /// An order entry names a triangle beyond the triangle count.
+    OrderOutOfRange {
+        /// The order slot.
+        slot: u32,
+        /// The triangle index found there.
+        tri: u32,
+    },
+    /// The stored mesh fails validation; the payload names the vertex or triangle.
+    InvalidMesh(MeshError),
+    /// The blob was baked without its mesh. Fix: use
+    /// [`BlobView::parse_with_mesh`](crate::blob::BlobView::parse_with_mesh) with the mesh it was
+    /// baked from.
+    MeshNotIncluded,
+    /// The mesh given does not match the one the blob was baked from (counts or mesh checksum
+    /// differ).
+    MeshMismatch,
+    /// A caller buffer is too small.
+    BufferTooSmall {
+        /// What the buffer holds.
+        section: BlobSection,
+        /// Elements (bytes for an encode buffer) needed.
+        needed: usize,
+        /// Elements given.
+        got: usize,
+    },
+    /// The structure is too large for the format (a count beyond `u32`) or for this target's
+    /// address space.
+    TooLarge,
+}
+
+impl fmt::Display for BlobError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::BadMagic => f.write_str("not a meshq blob (bad magic)"),
+            Self::Truncated { offset, section } => {
+                write!(f, "blob truncated at offset {offset} (in the {section})")
+            }
+            Self::Malformed { offset, section } => {
+                write!(f, "malformed {section} at offset {offset}")
+            }
+            Self::UnsupportedVersion {
+                found,
+                oldest,
+                newest,
+            } => write!(
+                f,
+                "blob format version {found} is not supported (this build reads versions {oldest} to {newest}); re-bake it"
+            ),
+            Self::UnsupportedStructure { kind } => {
+                write!(f, "structure kind {kind} is not supported by this build")
+            }
+            Self::ChecksumMismatch { stored, computed } => write!(
+                f,
+                "blob checksum mismatch: stored {stored:#010x}, computed {computed:#010x} (corrupt blob)"
+            ),
+            Self::CountMismatch {
+                section,
+                expected,
+                found,
+            } => write!(
+                f,
+                "{section}: the header implies {expected} but the blob holds {found}"
+            ),
+            Self::TrailingBytes { offset } => {
+                write!(f, "unexpected bytes after the blob at offset {offset}")
+            }
+            Self::HeaderMismatch { field } => {
+                write!(
+                    f,
+                    "header field `{field}` does not match the blob's contents"
+                )
+            }
+            Self::InvalidNode(e) => write!(f, "invalid tree: {e}"),
+            Self::OrderOutOfRange { slot, tri } => {
+                write!(f, "order slot {slot} names triangle {tri}, beyond the mesh")
+            }
+            Self::InvalidMesh(e) => write!(f, "invalid stored mesh: {e}"),
+            Self::MeshNotIncluded => f.write_str(
+                "the blob was baked without its mesh; supply the mesh it was baked from",
+            ),
+            Self::MeshMismatch => {
+                f.write_str("the mesh given is not the one the blob was baked from")
+            }
+            Self::BufferTooSmall {
+                section,
+                needed,
+                got,
+            } => write!(f, "{section} buffer too small: needed {needed}, got {got}"),
+            Self::TooLarge => f.write_str("structure too large for the blob format"),
+        }
+    }
+}
+
+impl core::error::Error for BlobError {}
+
+impl From<StructureError> for BlobError {
+    fn from(e: StructureError) -> Self {
+        Self::InvalidNode(e)
+    }
+}
+
+impl From<MeshError> for BlobError {
+    fn from(e: MeshError) -> Self {
+        Self::InvalidMesh(e)
+    }
+}

@@ -1,0 +1,320 @@
+//! Blobs round-trip on every bundled mesh and layout: a view parsed from the bytes answers
+//! every query exactly as brute force and the in-memory BVH do (same bits, same triangle), the
+//! decoded arrays equal the originals, and the bytes are a genuine postcard message that
+//! postcard's own deserializer reads back.
+
+use std::ops::ControlFlow;
+
+use meshq::blob::{BlobView, FORMAT_VERSION, MeshLayout, StructureKind, mesh_checksum};
+use meshq::bvh::{BuildConfig, BvhNode, PackedTriangle, RayOptions};
+use meshq::math::{Aabb, ClosestPoint, RayHit, Vec3};
+use meshq::query::MeshQuery;
+use meshq_tests::oracle::BruteForce;
+use meshq_tests::{MESHES, OwnedBvh, encode, load_mesh, workload};
+use serde::Deserialize;
+
+const RAYS: usize = 20_000;
+const POINTS: usize = 3_000;
+const LAYOUTS: [MeshLayout; 3] = [MeshLayout::Indexed, MeshLayout::Packed, MeshLayout::Omitted];
+
+fn hit_key(h: Option<RayHit>) -> Option<(u32, u32, u32, u32)> {
+    h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
+}
+
+fn point_key(c: Option<ClosestPoint>) -> Option<(u32, u32, [u32; 3])> {
+    c.map(|c| {
+        (
+            c.distance_squared.to_bits(),
+            c.tri,
+            c.point.to_array().map(f32::to_bits),
+        )
+    })
+}
+
+#[test]
+fn views_answer_like_brute_force_and_the_in_memory_bvh() {
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let config = BuildConfig::default();
+        let owned = OwnedBvh::build(&mesh, &config).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
+        let brute = BruteForce::new(&mesh);
+        let rays = workload::random_rays(&loaded.positions, RAYS, 0xB10B);
+        let points = workload::closest_points(&loaded.positions, POINTS, 0xB10C);
+        let (c, r, _) = workload::centre_radius(&loaded.positions);
+        for layout in LAYOUTS {
+            let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
+            let view = match layout {
+                MeshLayout::Omitted => BlobView::parse_with_mesh(&bytes, mesh).unwrap(),
+                _ => BlobView::parse(&bytes).unwrap(),
+            };
+            let h = view.header();
+            assert_eq!(h.version, FORMAT_VERSION);
+            assert_eq!(h.kind, StructureKind::Bvh);
+            assert_eq!(h.mesh, layout);
+            assert_eq!(h.triangle_count as usize, mesh.triangle_count());
+            assert_eq!(h.vertex_count as usize, mesh.vertex_count());
+            assert_eq!(h.node_count as usize, bvh.nodes().len());
+            assert_eq!(h.depth, bvh.depth());
+            assert_eq!(h.config, config);
+            assert_eq!(h.total_len, bytes.len());
+            assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
+            assert_eq!(view.bounds(), bvh.bounds());
+
+            for (i, ray) in rays.iter().enumerate() {
+                let got = view.raycast(ray);
+                assert_eq!(
+                    hit_key(got),
+                    hit_key(bvh.raycast(&mesh, ray)),
+                    "{name} {layout:?} ray {i}"
+                );
+                assert_eq!(
+                    view.raycast_any(ray),
+                    got.is_some(),
+                    "{name} {layout:?} any {i}"
+                );
+                if i % 10 == 0 {
+                    let expected = brute.raycast(ray, &RayOptions::default());
+                    assert_eq!(
+                        hit_key(got),
+                        hit_key(expected),
+                        "{name} {layout:?} brute ray {i}"
+                    );
+                }
+            }
+            for (i, &p) in points.iter().enumerate() {
+                let got = view.closest_point(p, f32::INFINITY);
+                assert_eq!(
+                    point_key(got),
+                    point_key(bvh.closest_point(&mesh, p, f32::INFINITY)),
+                    "{name} {layout:?} point {i}"
+                );
+                if i % 10 == 0 {
+                    let expected = brute.closest_point(p, f32::INFINITY);
+                    assert_eq!(
+                        point_key(got),
+                        point_key(expected),
+                        "{name} {layout:?} brute point {i}"
+                    );
+                }
+            }
+            // Overlaps: same set as brute force (traversal order may differ from sorted).
+            for (k, &centre) in points.iter().take(20).enumerate() {
+                let half = Vec3::splat(0.08 * r);
+                let aabb = Aabb::new(centre - half, centre + half);
+                let mut got = Vec::new();
+                view.overlap_aabb(&aabb, |t| {
+                    got.push(t);
+                    ControlFlow::Continue(())
+                });
+                got.sort_unstable();
+                assert_eq!(got, brute.overlap_aabb(&aabb), "{name} {layout:?} box {k}");
+                let mut buf = vec![0u32; 4];
+                let count = view.overlap_sphere_into(centre, 0.1 * r, &mut buf);
+                assert_eq!(count.total, brute.overlap_sphere(centre, 0.1 * r).len());
+            }
+            // The tree alone answers through the common trait with the caller's mesh.
+            let ray = meshq::math::Ray::new(c + Vec3::new(0.0, 0.0, 3.0 * r), -Vec3::Z);
+            assert_eq!(
+                hit_key(
+                    view.tree()
+                        .raycast_with(&mesh, &ray, &RayOptions::default())
+                ),
+                hit_key(bvh.raycast(&mesh, &ray))
+            );
+        }
+    }
+}
+
+#[test]
+fn decoding_into_caller_slices_restores_the_arrays() {
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let config = BuildConfig::fast();
+        let owned = OwnedBvh::build(&mesh, &config).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
+        let mut expected_packed = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+        bvh.pack_triangles(&mesh, &mut expected_packed).unwrap();
+        for layout in LAYOUTS {
+            let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
+            let view = match layout {
+                MeshLayout::Omitted => BlobView::parse_with_mesh(&bytes, mesh).unwrap(),
+                _ => BlobView::parse(&bytes).unwrap(),
+            };
+            let mut nodes = vec![BvhNode::EMPTY; owned.nodes.len()];
+            let mut order = vec![0u32; owned.order.len()];
+            // One element short is an error, never a partial copy.
+            assert!(view.decode_tree(&mut nodes[1..], &mut order).is_err());
+            let tree = view.decode_tree(&mut nodes, &mut order).unwrap();
+            assert_eq!(tree.depth(), bvh.depth());
+            assert_eq!(tree.nodes(), &owned.nodes[..]);
+            assert_eq!(tree.order(), &owned.order[..]);
+
+            let mut packed = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+            let p = view.decode_packed(&mut packed).unwrap();
+            assert_eq!(p.as_slice(), &expected_packed[..], "{name} {layout:?}");
+
+            let mut positions = vec![[0.0f32; 3]; mesh.vertex_count()];
+            let mut triangles = vec![[0u32; 3]; mesh.triangle_count()];
+            match layout {
+                MeshLayout::Packed => {
+                    assert!(view.decode_mesh(&mut positions, &mut triangles).is_err());
+                }
+                _ => {
+                    let m = view.decode_mesh(&mut positions, &mut triangles).unwrap();
+                    assert_eq!(m.positions(), mesh.positions());
+                    assert_eq!(m.triangles(), mesh.triangles());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn blobs_are_deterministic_and_sized_exactly() {
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    for config in [
+        BuildConfig::fast(),
+        BuildConfig::balanced(),
+        BuildConfig::high_quality(),
+    ] {
+        for layout in LAYOUTS {
+            let a = meshq_tests::bake(&mesh, &config, layout).unwrap();
+            let b = meshq_tests::bake(&mesh, &config, layout).unwrap();
+            assert_eq!(a, b, "{config:?} {layout:?}");
+        }
+    }
+    // Sizes follow the record widths: 32 bytes per node, 4 per order entry, and 12 per vertex
+    // plus 12 per triangle (indexed) or 36 per triangle (packed), plus small varint lengths.
+    let config = BuildConfig::default();
+    let owned = OwnedBvh::build(&mesh, &config).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    let (n, t, v) = (
+        bvh.nodes().len(),
+        mesh.triangle_count(),
+        mesh.vertex_count(),
+    );
+    let omitted = encode(&bvh, &mesh, &config, MeshLayout::Omitted)
+        .unwrap()
+        .len();
+    let indexed = encode(&bvh, &mesh, &config, MeshLayout::Indexed)
+        .unwrap()
+        .len();
+    let packed = encode(&bvh, &mesh, &config, MeshLayout::Packed)
+        .unwrap()
+        .len();
+    let arrays = 32 * n + 4 * t;
+    assert!(
+        omitted > arrays && omitted < arrays + 128,
+        "{omitted} vs {arrays}"
+    );
+    assert!(indexed - omitted >= 12 * v + 12 * t && indexed - omitted < 12 * v + 12 * t + 16);
+    assert!(packed - omitted >= 36 * t && packed - omitted < 36 * t + 16);
+}
+
+/// Mirror types: the blob decoded by postcard itself into owned values.
+#[derive(Deserialize, Debug)]
+struct WholeBlob {
+    magic: [u8; 4],
+    version: u16,
+    kind: u32,
+    mesh: u32,
+    triangle_count: u32,
+    vertex_count: u32,
+    node_count: u32,
+    depth: u32,
+    bounds_min: [f32; 3],
+    bounds_max: [f32; 3],
+    config: BuildConfig,
+    #[serde(with = "postcard::fixint::le")]
+    mesh_checksum: u32,
+    #[serde(with = "postcard::fixint::le")]
+    payload_len: u64,
+    #[serde(with = "postcard::fixint::le")]
+    checksum: u32,
+    nodes: Vec<NodeMirror>,
+    order: Vec<Fixed>,
+    section: SectionMirror,
+}
+
+#[derive(Deserialize, Debug, PartialEq)]
+struct NodeMirror {
+    min: [f32; 3],
+    #[serde(with = "postcard::fixint::le")]
+    first: u32,
+    max: [f32; 3],
+    #[serde(with = "postcard::fixint::le")]
+    count: u32,
+}
+
+#[derive(Deserialize, Debug, PartialEq)]
+struct Fixed(#[serde(with = "postcard::fixint::le")] u32);
+
+#[derive(Deserialize, Debug)]
+enum SectionMirror {
+    Indexed(Vec<[f32; 3]>, Vec<(Fixed, Fixed, Fixed)>),
+    Packed(Vec<[[f32; 3]; 3]>),
+    Omitted,
+}
+
+#[test]
+fn a_blob_is_one_postcard_message() {
+    let loaded = load_mesh("teapot");
+    let mesh = loaded.valid();
+    let config = BuildConfig::default();
+    let owned = OwnedBvh::build(&mesh, &config).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    for layout in LAYOUTS {
+        let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
+        let whole: WholeBlob = postcard::from_bytes(&bytes).unwrap();
+        // from_bytes ignores trailing bytes; the message must use every byte.
+        let (_, rest) = postcard::take_from_bytes::<WholeBlob>(&bytes).unwrap();
+        assert!(rest.is_empty(), "{layout:?}");
+        assert_eq!(&whole.magic, b"MSHQ");
+        assert_eq!(whole.version, FORMAT_VERSION);
+        assert_eq!((whole.kind, whole.mesh), (0, layout.tag()));
+        assert_eq!(whole.triangle_count as usize, mesh.triangle_count());
+        assert_eq!(whole.vertex_count as usize, mesh.vertex_count());
+        assert_eq!(whole.node_count as usize, owned.nodes.len());
+        assert_eq!(whole.depth, bvh.depth());
+        assert_eq!(whole.bounds_min, bvh.bounds().min.to_array());
+        assert_eq!(whole.bounds_max, bvh.bounds().max.to_array());
+        assert_eq!(whole.config, config);
+        assert_eq!(whole.mesh_checksum, mesh_checksum(&mesh));
+        assert!(whole.payload_len > 0);
+        assert_ne!(whole.checksum, 0);
+        let nodes: Vec<NodeMirror> = owned
+            .nodes
+            .iter()
+            .map(|n| NodeMirror {
+                min: n.min,
+                first: n.first,
+                max: n.max,
+                count: n.count,
+            })
+            .collect();
+        assert_eq!(whole.nodes, nodes);
+        assert_eq!(
+            whole.order,
+            owned.order.iter().map(|&i| Fixed(i)).collect::<Vec<_>>()
+        );
+        match (layout, whole.section) {
+            (MeshLayout::Indexed, SectionMirror::Indexed(p, t)) => {
+                assert_eq!(p, mesh.positions());
+                let t: Vec<[u32; 3]> = t.into_iter().map(|(a, b, c)| [a.0, b.0, c.0]).collect();
+                assert_eq!(t, mesh.triangles());
+            }
+            (MeshLayout::Packed, SectionMirror::Packed(p)) => {
+                for (slot, corners) in p.iter().enumerate() {
+                    let t = mesh.triangle(owned.order[slot]).unwrap();
+                    assert_eq!(*corners, [t.a.to_array(), t.b.to_array(), t.c.to_array()]);
+                }
+            }
+            (MeshLayout::Omitted, SectionMirror::Omitted) => {}
+            (l, s) => panic!("{l:?} decoded as {s:?}"),
+        }
+    }
+}
