@@ -12,6 +12,31 @@ if ! command -v cargo >/dev/null || ! command -v rustup >/dev/null; then
   exit 1
 fi
 
+# System packages, in the background while cargo compiles: QEMU runs the firmware, Chromium
+# and its driver run the browser tests. Skipped when the commands are already there.
+apt_packages=()
+command -v qemu-system-arm >/dev/null || apt_packages+=(qemu-system-arm)
+command -v chromium >/dev/null || apt_packages+=(chromium)
+command -v chromedriver >/dev/null || apt_packages+=(chromium-driver)
+apt_pid=
+apt_log=target/setup-apt.log
+if [ ${#apt_packages[@]} -gt 0 ]; then
+  if [ "$(id -u)" -eq 0 ]; then sudo=(); elif command -v sudo >/dev/null; then sudo=(sudo -n); else
+    echo "[setup] need root or sudo to install: ${apt_packages[*]}" >&2
+    exit 1
+  fi
+  log "apt: installing ${apt_packages[*]} in the background (log: $apt_log)"
+  mkdir -p target
+  (
+    export DEBIAN_FRONTEND=noninteractive
+    "${sudo[@]}" apt-get update -qq &&
+      "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${apt_packages[@]}"
+  ) >"$apt_log" 2>&1 </dev/null &
+  apt_pid=$!
+else
+  log "apt packages (qemu-system-arm, chromium, chromium-driver): present"
+fi
+
 installed_targets=$(rustup target list --installed)
 for target in wasm32-unknown-unknown thumbv7em-none-eabihf; do
   if grep -qx "$target" <<<"$installed_targets"; then
@@ -23,7 +48,7 @@ for target in wasm32-unknown-unknown thumbv7em-none-eabihf; do
 done
 
 installed_components=$(rustup component list --installed)
-for component in rustfmt clippy; do
+for component in rustfmt clippy llvm-tools; do
   if grep -q "^$component" <<<"$installed_components"; then
     log "rust component $component: present"
   else
@@ -43,4 +68,32 @@ if rustup toolchain list | grep -q '^nightly'; then
   fi
 else
   log "no nightly toolchain: fuzzing will be skipped"
+fi
+
+# WebAssembly tools at pinned versions. wasm-bindgen must equal the version in Cargo.lock
+# (wasm-pack otherwise installs its own); its lockfile pins a crate the registry no longer
+# serves, so it installs without --locked.
+WASM_BINDGEN_VERSION=0.2.130
+WASM_PACK_VERSION=0.15.1
+if wasm-bindgen --version 2>/dev/null | grep -q " $WASM_BINDGEN_VERSION\$"; then
+  log "wasm-bindgen-cli $WASM_BINDGEN_VERSION: present"
+else
+  log "wasm-bindgen-cli $WASM_BINDGEN_VERSION: installing (a few minutes)"
+  cargo install wasm-bindgen-cli --version "$WASM_BINDGEN_VERSION"
+fi
+if wasm-pack --version 2>/dev/null | grep -q " $WASM_PACK_VERSION\$"; then
+  log "wasm-pack $WASM_PACK_VERSION: present"
+else
+  log "wasm-pack $WASM_PACK_VERSION: installing (a few minutes)"
+  cargo install wasm-pack --version "$WASM_PACK_VERSION" --locked
+fi
+
+if [ -n "$apt_pid" ]; then
+  log "apt: waiting for the background install"
+  if ! wait "$apt_pid"; then
+    cat "$apt_log" >&2
+    echo "[setup] apt-get failed" >&2
+    exit 1
+  fi
+  log "apt: done"
 fi

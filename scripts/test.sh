@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every check, as CI runs it: install what is missing, then formatting, lints, docs, the
-# bare-metal and WebAssembly builds of the core, all tests, and a compile of the benchmarks.
+# bare-metal and WebAssembly builds of the core, all tests, the firmware in QEMU, and a compile
+# of the benchmarks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -26,6 +27,9 @@ cargo clippy --locked -p meshq --features blob --target thumbv7em-none-eabihf --
 
 step "tests (optimised test profile)"
 cargo test --locked --workspace
+
+step "firmware: Cortex-M4F in QEMU, parity with the golden file, panic-free proof, memory"
+MESHQ_CLI_PROFILE=test ./scripts/firmware.sh
 
 step "benchmarks compile"
 cargo bench --locked --workspace --no-run

@@ -11,15 +11,25 @@
 //!
 //! Only `+ − × ÷`, `sqrt` (correctly rounded everywhere) and `libm` are used, so the numbers do
 //! not depend on the target.
+//!
+//! [`parity`] runs a fixed set of these queries on any target and digests every result bit;
+//! [`golden`] reads and writes the golden file those digests are checked against.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+#[cfg(test)]
+extern crate std;
+
+pub mod golden;
+pub mod parity;
 mod rng;
 
 use glam::Vec3;
 use meshq::math::{Aabb, Ray};
 
+pub use golden::{GoldenEntry, GoldenError, find_golden};
+pub use parity::{ParityDigest, ParityReport, ParitySpec, ParityTarget, run_parity};
 pub use rng::SplitMix64;
 
 /// Bounding-box centre `c`, half-diagonal `r` and the box of a point set.

@@ -1,0 +1,43 @@
+//! Links with cortex-m-rt's script and this board's `memory.x`, and points the firmware at the
+//! blob to place in flash. The blob is baked by the `meshq` command (`scripts/firmware.sh`
+//! does it); it is never committed.
+
+use std::env;
+use std::path::PathBuf;
+
+/// Cargo feature → bundled mesh (file stem in `assets/`).
+const MESHES: [(&str, &str); 2] = [("BUNNY", "stanford-bunny"), ("SPOT", "spot")];
+
+fn main() {
+    let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo"));
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("set by cargo"));
+    std::fs::copy(manifest.join("memory.x"), out.join("memory.x")).expect("copy memory.x");
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rustc-link-arg=-Tlink.x");
+    println!("cargo:rerun-if-changed=memory.x");
+
+    let chosen: Vec<&str> = MESHES
+        .iter()
+        .filter(|(feature, _)| env::var_os(format!("CARGO_FEATURE_{feature}")).is_some())
+        .map(|(_, stem)| *stem)
+        .collect();
+    let [stem] = chosen[..] else {
+        panic!("enable exactly one mesh: --features bunny or --features spot");
+    };
+
+    println!("cargo:rerun-if-env-changed=MESHQ_BLOB_DIR");
+    let dir = env::var_os("MESHQ_BLOB_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| manifest.join("../target/firmware-blobs"));
+    let blob = dir.join(format!("{stem}.meshq"));
+    println!("cargo:rerun-if-changed={}", blob.display());
+    assert!(
+        blob.is_file(),
+        "{} is missing: bake it first with `meshq bake assets/{stem}.obj -o {}` \
+         (scripts/firmware.sh does this), or point MESHQ_BLOB_DIR at a folder holding it",
+        blob.display(),
+        blob.display()
+    );
+    println!("cargo:rustc-env=MESHQ_BLOB={}", blob.display());
+    println!("cargo:rustc-env=MESHQ_MESH={stem}");
+}

@@ -1,0 +1,152 @@
+//! The golden parity file `tests/golden/parity.txt`, which the WebAssembly tests and the
+//! firmware check too.
+//!
+//! For every bundled mesh the parity run ([`meshq_workload::parity`]) is answered by a
+//! brute-force scan over all triangles; the in-memory BVH and blob views in every mesh layout
+//! must give the same digest, and the file must record exactly that digest. After an intended
+//! change of results, rewrite the file with
+//! `MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test parity_golden`.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use glam::Vec3;
+use meshq::blob::{BlobView, MeshLayout};
+use meshq::bvh::{BuildConfig, Bvh, RayOptions};
+use meshq::math::{ClosestPoint, Ray, RayHit};
+use meshq::mesh::ValidMesh;
+use meshq_tests::oracle::BruteForce;
+use meshq_tests::{MESHES, OwnedBvh, bake, load_mesh};
+use meshq_workload::{GoldenEntry, ParitySpec, ParityTarget, find_golden, run_parity};
+
+struct Brute(BruteForce);
+
+impl ParityTarget for Brute {
+    fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
+        self.0.raycast(ray, &RayOptions::default())
+    }
+    fn raycast_any(&mut self, ray: &Ray) -> bool {
+        self.0.raycast(ray, &RayOptions::default()).is_some()
+    }
+    fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
+        self.0.closest_point(point, f32::INFINITY)
+    }
+}
+
+struct InMemory<'a> {
+    bvh: Bvh<'a>,
+    mesh: ValidMesh<'a>,
+}
+
+impl ParityTarget for InMemory<'_> {
+    fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
+        self.bvh.raycast(&self.mesh, ray)
+    }
+    fn raycast_any(&mut self, ray: &Ray) -> bool {
+        self.bvh.raycast_any(&self.mesh, ray)
+    }
+    fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
+        self.bvh.closest_point(&self.mesh, point, f32::INFINITY)
+    }
+}
+
+struct FromBlob<'a>(BlobView<'a>);
+
+impl ParityTarget for FromBlob<'_> {
+    fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
+        self.0.raycast(ray)
+    }
+    fn raycast_any(&mut self, ray: &Ray) -> bool {
+        self.0.raycast_any(ray)
+    }
+    fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
+        self.0.closest_point(point, f32::INFINITY)
+    }
+}
+
+fn golden_path() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/parity.txt")
+}
+
+/// The golden line of one mesh, after checking every structure against brute force.
+fn computed_line(name: &str) -> String {
+    let loaded = load_mesh(name);
+    let mesh = loaded.valid();
+    let spec = ParitySpec::DEFAULT;
+    let config = BuildConfig::default();
+    let owned = OwnedBvh::build(&mesh, &config).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    // The queries are placed around the root box a blob header records.
+    let bounds = bvh.bounds();
+
+    let expected = run_parity(&spec, bounds, &mut Brute(BruteForce::new(&mesh)));
+    assert!(
+        expected.hits > spec.rays / 4 && expected.any_hits > spec.any_rays / 4,
+        "{name}: the parity rays should hit often: {expected:?}"
+    );
+    assert_eq!(
+        expected.points_found, spec.points,
+        "{name}: unbounded closest point"
+    );
+
+    let in_memory = run_parity(&spec, bounds, &mut InMemory { bvh, mesh });
+    assert_eq!(
+        in_memory, expected,
+        "{name}: in-memory BVH against brute force"
+    );
+
+    let layouts = [MeshLayout::Indexed, MeshLayout::Packed, MeshLayout::Omitted];
+    for layout in layouts {
+        let blob = bake(&mesh, &config, layout).unwrap();
+        let view = match layout {
+            MeshLayout::Omitted => BlobView::parse_with_mesh(&blob, mesh),
+            _ => BlobView::parse(&blob),
+        }
+        .unwrap();
+        assert_eq!(view.bounds(), bounds, "{name}: header bounds, {layout:?}");
+        let from_blob = run_parity(&spec, view.bounds(), &mut FromBlob(view));
+        assert_eq!(
+            from_blob, expected,
+            "{name}: blob view ({layout:?}) against brute force"
+        );
+    }
+
+    let entry = GoldenEntry {
+        mesh: name,
+        triangles: u32::try_from(mesh.triangle_count()).unwrap(),
+        spec,
+        report: expected,
+    };
+    entry.to_string()
+}
+
+const HEADER: &str = "\
+# meshq parity golden file: one line per bundled mesh, checked by the native tests
+# (tests/tests/parity_golden.rs, from brute-force answers), the WebAssembly tests and the
+# firmware under QEMU. digest = CRC-64/XZ over every result bit of the parity run (see
+# meshq_workload::parity). Rewrite with MESHQ_BLESS_GOLDEN=1 only after an intended change.
+";
+
+#[test]
+fn every_structure_and_the_golden_file_agree_with_brute_force() {
+    let mut file = String::from(HEADER);
+    let lines: Vec<String> = MESHES.iter().map(|name| computed_line(name)).collect();
+    for line in &lines {
+        writeln!(file, "{line}").unwrap();
+    }
+    if std::env::var_os("MESHQ_BLESS_GOLDEN").is_some() {
+        std::fs::write(golden_path(), &file).unwrap();
+        return;
+    }
+    let recorded = std::fs::read_to_string(golden_path()).unwrap();
+    for (name, line) in MESHES.iter().zip(&lines) {
+        let recorded_entry = find_golden(&recorded, name)
+            .unwrap_or_else(|e| panic!("{name}: {e} (bless with MESHQ_BLESS_GOLDEN=1)"));
+        let computed = find_golden(line, name).unwrap();
+        assert_eq!(
+            recorded_entry, computed,
+            "{name}: the golden file disagrees with brute force; if results changed on purpose, \
+             rewrite it with MESHQ_BLESS_GOLDEN=1"
+        );
+    }
+}

@@ -1,0 +1,201 @@
+//! The golden parity file (`tests/golden/parity.txt`): one line per mesh, written by the
+//! native test suite from brute-force answers and read by every target.
+//!
+//! A line is the mesh name followed by `key=value` fields in any order:
+//!
+//! ```text
+//! spot triangles=5856 seed=0x6d657368715061 rays=1024 any_rays=1024 points=256 hits=… any_hits=… points_found=… digest=0x…
+//! ```
+//!
+//! Blank lines and lines starting with `#` are comments. Integers are decimal, or hexadecimal
+//! with a `0x` prefix.
+
+use core::fmt;
+
+use crate::parity::{ParityReport, ParitySpec};
+
+/// One mesh's golden entry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GoldenEntry<'a> {
+    /// The mesh name (the file stem of its asset, e.g. `stanford-bunny`).
+    pub mesh: &'a str,
+    /// Its triangle count, a cheap check that the right mesh was baked.
+    pub triangles: u32,
+    /// The queries that were run.
+    pub spec: ParitySpec,
+    /// What they must give.
+    pub report: ParityReport,
+}
+
+/// Why a golden entry could not be read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum GoldenError {
+    /// No line names the mesh.
+    MeshMissing,
+    /// The mesh's line (1-based) lacks a field, repeats one, or has one that does not parse.
+    Malformed {
+        /// Line number, from 1.
+        line: usize,
+    },
+}
+
+impl fmt::Display for GoldenError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::MeshMissing => f.write_str("the golden file has no line for this mesh"),
+            Self::Malformed { line } => write!(f, "golden file line {line} is malformed"),
+        }
+    }
+}
+
+impl core::error::Error for GoldenError {}
+
+fn parse_u64(text: &str) -> Option<u64> {
+    match text.strip_prefix("0x") {
+        Some(hex) => u64::from_str_radix(hex, 16).ok(),
+        None => text.parse().ok(),
+    }
+}
+
+/// Reads the fields after the mesh name; `None` when one is missing, repeated or unreadable.
+fn parse_fields<'a>(
+    mesh: &'a str,
+    fields: core::str::SplitAsciiWhitespace<'_>,
+) -> Option<GoldenEntry<'a>> {
+    // Each field once: a slot per key, filled at most once.
+    let mut slots: [Option<u64>; 9] = [None; 9];
+    const KEYS: [&str; 9] = [
+        "triangles",
+        "seed",
+        "rays",
+        "any_rays",
+        "points",
+        "hits",
+        "any_hits",
+        "points_found",
+        "digest",
+    ];
+    for field in fields {
+        // A byte search rather than `split_once`: core's char searcher keeps a slice-index
+        // panic path when not inlined, which the firmware's panic-free proof would refuse.
+        let equals = field.bytes().position(|b| b == b'=')?;
+        let key = field.get(..equals)?;
+        let value = field.get(equals + 1..)?;
+        let index = KEYS.iter().position(|k| *k == key)?;
+        let slot = slots.get_mut(index)?;
+        if slot.is_some() {
+            return None;
+        }
+        *slot = Some(parse_u64(value)?);
+    }
+    let [
+        triangles,
+        seed,
+        rays,
+        any_rays,
+        points,
+        hits,
+        any_hits,
+        points_found,
+        digest,
+    ] = slots;
+    let small = |v: Option<u64>| v.and_then(|v| u32::try_from(v).ok());
+    Some(GoldenEntry {
+        mesh,
+        triangles: small(triangles)?,
+        spec: ParitySpec {
+            seed: seed?,
+            rays: small(rays)?,
+            any_rays: small(any_rays)?,
+            points: small(points)?,
+        },
+        report: ParityReport {
+            digest: digest?,
+            hits: small(hits)?,
+            any_hits: small(any_hits)?,
+            points_found: small(points_found)?,
+        },
+    })
+}
+
+/// The entry for `mesh` in the golden file's `text`.
+///
+/// # Errors
+/// [`GoldenError::MeshMissing`] when no line names it, [`GoldenError::Malformed`] when its line
+/// does not parse.
+pub fn find_golden<'a>(text: &'a str, mesh: &str) -> Result<GoldenEntry<'a>, GoldenError> {
+    for (number, line) in text.lines().enumerate() {
+        let mut fields = line.split_ascii_whitespace();
+        let Some(name) = fields.next() else { continue };
+        if name.starts_with('#') || name != mesh {
+            continue;
+        }
+        return parse_fields(name, fields).ok_or(GoldenError::Malformed { line: number + 1 });
+    }
+    Err(GoldenError::MeshMissing)
+}
+
+/// Writes the entry as one golden-file line (without the newline), which [`find_golden`]
+/// reads back.
+impl fmt::Display for GoldenEntry<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (s, r) = (&self.spec, &self.report);
+        write!(
+            f,
+            "{} triangles={} seed={:#x} rays={} any_rays={} points={} hits={} any_hits={} \
+             points_found={} digest={:#018x}",
+            self.mesh,
+            self.triangles,
+            s.seed,
+            s.rays,
+            s.any_rays,
+            s.points,
+            r.hits,
+            r.any_hits,
+            r.points_found,
+            r.digest
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TEXT: &str = "# comment\n\nspot triangles=5856 seed=0x10 rays=3 any_rays=4 points=5 \
+        hits=1 any_hits=2 points_found=5 digest=0x00000000000000ff\n\
+        bad triangles=1 seed=1\n";
+
+    #[test]
+    fn reads_a_line_and_writes_it_back() {
+        let entry = find_golden(TEXT, "spot").expect("spot is there");
+        assert_eq!(entry.triangles, 5856);
+        assert_eq!(entry.spec.seed, 16);
+        assert_eq!(entry.spec.points, 5);
+        assert_eq!(entry.report.digest, 255);
+        let line = std::format!("{entry}");
+        assert_eq!(find_golden(&line, "spot"), Ok(entry));
+    }
+
+    #[test]
+    fn reports_missing_and_malformed_lines() {
+        assert_eq!(find_golden(TEXT, "cow"), Err(GoldenError::MeshMissing));
+        assert_eq!(
+            find_golden(TEXT, "bad"),
+            Err(GoldenError::Malformed { line: 4 })
+        );
+        let repeated = "m triangles=1 triangles=1 seed=1 rays=1 any_rays=1 points=1 hits=1 \
+            any_hits=1 points_found=1 digest=1";
+        assert_eq!(
+            find_golden(repeated, "m"),
+            Err(GoldenError::Malformed { line: 1 })
+        );
+        let too_big = "m triangles=0x100000000 seed=1 rays=1 any_rays=1 points=1 hits=1 \
+            any_hits=1 points_found=1 digest=1";
+        assert_eq!(
+            find_golden(too_big, "m"),
+            Err(GoldenError::Malformed { line: 1 })
+        );
+    }
+}
