@@ -28,4 +28,7 @@ echo; echo "== closest points"
 "$meshq" closest "$out/bunny.meshq" --points "$out/points.bin" --out "$out/closest.bin"
 echo
 echo "outputs in $out/ (hits: float32 t + uint32 triangle per ray)"
-echo "the browser demo arrives with the WebAssembly package; it is not built yet"
+echo; echo "== browser demo (WebAssembly package + the bunny blob baked above)"
+MESHQ_BIN=$meshq ./scripts/build-web.sh
+echo "open the URL below; Ctrl-C stops the server"
+exec node web/serve.mjs

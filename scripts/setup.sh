@@ -88,6 +88,18 @@ else
   cargo install wasm-pack --version "$WASM_PACK_VERSION" --locked
 fi
 
+# npm packages from the committed lockfiles: the demo (three.js; playwright-core and npm
+# binaryen's wasm-opt for the build and tests) and the Node benchmark (three-mesh-bvh).
+for dir in web bench/node; do
+  if [ -f "$dir/node_modules/.package-lock.json" ] &&
+    [ "$dir/node_modules/.package-lock.json" -nt "$dir/package-lock.json" ]; then
+    log "npm packages in $dir: present"
+  else
+    log "npm packages in $dir: installing"
+    (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+done
+
 if [ -n "$apt_pid" ]; then
   log "apt: waiting for the background install"
   if ! wait "$apt_pid"; then

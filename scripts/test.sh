@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Every check, as CI runs it: install what is missing, then formatting, lints, docs, the
-# bare-metal and WebAssembly builds of the core, all tests, the firmware in QEMU, and a compile
-# of the benchmarks.
+# bare-metal and WebAssembly builds of the core, all tests, the firmware in QEMU, the
+# WebAssembly tests in Node, the three.js drop-in test, the demo in headless Chromium, and a
+# short run of the Node benchmark. (Clippy with --all-targets type-checks the criterion
+# benchmarks; `cargo bench` runs them.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -31,8 +33,22 @@ cargo test --locked --workspace
 step "firmware: Cortex-M4F in QEMU, parity with the golden file, panic-free proof, memory"
 MESHQ_CLI_PROFILE=test ./scripts/firmware.sh
 
-step "benchmarks compile"
-cargo bench --locked --workspace --no-run
+step "WebAssembly: parity with the golden file and blob bytes, in Node"
+cargo clippy --locked -p meshq-wasm --target wasm32-unknown-unknown --all-targets -- -D warnings
+CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
+  cargo test --locked -p meshq-wasm --target wasm32-unknown-unknown --tests
+
+step "wasm-pack packages (web, nodejs) and the demo"
+MESHQ_BIN=target/debug/meshq ./scripts/build-web.sh
+
+step "three.js drop-in against three's brute-force Raycaster, in Node"
+node web/tests/three-dropin.mjs
+
+step "demo end to end in headless Chromium"
+MESHQ_BIN=target/debug/meshq node web/tests/e2e.mjs
+
+step "Node benchmark runs (small counts; the real run is node bench/node/bench.mjs)"
+MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_SINGLE=5000 MESHQ_BENCH_POINTS=2000 node bench/node/bench.mjs
 
 step "fuzz blob parsing briefly"
 if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null 2>&1; then

@@ -150,3 +150,46 @@ fn every_structure_and_the_golden_file_agree_with_brute_force() {
         );
     }
 }
+
+const BLOBS_HEADER: &str = "\
+# meshq blob golden file: length and header checksum (CRC-32 over every other byte) of each
+# bundled mesh's blob with the default build config and the indexed mesh layout. Builds are
+# deterministic, so the WebAssembly build must produce these exact bytes too.
+";
+
+fn blobs_path() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/blobs.txt")
+}
+
+#[test]
+fn default_blobs_match_the_golden_blob_file() {
+    let mut file = String::from(BLOBS_HEADER);
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let blob = bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap();
+        // Deterministic: a second bake gives the same bytes.
+        assert_eq!(
+            bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap(),
+            blob
+        );
+        let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+        writeln!(
+            file,
+            "{name} bytes={} checksum={:#010x}",
+            blob.len(),
+            header.checksum
+        )
+        .unwrap();
+    }
+    if std::env::var_os("MESHQ_BLESS_GOLDEN").is_some() {
+        std::fs::write(blobs_path(), &file).unwrap();
+        return;
+    }
+    let recorded = std::fs::read_to_string(blobs_path()).unwrap();
+    assert_eq!(
+        recorded, file,
+        "tests/golden/blobs.txt is stale; if blobs changed on purpose, rewrite it with \
+         MESHQ_BLESS_GOLDEN=1"
+    );
+}

@@ -111,6 +111,13 @@ impl<'a> BlobView<'a> {
         raycast::raycast_with(&self.tree, &self.mesh, ray, options)
     }
 
+    /// Runs a custom query over the tree in place, exactly as
+    /// [`Bvh::traverse`](crate::bvh::Bvh::traverse) does over slices; read the leaf triangles
+    /// with [`BlobView::mesh`].
+    pub fn traverse<V: crate::bvh::BvhVisitor>(&self, visitor: &mut V) {
+        crate::bvh::traverse::traverse(&self.tree, visitor);
+    }
+
     /// Whether `ray` hits anything (see [`Bvh::raycast_any`](crate::bvh::Bvh::raycast_any)).
     #[must_use]
     pub fn raycast_any(&self, ray: &Ray) -> bool {

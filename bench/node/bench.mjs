@@ -1,0 +1,163 @@
+// meshq (WebAssembly, wasm/pkg-nodejs) against three-mesh-bvh in Node on the bundled bunny,
+// with the DESIGN.md workloads and the same rays and points for both. Prints throughput
+// ratios (meshq / three-mesh-bvh); --json prints them as JSON. Build the package first:
+// scripts/wasm.sh. Environment: MESHQ_BENCH_RAYS (default 1,000,000), MESHQ_BENCH_SINGLE
+// (rays for the one-call-per-ray runs, default 200,000), MESHQ_BENCH_POINTS (default 100,000).
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import * as THREE from 'three';
+import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
+import { mergeVertices } from 'three/examples/jsm/utils/BufferGeometryUtils.js';
+import { MeshBVH } from 'three-mesh-bvh';
+import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+
+const root = fileURLToPath(new URL('../..', import.meta.url));
+const RAYS = Number(process.env.MESHQ_BENCH_RAYS ?? 1_000_000);
+const SINGLE = Number(process.env.MESHQ_BENCH_SINGLE ?? 200_000);
+const POINTS = Number(process.env.MESHQ_BENCH_POINTS ?? 100_000);
+const json = process.argv.includes('--json');
+const log = (...a) => { if (!json) console.log(...a); };
+
+const group = new OBJLoader().parse(readFileSync(`${root}/assets/stanford-bunny.obj`, 'utf8'));
+const loaded = group.children[0].geometry;
+loaded.deleteAttribute('normal');
+loaded.deleteAttribute('uv');
+const geometry = mergeVertices(loaded);
+const positions = geometry.getAttribute('position').array;
+const index = geometry.index.array;
+
+/** Median wall time in ms of `runs` calls of `f`, after one warm-up call. */
+function time(f, runs) {
+  f();
+  const times = [];
+  for (let i = 0; i < runs; i++) {
+    const t0 = performance.now();
+    f();
+    times.push(performance.now() - t0);
+  }
+  times.sort((a, b) => a - b);
+  return times[Math.floor(times.length / 2)];
+}
+
+const results = [];
+function report(workload, meshqMs, peerMs, count, unit) {
+  const row = { workload, meshq_ms: meshqMs, three_mesh_bvh_ms: peerMs, ratio: peerMs / meshqMs };
+  if (count) {
+    row.meshq_per_s = (count / meshqMs) * 1000;
+    row.three_mesh_bvh_per_s = (count / peerMs) * 1000;
+  }
+  results.push(row);
+  const rate = count ? `  (${(row.meshq_per_s / 1e6).toFixed(2)} vs ${(row.three_mesh_bvh_per_s / 1e6).toFixed(2)} M ${unit}/s)` : '';
+  log(`${workload.padEnd(44)} ${row.ratio.toFixed(2)}×${rate}`);
+}
+
+// Build: meshq's default (balanced binned SAH) against three-mesh-bvh's default options.
+let bvh = null;
+const buildMeshq = time(() => { bvh?.free(); bvh = meshq.MeshBvh.build(positions, index); }, 5);
+const buildPeer = time(() => new MeshBVH(geometry), 5);
+const peer = new MeshBVH(geometry);
+log(`bunny: ${index.length / 3} triangles; meshq build ${buildMeshq.toFixed(1)} ms, three-mesh-bvh ${buildPeer.toFixed(1)} ms`);
+report('build (default settings)', buildMeshq, buildPeer);
+const blob = bvh.toBlob();
+const loadMeshq = time(() => meshq.MeshBvh.fromBlob(blob).free(), 5);
+log(`meshq fromBlob (validated load of a ${blob.length}-byte blob): ${loadMeshq.toFixed(1)} ms`);
+results.push({ workload: 'meshq fromBlob load', meshq_ms: loadMeshq });
+
+const bounds = bvh.bounds();
+const random = meshq.randomRays(bounds, 1, RAYS);
+const camera = meshq.cameraRays(bounds, 1024, 1024);
+const points = meshq.queryPoints(bounds, 1, POINTS);
+
+function peerFirstHits(rays, count) {
+  const ray = new THREE.Ray();
+  let hits = 0;
+  for (let k = 0; k < count; k++) {
+    ray.origin.set(rays[6 * k], rays[6 * k + 1], rays[6 * k + 2]);
+    ray.direction.set(rays[6 * k + 3], rays[6 * k + 4], rays[6 * k + 5]);
+    if (peer.raycastFirst(ray, THREE.DoubleSide)) hits++;
+  }
+  return hits;
+}
+
+function batch(rays) {
+  const n = rays.length / 6;
+  const distances = new Float32Array(n);
+  const triangles = new Uint32Array(n);
+  return () => bvh.raycastBatch(rays, 0, Infinity, distances, triangles);
+}
+
+// Agreement first: the same first triangle (or a tie) on the random rays.
+{
+  const n = Math.min(RAYS, 100_000);
+  const ray = new THREE.Ray();
+  let same = 0;
+  let hits = 0;
+  for (let k = 0; k < n; k++) {
+    ray.origin.set(random[6 * k], random[6 * k + 1], random[6 * k + 2]);
+    ray.direction.set(random[6 * k + 3], random[6 * k + 4], random[6 * k + 5]);
+    const theirs = peer.raycastFirst(ray, THREE.DoubleSide);
+    const ours = bvh.raycastXyz(...random.subarray(6 * k, 6 * k + 6), 0, Infinity);
+    if ((theirs === null) !== (ours === null)) continue;
+    if (!ours) { same++; continue; }
+    hits++;
+    if (theirs.faceIndex === ours.triangle || Math.abs(theirs.distance - ours.distance) < 1e-6) same++;
+  }
+  log(`agreement on ${n} random rays: ${same} identical answers (${hits} hits)`);
+  results.push({ workload: 'agreement', rays: n, identical: same });
+}
+
+const nRandom = RAYS;
+report('random rays, batched vs raycastFirst', time(batch(random), 3),
+  time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+report('camera rays 1024², batched vs raycastFirst', time(batch(camera), 3),
+  time(() => peerFirstHits(camera, camera.length / 6), 3), camera.length / 6, 'rays');
+
+const singleXyz = () => {
+  let hits = 0;
+  for (let k = 0; k < SINGLE; k++) {
+    const o = 6 * k;
+    if (bvh.raycastXyz(random[o], random[o + 1], random[o + 2], random[o + 3], random[o + 4], random[o + 5], 0, Infinity) !== null) hits++;
+  }
+  return hits;
+};
+const singleArrays = () => {
+  let hits = 0;
+  const origin = new Float32Array(3);
+  const direction = new Float32Array(3);
+  for (let k = 0; k < SINGLE; k++) {
+    origin.set(random.subarray(6 * k, 6 * k + 3));
+    direction.set(random.subarray(6 * k + 3, 6 * k + 6));
+    if (bvh.raycast(origin, direction, 0, Infinity) !== null) hits++;
+  }
+  return hits;
+};
+const peerSingle = time(() => peerFirstHits(random, SINGLE), 3);
+report('random rays, one call each: raycastXyz', time(singleXyz, 3), peerSingle, SINGLE, 'rays');
+report('random rays, one call each: raycast(arrays)', time(singleArrays, 3), peerSingle, SINGLE, 'rays');
+
+const anyBatch = (() => {
+  const out = new Uint8Array(RAYS);
+  return () => bvh.raycastAnyBatch(random, 0, Infinity, out);
+})();
+report('random rays, any hit batched vs raycastFirst', time(anyBatch, 3),
+  time(() => peerFirstHits(random, nRandom), 1), nRandom, 'rays');
+
+const closestBatch = (() => {
+  const c = new Float32Array(3 * POINTS);
+  const t = new Uint32Array(POINTS);
+  const d = new Float32Array(POINTS);
+  return () => bvh.closestPointBatch(points, Infinity, c, t, d);
+})();
+const peerClosest = () => {
+  const p = new THREE.Vector3();
+  const target = {};
+  for (let k = 0; k < POINTS; k++) {
+    p.set(points[3 * k], points[3 * k + 1], points[3 * k + 2]);
+    peer.closestPointToPoint(p, target);
+  }
+};
+report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
+  time(peerClosest, 3), POINTS, 'points');
+
+if (json) console.log(JSON.stringify({ triangles: index.length / 3, results }, null, 2));
+bvh.free();

@@ -1,0 +1,29 @@
+// Types of the meshq three.js drop-in (three.js / three.mjs).
+import type { BufferGeometry, Intersection, Mesh, Raycaster } from 'three';
+import type { MeshBvh } from './meshq_wasm';
+
+/** Build settings; every field is optional (the balanced preset by default). */
+export interface BuildOptions {
+  quality?: 'fast' | 'balanced' | 'high';
+  maxLeafSize?: number;
+  bins?: number;
+}
+
+/** Builds `this.boundsTree` from the geometry's position and index arrays. */
+export function computeBoundsTree(this: BufferGeometry, options?: BuildOptions): MeshBvh;
+/** Frees `this.boundsTree`. */
+export function disposeBoundsTree(this: BufferGeometry): void;
+/** Replacement for `THREE.Mesh.prototype.raycast`. */
+export function acceleratedRaycast(this: Mesh, raycaster: Raycaster, intersects: Intersection[]): void;
+export { MeshBvh };
+
+declare module 'three' {
+  interface BufferGeometry {
+    boundsTree?: MeshBvh | null;
+    computeBoundsTree(options?: BuildOptions): MeshBvh;
+    disposeBoundsTree(): void;
+  }
+  interface Raycaster {
+    firstHitOnly?: boolean;
+  }
+}

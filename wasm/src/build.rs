@@ -1,0 +1,123 @@
+//! Building a [`Storage`] from JavaScript arrays or from a blob.
+
+use js_sys::{Array, Uint16Array, Uint32Array};
+use meshq::blob::BlobView;
+use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::mesh::MeshRef;
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+use crate::storage::{Owner, Storage, Views};
+
+fn error(e: impl core::fmt::Display) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+/// Corner indices from a `Uint32Array`, a `Uint16Array` or an array of numbers; `None` for
+/// `null` / `undefined` (non-indexed geometry: every three positions make a triangle).
+pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsError> {
+    if indices.is_null() || indices.is_undefined() {
+        return Ok(None);
+    }
+    if let Some(a) = indices.dyn_ref::<Uint32Array>() {
+        return Ok(Some(a.to_vec()));
+    }
+    if let Some(a) = indices.dyn_ref::<Uint16Array>() {
+        return Ok(Some(a.to_vec().into_iter().map(u32::from).collect()));
+    }
+    if let Some(a) = indices.dyn_ref::<Array>() {
+        return a
+            .iter()
+            .map(|v| match v.as_f64() {
+                Some(x) if x.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&x) => {
+                    Ok(x as u32)
+                }
+                _ => Err(JsError::new("indices must be whole numbers in 0..2^32")),
+            })
+            .collect::<Result<Vec<u32>, _>>()
+            .map(Some);
+    }
+    Err(JsError::new(
+        "indices must be a Uint32Array, a Uint16Array, an array of numbers, or null",
+    ))
+}
+
+/// Validates the mesh, builds its BVH into exactly sized buffers and keeps both.
+pub fn build(
+    positions: &[f32],
+    indices: Option<Vec<u32>>,
+    config: &BuildConfig,
+) -> Result<Storage, JsError> {
+    if !positions.len().is_multiple_of(3) {
+        return Err(JsError::new(&format!(
+            "positions hold {} numbers, not a multiple of 3 (x, y, z per vertex)",
+            positions.len()
+        )));
+    }
+    let positions: Vec<[f32; 3]> = positions
+        .chunks_exact(3)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    let flat = match indices {
+        Some(flat) => flat,
+        None => {
+            let n =
+                u32::try_from(positions.len()).map_err(|_| JsError::new("too many vertices"))?;
+            (0..n).collect()
+        }
+    };
+    if !flat.len().is_multiple_of(3) {
+        return Err(JsError::new(&format!(
+            "{} corner indices is not a multiple of 3 (three per triangle)",
+            flat.len()
+        )));
+    }
+    let triangles: Vec<[u32; 3]> = flat.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+
+    let n = triangles.len();
+    let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
+    let mut order = vec![0u32; n];
+    {
+        let mesh = MeshRef::new(&positions, &triangles)
+            .validate()
+            .map_err(error)?;
+        let mut scratch = vec![PrimRef::EMPTY; n];
+        let used = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch)
+            .map_err(error)?
+            .nodes()
+            .len();
+        nodes.truncate(used);
+    }
+    let owner = Owner::Built {
+        positions,
+        triangles,
+        nodes,
+        order,
+    };
+    Storage::try_new(owner, views)
+}
+
+/// Validates a blob once and keeps its bytes.
+pub fn from_blob(bytes: Vec<u8>) -> Result<Storage, JsError> {
+    Storage::try_new(Owner::Blob(bytes), views)
+}
+
+fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
+    match owner {
+        Owner::Built {
+            positions,
+            triangles,
+            nodes,
+            order,
+        } => {
+            // Checked again here because the views must borrow from the owner; it is linear
+            // and cheap next to the build.
+            let mesh = MeshRef::new(positions, triangles)
+                .validate()
+                .map_err(error)?;
+            let bvh = Bvh::from_parts(nodes, order, &mesh).map_err(error)?;
+            Ok(Views::Built { mesh, bvh })
+        }
+        Owner::Blob(bytes) => BlobView::parse(bytes).map(Views::Blob).map_err(error),
+    }
+}

@@ -1,0 +1,45 @@
+//! Result objects made on the JavaScript side: Rust passes plain numbers to a small function
+//! defined in JavaScript, which is much cheaper than setting properties one by one across the
+//! boundary.
+
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(inline_js = "
+export function meshq_ray_hit(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
+  return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
+}
+export function meshq_closest(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
+  return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
+}
+")]
+extern "C" {
+    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn meshq_ray_hit(
+        distance: f32,
+        px: f32,
+        py: f32,
+        pz: f32,
+        triangle: u32,
+        u: f32,
+        v: f32,
+        nx: f32,
+        ny: f32,
+        nz: f32,
+    ) -> JsValue;
+
+    /// The same shape for a closest point (`distance` from the query point).
+    #[allow(clippy::too_many_arguments)]
+    pub fn meshq_closest(
+        distance: f32,
+        px: f32,
+        py: f32,
+        pz: f32,
+        triangle: u32,
+        u: f32,
+        v: f32,
+        nx: f32,
+        ny: f32,
+        nz: f32,
+    ) -> JsValue;
+}

@@ -1,0 +1,319 @@
+//! The `MeshBvh` class: one mesh with its BVH, built here or loaded from a blob.
+
+use glam::Vec3;
+use meshq::blob::{self, EncodeOptions, MeshLayout};
+use meshq::bvh::BuildConfig;
+use meshq::math::{ClosestPoint, Ray, RayHit};
+use wasm_bindgen::prelude::*;
+
+use crate::js_objects::{meshq_closest, meshq_ray_hit};
+use crate::options::{build_config, ray_options};
+use crate::storage::{Owner, Storage, Views};
+
+/// A triangle mesh and its BVH, ready for ray and closest-point queries.
+///
+/// Conventions: positions are `x, y, z` triples; triangles are counter-clockwise when seen from
+/// their front (as in three.js). Ray directions are used as given, not normalized: distances,
+/// `near` and `far` are in units of the direction's length, so world units for a unit direction
+/// (three.js rays have one). On equal distance the lower triangle index wins, so answers are
+/// the same on every target. Free the memory with `free()` (or let the garbage collector do it
+/// through a `FinalizationRegistry`, where the engine has one).
+#[wasm_bindgen]
+pub struct MeshBvh {
+    pub(crate) storage: Storage,
+    config: BuildConfig,
+}
+
+pub(crate) fn vec3(values: &[f32], what: &str) -> Result<Vec3, JsError> {
+    match values {
+        [x, y, z] => Ok(Vec3::new(*x, *y, *z)),
+        _ => Err(JsError::new(&format!(
+            "{what} must hold exactly 3 numbers, got {}",
+            values.len()
+        ))),
+    }
+}
+
+fn hit_object(views: &Views<'_>, ray: &Ray, hit: RayHit) -> JsValue {
+    let p = ray.origin + ray.dir * hit.t;
+    let n = views
+        .triangle(hit.tri)
+        .and_then(|t| t.unit_normal())
+        .unwrap_or(Vec3::ZERO);
+    meshq_ray_hit(hit.t, p.x, p.y, p.z, hit.tri, hit.u, hit.v, n.x, n.y, n.z)
+}
+
+fn closest_object(views: &Views<'_>, c: ClosestPoint) -> JsValue {
+    let n = views
+        .triangle(c.tri)
+        .and_then(|t| t.unit_normal())
+        .unwrap_or(Vec3::ZERO);
+    let p = c.point;
+    meshq_closest(
+        c.distance_squared.sqrt(),
+        p.x,
+        p.y,
+        p.z,
+        c.tri,
+        c.u,
+        c.v,
+        n.x,
+        n.y,
+        n.z,
+    )
+}
+
+#[wasm_bindgen]
+impl MeshBvh {
+    /// Builds a BVH from the arrays of a three.js `BufferGeometry`: `positions` (a
+    /// `Float32Array`, 3 numbers per vertex) and `indices` (`Uint32Array`, `Uint16Array`, array,
+    /// or `null` for non-indexed geometry). `options`: `{ quality: "fast" | "balanced" | "high",
+    /// maxLeafSize, bins }`, all optional. Throws on an invalid mesh (index out of range,
+    /// non-finite position…) with the core error's message.
+    pub fn build(
+        positions: &[f32],
+        indices: JsValue,
+        options: JsValue,
+    ) -> Result<MeshBvh, JsError> {
+        let config = build_config(&options)?;
+        let indices = crate::build::read_indices(&indices)?;
+        let storage = crate::build::build(positions, indices, &config)?;
+        Ok(Self { storage, config })
+    }
+
+    /// Loads a blob baked by `meshq bake` (or `toBlob`), e.g. the bytes of a fetched file. The
+    /// blob is validated once (checksum, every count, index and range) and copied into this
+    /// module's memory. Throws on a damaged blob, another format version, or a blob baked
+    /// without its mesh.
+    #[wasm_bindgen(js_name = fromBlob)]
+    pub fn from_blob(bytes: &[u8]) -> Result<MeshBvh, JsError> {
+        let storage = crate::build::from_blob(bytes.to_vec())?;
+        let config = match storage.borrow_dependent() {
+            Views::Blob(view) => view.header().config,
+            Views::Built { .. } => BuildConfig::default(),
+        };
+        Ok(Self { storage, config })
+    }
+
+    /// The blob of this mesh and BVH, to save and load later with `fromBlob`. `layout`:
+    /// `"indexed"` (default: positions and indices), `"packed"` (larger, fastest to query),
+    /// or `"omitted"` (no mesh; only for readers that have it). A loaded blob is returned as
+    /// it was loaded when no layout is asked for.
+    #[wasm_bindgen(js_name = toBlob)]
+    pub fn to_blob(&self, layout: Option<String>) -> Result<Vec<u8>, JsError> {
+        let mesh_layout = match layout.as_deref() {
+            None | Some("indexed") => MeshLayout::Indexed,
+            Some("packed") => MeshLayout::Packed,
+            Some("omitted") => MeshLayout::Omitted,
+            Some(other) => {
+                return Err(JsError::new(&format!(
+                    "unknown layout {other:?}: use \"indexed\", \"packed\" or \"omitted\""
+                )));
+            }
+        };
+        match (self.storage.borrow_owner(), self.storage.borrow_dependent()) {
+            (Owner::Blob(bytes), _) if layout.is_none() => Ok(bytes.clone()),
+            (_, Views::Built { mesh, bvh }) => {
+                let options = EncodeOptions {
+                    mesh: mesh_layout,
+                    config: self.config,
+                };
+                let err = |e: meshq::error::BlobError| JsError::new(&e.to_string());
+                let mut out = vec![0u8; blob::encoded_len(bvh, mesh, &options).map_err(err)?];
+                let n = blob::encode_into(bvh, mesh, &options, &mut out).map_err(err)?;
+                out.truncate(n);
+                Ok(out)
+            }
+            (_, Views::Blob(_)) => Err(JsError::new(
+                "a loaded blob is returned as loaded: call toBlob() without a layout",
+            )),
+        }
+    }
+
+    /// Number of triangles.
+    #[wasm_bindgen(getter, js_name = triangleCount)]
+    pub fn triangle_count(&self) -> u32 {
+        self.storage.borrow_dependent().triangle_count()
+    }
+
+    /// Number of BVH nodes.
+    #[wasm_bindgen(getter, js_name = nodeCount)]
+    pub fn node_count(&self) -> u32 {
+        u32::try_from(self.storage.borrow_dependent().node_count()).unwrap_or(u32::MAX)
+    }
+
+    /// Levels in the BVH (the root is level 0 in `levelBoxes`, so levels `0..depth`).
+    #[wasm_bindgen(getter)]
+    pub fn depth(&self) -> u32 {
+        self.storage.borrow_dependent().depth()
+    }
+
+    /// Whether this came from a blob (`fromBlob`) rather than a build.
+    #[wasm_bindgen(getter, js_name = fromBlobBytes)]
+    pub fn from_blob_bytes(&self) -> bool {
+        matches!(self.storage.borrow_owner(), Owner::Blob(_))
+    }
+
+    /// The root box, padded: `[minX, minY, minZ, maxX, maxY, maxZ]`.
+    pub fn bounds(&self) -> Vec<f32> {
+        let b = self.storage.borrow_dependent().bounds();
+        vec![b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]
+    }
+
+    /// The closest hit of the ray `origin + t·direction` with `t` in `[near, far]` (3-number
+    /// arrays or `Float32Array`s), or `null`. `side`: `0` front faces only, `1` back faces
+    /// only, `2` or omitted both (three.js `FrontSide`, `BackSide`, `DoubleSide`). Returns
+    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`: `distance` is `t`,
+    /// `u`, `v` the barycentric weights of the triangle's second and third corners, `normal`
+    /// the unit geometric normal (front side).
+    pub fn raycast(
+        &self,
+        origin: &[f32],
+        direction: &[f32],
+        near: f32,
+        far: f32,
+        side: Option<u8>,
+    ) -> Result<JsValue, JsError> {
+        let ray =
+            Ray::new(vec3(origin, "origin")?, vec3(direction, "direction")?).with_range(near, far);
+        self.cast(&ray, side)
+    }
+
+    /// [`MeshBvh::raycast`] with the ray as plain numbers: nothing is allocated per call.
+    #[wasm_bindgen(js_name = raycastXyz)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn raycast_xyz(
+        &self,
+        ox: f32,
+        oy: f32,
+        oz: f32,
+        dx: f32,
+        dy: f32,
+        dz: f32,
+        near: f32,
+        far: f32,
+        side: Option<u8>,
+    ) -> Result<JsValue, JsError> {
+        let ray = Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz)).with_range(near, far);
+        self.cast(&ray, side)
+    }
+
+    /// Whether the ray hits anything in `[near, far]` (occlusion, line of sight); faster than
+    /// `raycast`. Arguments as for `raycast`.
+    #[wasm_bindgen(js_name = raycastAny)]
+    pub fn raycast_any(
+        &self,
+        origin: &[f32],
+        direction: &[f32],
+        near: f32,
+        far: f32,
+        side: Option<u8>,
+    ) -> Result<bool, JsError> {
+        let ray =
+            Ray::new(vec3(origin, "origin")?, vec3(direction, "direction")?).with_range(near, far);
+        Ok(self
+            .storage
+            .borrow_dependent()
+            .raycast_any(&ray, &ray_options(side)?))
+    }
+
+    /// The closest surface point to `point` within `maxDistance` (omitted: any distance), or
+    /// `null`. Returns `{ distance, point, triangle, u, v, normal }` like `raycast`, with
+    /// `distance` the Euclidean distance to the query point. On equal distance the lower
+    /// triangle index wins.
+    #[wasm_bindgen(js_name = closestPoint)]
+    pub fn closest_point(
+        &self,
+        point: &[f32],
+        max_distance: Option<f32>,
+    ) -> Result<JsValue, JsError> {
+        let p = vec3(point, "point")?;
+        let views = self.storage.borrow_dependent();
+        Ok(views
+            .closest_point(p, max_distance.unwrap_or(f32::INFINITY))
+            .map_or(JsValue::NULL, |c| closest_object(views, c)))
+    }
+
+    /// Every triangle's corners, 9 numbers per triangle in triangle order (non-indexed), e.g.
+    /// to display a mesh loaded from a blob.
+    #[wasm_bindgen(js_name = trianglePositions)]
+    pub fn triangle_positions(&self) -> Vec<f32> {
+        let views = self.storage.borrow_dependent();
+        let n = views.triangle_count();
+        let mut out = Vec::with_capacity(n as usize * 9);
+        for t in (0..n).filter_map(|i| views.triangle(i)) {
+            for p in [t.a, t.b, t.c] {
+                out.extend_from_slice(&[p.x, p.y, p.z]);
+            }
+        }
+        out
+    }
+
+    /// The boxes of the BVH nodes at depth `level` (the root is level 0): 6 numbers per box,
+    /// `minX, minY, minZ, maxX, maxY, maxZ`.
+    #[wasm_bindgen(js_name = levelBoxes)]
+    pub fn level_boxes(&self, level: u32) -> Vec<f32> {
+        let views = self.storage.borrow_dependent();
+        let mut out = Vec::new();
+        let mut stack = vec![(0usize, 0u32)];
+        while let Some((index, depth)) = stack.pop() {
+            let Some(node) = views.node(index) else {
+                continue;
+            };
+            if depth == level {
+                out.extend_from_slice(&[
+                    node.min[0],
+                    node.min[1],
+                    node.min[2],
+                    node.max[0],
+                    node.max[1],
+                    node.max[2],
+                ]);
+            } else if !node.is_leaf() {
+                let first = node.first as usize;
+                stack.push((first + 1, depth + 1));
+                stack.push((first, depth + 1));
+            }
+        }
+        out
+    }
+}
+
+impl MeshBvh {
+    fn cast(&self, ray: &Ray, side: Option<u8>) -> Result<JsValue, JsError> {
+        let views = self.storage.borrow_dependent();
+        Ok(views
+            .raycast(ray, &ray_options(side)?)
+            .map_or(JsValue::NULL, |hit| hit_object(views, ray, hit)))
+    }
+
+    /// The closest hit as core types, for Rust callers and tests.
+    #[must_use]
+    pub fn raycast_ray(&self, ray: &Ray) -> Option<RayHit> {
+        self.storage
+            .borrow_dependent()
+            .raycast(ray, &meshq::bvh::RayOptions::default())
+    }
+
+    /// Any hit, for Rust callers and tests.
+    #[must_use]
+    pub fn raycast_any_ray(&self, ray: &Ray) -> bool {
+        self.storage
+            .borrow_dependent()
+            .raycast_any(ray, &meshq::bvh::RayOptions::default())
+    }
+
+    /// The closest point as core types, for Rust callers and tests.
+    #[must_use]
+    pub fn closest_point_at(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
+        self.storage
+            .borrow_dependent()
+            .closest_point(point, max_distance)
+    }
+
+    /// The root box as a core type.
+    #[must_use]
+    pub fn root_bounds(&self) -> meshq::math::Aabb {
+        self.storage.borrow_dependent().bounds()
+    }
+}

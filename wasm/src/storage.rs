@@ -1,0 +1,119 @@
+//! The owned buffers of a [`crate::MeshBvh`] and the validated views that borrow them, kept
+//! together (self_cell) so the views are checked once and then reused by every query.
+
+use meshq::blob::BlobView;
+use meshq::bvh::{Bvh, BvhNode, RayOptions, TreeArrays};
+use meshq::math::{ClosestPoint, Ray, RayHit, Triangle};
+use meshq::mesh::ValidMesh;
+use self_cell::self_cell;
+
+/// What a [`crate::MeshBvh`] owns: a mesh and the BVH built from it, or a blob's bytes.
+pub enum Owner {
+    /// Built in this module from JavaScript arrays.
+    Built {
+        /// Vertex positions.
+        positions: Vec<[f32; 3]>,
+        /// Triangle corner indices.
+        triangles: Vec<[u32; 3]>,
+        /// The used BVH nodes.
+        nodes: Vec<BvhNode>,
+        /// The BVH's triangle order.
+        order: Vec<u32>,
+    },
+    /// A blob, loaded (and validated) as is.
+    Blob(Vec<u8>),
+}
+
+/// The validated views over an [`Owner`].
+pub enum Views<'a> {
+    /// A BVH over a mesh, both in slices.
+    Built {
+        /// The mesh.
+        mesh: ValidMesh<'a>,
+        /// Its BVH.
+        bvh: Bvh<'a>,
+    },
+    /// A blob queried in place.
+    Blob(BlobView<'a>),
+}
+
+self_cell!(
+    /// An [`Owner`] and its [`Views`].
+    pub struct Storage {
+        owner: Owner,
+        #[covariant]
+        dependent: Views,
+    }
+);
+
+impl Views<'_> {
+    pub fn raycast(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
+        match self {
+            Self::Built { mesh, bvh } => bvh.raycast_with(mesh, ray, options),
+            Self::Blob(view) => view.raycast_with(ray, options),
+        }
+    }
+
+    pub fn raycast_any(&self, ray: &Ray, options: &RayOptions) -> bool {
+        match self {
+            Self::Built { mesh, bvh } => bvh.raycast_any_with(mesh, ray, options),
+            Self::Blob(view) => view.raycast_any_with(ray, options),
+        }
+    }
+
+    pub fn closest_point(&self, point: glam::Vec3, max_distance: f32) -> Option<ClosestPoint> {
+        match self {
+            Self::Built { mesh, bvh } => bvh.closest_point(mesh, point, max_distance),
+            Self::Blob(view) => view.closest_point(point, max_distance),
+        }
+    }
+
+    pub fn traverse<V: meshq::bvh::BvhVisitor>(&self, visitor: &mut V) {
+        match self {
+            Self::Built { bvh, .. } => bvh.traverse(visitor),
+            Self::Blob(view) => view.traverse(visitor),
+        }
+    }
+
+    pub fn triangle(&self, index: u32) -> Option<Triangle> {
+        match self {
+            Self::Built { mesh, .. } => mesh.triangle(index),
+            Self::Blob(view) => view.mesh().triangle(index),
+        }
+    }
+
+    pub fn triangle_count(&self) -> u32 {
+        match self {
+            Self::Built { mesh, .. } => u32::try_from(mesh.triangle_count()).unwrap_or(u32::MAX),
+            Self::Blob(view) => view.header().triangle_count,
+        }
+    }
+
+    pub fn node_count(&self) -> usize {
+        match self {
+            Self::Built { bvh, .. } => bvh.nodes().len(),
+            Self::Blob(view) => view.tree().node_count(),
+        }
+    }
+
+    pub fn node(&self, index: usize) -> Option<BvhNode> {
+        match self {
+            Self::Built { bvh, .. } => bvh.nodes().get(index).copied(),
+            Self::Blob(view) => view.tree().node(index),
+        }
+    }
+
+    pub fn depth(&self) -> u32 {
+        match self {
+            Self::Built { bvh, .. } => bvh.depth(),
+            Self::Blob(view) => view.header().depth,
+        }
+    }
+
+    pub fn bounds(&self) -> meshq::math::Aabb {
+        match self {
+            Self::Built { bvh, .. } => bvh.bounds(),
+            Self::Blob(view) => view.bounds(),
+        }
+    }
+}

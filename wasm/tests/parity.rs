@@ -1,0 +1,211 @@
+//! The WebAssembly leg of the parity check, run in Node by wasm-bindgen-test-runner
+//! (`cargo test -p meshq-wasm --target wasm32-unknown-unknown --tests`): every bundled mesh is
+//! built here, in WebAssembly, and must give the golden digest the native suite computed from
+//! brute force, the same blob bytes as the native build, and the same answers again after a
+//! blob round trip. On the host these tests compile to nothing.
+#![cfg(target_arch = "wasm32")]
+
+use glam::Vec3;
+use js_sys::{Reflect, Uint32Array};
+use meshq::math::{ClosestPoint, Ray, RayHit};
+use meshq_wasm::MeshBvh;
+use meshq_workload::{ParitySpec, ParityTarget, find_golden, run_parity};
+use wasm_bindgen::JsValue;
+use wasm_bindgen_test::wasm_bindgen_test;
+
+const GOLDEN: &str = include_str!("../../tests/golden/parity.txt");
+const BLOBS: &str = include_str!("../../tests/golden/blobs.txt");
+
+const MESHES: [(&str, &str); 5] = [
+    (
+        "stanford-bunny",
+        include_str!("../../assets/stanford-bunny.obj"),
+    ),
+    ("fandisk", include_str!("../../assets/fandisk.obj")),
+    ("spot", include_str!("../../assets/spot.obj")),
+    ("cow", include_str!("../../assets/cow.obj")),
+    ("teapot", include_str!("../../assets/teapot.obj")),
+];
+
+/// Flat positions and indices of an OBJ (polygons fan-triangulated, like the native loader).
+fn load(obj: &str) -> (Vec<f32>, Vec<u32>) {
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, _) = tobj::load_obj_buf(&mut obj.as_bytes(), &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .unwrap();
+    let (mut positions, mut indices) = (Vec::new(), Vec::new());
+    for m in models {
+        let base = u32::try_from(positions.len() / 3).unwrap();
+        positions.extend_from_slice(&m.mesh.positions);
+        indices.extend(m.mesh.indices.iter().map(|i| i + base));
+    }
+    (positions, indices)
+}
+
+fn build(obj: &str) -> MeshBvh {
+    let (positions, indices) = load(obj);
+    let indices = Uint32Array::from(&indices[..]);
+    MeshBvh::build(&positions, indices.into(), JsValue::UNDEFINED)
+        .map_err(JsValue::from)
+        .unwrap()
+}
+
+struct Wasm<'a>(&'a MeshBvh);
+
+impl ParityTarget for Wasm<'_> {
+    fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
+        self.0.raycast_ray(ray)
+    }
+    fn raycast_any(&mut self, ray: &Ray) -> bool {
+        self.0.raycast_any_ray(ray)
+    }
+    fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
+        self.0.closest_point_at(point, f32::INFINITY)
+    }
+}
+
+/// `bytes=… checksum=0x…` of a mesh's default blob, from the golden blob file.
+fn golden_blob(mesh: &str) -> (usize, u32) {
+    let line = BLOBS
+        .lines()
+        .find(|l| l.split_whitespace().next() == Some(mesh))
+        .unwrap_or_else(|| panic!("{mesh} missing from tests/golden/blobs.txt"));
+    let field = |key: &str| {
+        line.split_whitespace()
+            .find_map(|f| f.strip_prefix(key))
+            .unwrap_or_else(|| panic!("{mesh}: no {key}"))
+    };
+    let bytes = field("bytes=").parse().unwrap();
+    let checksum = u32::from_str_radix(field("checksum=0x"), 16).unwrap();
+    (bytes, checksum)
+}
+
+#[wasm_bindgen_test]
+fn every_mesh_matches_the_golden_digest_and_blob() {
+    for (name, obj) in MESHES {
+        let built = build(obj);
+        let golden = find_golden(GOLDEN, name).unwrap();
+        assert_eq!(built.triangle_count(), golden.triangles, "{name}");
+        let report = run_parity(&golden.spec, built.root_bounds(), &mut Wasm(&built));
+        assert_eq!(report, golden.report, "{name}: built in WebAssembly");
+
+        let blob = built.to_blob(None).map_err(JsValue::from).unwrap();
+        let (bytes, checksum) = golden_blob(name);
+        let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+        assert_eq!(
+            (blob.len(), header.checksum),
+            (bytes, checksum),
+            "{name}: blob bytes"
+        );
+
+        let loaded = MeshBvh::from_blob(&blob).map_err(JsValue::from).unwrap();
+        let report = run_parity(&golden.spec, loaded.root_bounds(), &mut Wasm(&loaded));
+        assert_eq!(report, golden.report, "{name}: loaded from the blob");
+        assert_eq!(loaded.to_blob(None).map_err(JsValue::from).unwrap(), blob);
+    }
+}
+
+fn number(object: &JsValue, path: &[&str]) -> f64 {
+    let mut v = object.clone();
+    for key in path {
+        v = Reflect::get(&v, &JsValue::from_str(key)).unwrap();
+    }
+    v.as_f64().unwrap()
+}
+
+#[wasm_bindgen_test]
+fn javascript_results_carry_the_core_answers() {
+    let bvh = build(MESHES[2].1);
+    let bounds = bvh.root_bounds();
+    let spec = ParitySpec::DEFAULT;
+    let (mut hits, mut misses) = (0, 0);
+    for ray in spec.rays(bounds).take(200) {
+        let (o, d) = (ray.origin, ray.dir);
+        let js = bvh
+            .raycast_xyz(o.x, o.y, o.z, d.x, d.y, d.z, 0.0, f32::INFINITY, None)
+            .map_err(JsValue::from)
+            .unwrap();
+        match bvh.raycast_ray(&ray) {
+            None => {
+                assert!(js.is_null());
+                misses += 1;
+            }
+            Some(hit) => {
+                hits += 1;
+                // f32 → f64 is exact, so the JavaScript numbers carry the same bits.
+                assert_eq!(number(&js, &["distance"]) as f32, hit.t);
+                assert_eq!(number(&js, &["triangle"]) as u32, hit.tri);
+                assert_eq!(number(&js, &["u"]) as f32, hit.u);
+                let p = o + d * hit.t;
+                assert_eq!(number(&js, &["point", "x"]) as f32, p.x);
+                let n = Vec3::new(
+                    number(&js, &["normal", "x"]) as f32,
+                    number(&js, &["normal", "y"]) as f32,
+                    number(&js, &["normal", "z"]) as f32,
+                );
+                assert!((n.length() - 1.0).abs() < 1e-5);
+            }
+        }
+    }
+    assert!(hits > 50 && misses > 10, "{hits} hits, {misses} misses");
+
+    // The batch gives the same answers as single calls.
+    let rays: Vec<Ray> = spec.rays(bounds).take(500).collect();
+    let flat: Vec<f32> = rays
+        .iter()
+        .flat_map(|r| {
+            [
+                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+            ]
+        })
+        .collect();
+    let mut distances = vec![0.0f32; rays.len()];
+    let mut triangles = vec![0u32; rays.len()];
+    let n = bvh
+        .raycast_batch(
+            &flat,
+            0.0,
+            f32::INFINITY,
+            &mut distances,
+            &mut triangles,
+            None,
+        )
+        .map_err(JsValue::from)
+        .unwrap();
+    let expected: Vec<_> = rays.iter().map(|r| bvh.raycast_ray(r)).collect();
+    assert_eq!(n as usize, expected.iter().flatten().count());
+    for (i, e) in expected.iter().enumerate() {
+        match e {
+            Some(h) => assert_eq!(
+                (distances[i].to_bits(), triangles[i]),
+                (h.t.to_bits(), h.tri)
+            ),
+            None => assert_eq!((distances[i], triangles[i]), (f32::INFINITY, u32::MAX)),
+        }
+    }
+}
+
+#[wasm_bindgen_test]
+fn bad_input_throws_with_the_core_message() {
+    let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    let bad = Uint32Array::from(&[0u32, 1, 7][..]);
+    let error = MeshBvh::build(&positions, bad.into(), JsValue::UNDEFINED)
+        .err()
+        .unwrap();
+    let message = js_sys::Error::from(JsValue::from(error)).message();
+    assert!(
+        String::from(message).contains('7'),
+        "message names the index"
+    );
+    assert!(MeshBvh::from_blob(&[1, 2, 3]).is_err());
+    let ok = MeshBvh::build(&positions, JsValue::NULL, JsValue::UNDEFINED)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(ok.triangle_count(), 1);
+}

@@ -1,0 +1,278 @@
+// The meshq demo: the bundled bunny loaded as a prebuilt blob, click-to-pick, a closest-point
+// probe, BVH levels, and a batched benchmark. Everything geometric is answered by meshq
+// (WebAssembly); three.js only draws.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { PLYLoader } from 'three/addons/loaders/PLYLoader.js';
+import { STLLoader } from 'three/addons/loaders/STLLoader.js';
+import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
+import init, { MeshBvh, randomRays } from 'meshq';
+
+const $ = (id) => document.getElementById(id);
+const demo = { ready: false, source: null, triangles: 0, lastRay: null, lastHit: null, bench: null };
+window.meshqDemo = demo;
+
+const canvas = $('view');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x1d2126);
+const camera = new THREE.PerspectiveCamera(45, 1, 0.001, 100);
+const controls = new OrbitControls(camera, canvas);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x334455, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+sun.position.set(1, 2, 1.5);
+scene.add(sun);
+
+const surface = new THREE.MeshStandardMaterial({ color: 0xc8b8a0, roughness: 0.8, flatShading: true });
+const marker = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), new THREE.MeshBasicMaterial({ color: 0xff3355 }));
+const picked = new THREE.Mesh(new THREE.BufferGeometry(),
+  new THREE.MeshBasicMaterial({ color: 0xff3355, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: -2 }));
+const probe = new THREE.Mesh(new THREE.SphereGeometry(1, 12, 8), new THREE.MeshBasicMaterial({ color: 0x44bbff }));
+const probeHit = new THREE.Mesh(new THREE.SphereGeometry(1, 12, 8), new THREE.MeshBasicMaterial({ color: 0x44ffaa }));
+const probeLine = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x44ffaa }));
+const boxes = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x66aaff, transparent: true, opacity: 0.7 }));
+for (const o of [marker, picked, probe, probeHit, probeLine, boxes]) {
+  o.visible = false;
+  scene.add(o);
+}
+
+let state = null; // { bvh, mesh, positions, centre, radius }
+
+function resize() {
+  const { clientWidth: w, clientHeight: h } = canvas;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+
+function format(x, digits = 6) {
+  return Number(x).toPrecision(digits);
+}
+
+/** Shows a MeshBvh: display geometry from its triangles, camera framed on its bounds. */
+function show(bvh, source, timeLabel, ms, blobBytes) {
+  if (state) {
+    scene.remove(state.mesh);
+    state.mesh.geometry.dispose();
+    state.bvh.free();
+  }
+  const positions = bvh.trianglePositions();
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.computeVertexNormals();
+  const mesh = new THREE.Mesh(geometry, surface);
+  scene.add(mesh);
+  const b = bvh.bounds();
+  const centre = new THREE.Vector3((b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2);
+  const radius = Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]) / 2;
+  state = { bvh, mesh, positions, centre, radius };
+  // The design workload's camera: 2.5 r in front of the centre, looking down -z.
+  camera.position.set(centre.x, centre.y, centre.z + 2.5 * radius);
+  camera.near = radius / 100;
+  camera.far = radius * 20;
+  camera.updateProjectionMatrix();
+  controls.target.copy(centre);
+  controls.update();
+  for (const s of [marker, probe, probeHit]) s.scale.setScalar(radius * 0.012);
+  for (const o of [marker, picked, probe, probeHit, probeLine]) o.visible = false;
+  const slider = $('bvh-level');
+  slider.max = String(Math.max(bvh.depth - 1, 0));
+  slider.value = String(Math.min(10, bvh.depth - 1));
+  updateBoxes();
+  $('stat-source').textContent = source;
+  $('stat-triangles').textContent = bvh.triangleCount.toLocaleString('en');
+  $('stat-nodes').textContent = bvh.nodeCount.toLocaleString('en');
+  $('stat-time-label').textContent = timeLabel;
+  $('stat-time').textContent = `${ms.toFixed(1)} ms`;
+  $('stat-blob').textContent = `${(blobBytes ?? bvh.toBlob().length).toLocaleString('en')} bytes`;
+  for (const id of ['hit-triangle', 'hit-distance', 'hit-normal', 'probe-distance', 'bench-result']) $(id).textContent = '—';
+  Object.assign(demo, { source, triangles: bvh.triangleCount, lastRay: null, lastHit: null, bench: null });
+}
+
+function updateBoxes() {
+  const level = Number($('bvh-level').value);
+  $('bvh-level-text').textContent = `level ${level}`;
+  boxes.visible = $('bvh-show').checked && state !== null;
+  if (!boxes.visible) return;
+  const flat = state.bvh.levelBoxes(level);
+  const n = flat.length / 6;
+  const lines = new Float32Array(n * 72);
+  const edges = [[0, 1], [1, 3], [3, 2], [2, 0], [4, 5], [5, 7], [7, 6], [6, 4], [0, 4], [1, 5], [2, 6], [3, 7]];
+  for (let i = 0; i < n; i++) {
+    const corner = (k) => [flat[6 * i + (k & 1 ? 3 : 0)], flat[6 * i + 1 + (k & 2 ? 3 : 0)], flat[6 * i + 2 + (k & 4 ? 3 : 0)]];
+    edges.forEach(([p, q], e) => lines.set([...corner(p), ...corner(q)], i * 72 + e * 6));
+  }
+  boxes.geometry.dispose();
+  boxes.geometry = new THREE.BufferGeometry();
+  boxes.geometry.setAttribute('position', new THREE.BufferAttribute(lines, 3));
+  $('bvh-level-text').textContent = `level ${level}: ${n} boxes`;
+}
+$('bvh-level').addEventListener('input', updateBoxes);
+$('bvh-show').addEventListener('change', updateBoxes);
+
+const raycaster = new THREE.Raycaster();
+function pointerRay(event) {
+  const rect = canvas.getBoundingClientRect();
+  const ndc = new THREE.Vector2(
+    ((event.clientX - rect.left) / rect.width) * 2 - 1,
+    -((event.clientY - rect.top) / rect.height) * 2 + 1,
+  );
+  raycaster.setFromCamera(ndc, camera);
+  return raycaster.ray;
+}
+
+/** Picks with meshq: marker, highlighted triangle, and the hit in the panel. */
+function pick(event) {
+  if (!state) return;
+  const ray = pointerRay(event);
+  const origin = Float32Array.from(ray.origin.toArray());
+  const direction = Float32Array.from(ray.direction.toArray());
+  const hit = state.bvh.raycast(origin, direction, 0, Infinity);
+  demo.lastRay = { origin: Array.from(origin), direction: Array.from(direction) };
+  demo.lastHit = hit && { triangle: hit.triangle, distance: hit.distance };
+  marker.visible = picked.visible = hit !== null;
+  if (!hit) {
+    $('hit-triangle').textContent = 'miss';
+    $('hit-distance').textContent = '—';
+    $('hit-normal').textContent = '—';
+    return;
+  }
+  marker.position.set(hit.point.x, hit.point.y, hit.point.z);
+  const corners = state.positions.slice(9 * hit.triangle, 9 * hit.triangle + 9);
+  picked.geometry.dispose();
+  picked.geometry = new THREE.BufferGeometry();
+  picked.geometry.setAttribute('position', new THREE.BufferAttribute(corners, 3));
+  $('hit-triangle').textContent = String(hit.triangle);
+  $('hit-distance').textContent = format(hit.distance, 9);
+  const n = hit.normal;
+  $('hit-normal').textContent = `${format(n.x, 3)}, ${format(n.y, 3)}, ${format(n.z, 3)}`;
+}
+
+let down = null;
+canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
+canvas.addEventListener('pointerup', (e) => {
+  if (down && Math.hypot(e.clientX - down[0], e.clientY - down[1]) < 4) pick(e);
+  down = null;
+});
+
+/** The closest-point probe: a point under the mouse, on the plane through the mesh centre
+ *  facing the camera, joined to the nearest surface point. */
+let pendingMove = null;
+canvas.addEventListener('pointermove', (e) => { pendingMove = e; });
+function updateProbe() {
+  const event = pendingMove;
+  pendingMove = null;
+  if (!event || !state || !$('probe').checked) {
+    if (!$('probe').checked) probe.visible = probeHit.visible = probeLine.visible = false;
+    return;
+  }
+  const ray = pointerRay(event);
+  const normal = camera.getWorldDirection(new THREE.Vector3());
+  const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, state.centre);
+  const at = ray.intersectPlane(plane, new THREE.Vector3());
+  if (!at) return;
+  const near = state.bvh.closestPoint(Float32Array.from(at.toArray()));
+  probe.visible = probeHit.visible = probeLine.visible = near !== null;
+  if (!near) return;
+  probe.position.copy(at);
+  probeHit.position.set(near.point.x, near.point.y, near.point.z);
+  probeLine.geometry.dispose();
+  probeLine.geometry = new THREE.BufferGeometry().setFromPoints([probe.position, probeHit.position]);
+  $('probe-distance').textContent = format(near.distance, 6);
+}
+
+$('bench').addEventListener('click', () => {
+  if (!state) return;
+  const count = 1_000_000;
+  $('bench-result').textContent = 'running…';
+  setTimeout(() => {
+    const rays = randomRays(state.bvh.bounds(), 1, count);
+    const distances = new Float32Array(count);
+    const triangles = new Uint32Array(count);
+    const t0 = performance.now();
+    const hits = state.bvh.raycastBatch(rays, 0, Infinity, distances, triangles);
+    const seconds = (performance.now() - t0) / 1000;
+    const rate = count / seconds;
+    demo.bench = { rays: count, hits, seconds, raysPerSecond: rate };
+    $('bench-result').textContent = `${(rate / 1e6).toFixed(2)} M rays/s (${hits.toLocaleString('en')} hits, ${seconds.toFixed(2)} s)`;
+  }, 20);
+});
+
+async function loadFile(file) {
+  const name = file.name.toLowerCase();
+  const ext = name.slice(name.lastIndexOf('.'));
+  $('status').textContent = `loading ${file.name}…`;
+  try {
+    if (['.meshq', '.blob', '.bin'].includes(ext)) {
+      const bytes = new Uint8Array(await file.arrayBuffer());
+      const t0 = performance.now();
+      const bvh = MeshBvh.fromBlob(bytes);
+      show(bvh, file.name, 'load time', performance.now() - t0, bytes.length);
+    } else {
+      let geometry;
+      if (ext === '.obj') {
+        const group = new OBJLoader().parse(await file.text());
+        const parts = [];
+        group.traverse((o) => {
+          if (o.isMesh) parts.push(o.geometry.index ? o.geometry.toNonIndexed() : o.geometry);
+        });
+        for (const p of parts) for (const key of Object.keys(p.attributes)) if (key !== 'position') p.deleteAttribute(key);
+        geometry = mergeGeometries(parts);
+      } else if (ext === '.ply') {
+        geometry = new PLYLoader().parse(await file.arrayBuffer());
+      } else if (ext === '.stl') {
+        geometry = new STLLoader().parse(await file.arrayBuffer());
+      } else {
+        throw new Error(`unsupported file type ${ext}: use .obj, .ply, .stl or a meshq blob`);
+      }
+      const positions = geometry.getAttribute('position').array;
+      const index = geometry.index ? geometry.index.array : null;
+      const t0 = performance.now();
+      const bvh = MeshBvh.build(positions, index);
+      show(bvh, file.name, 'build time', performance.now() - t0);
+    }
+    $('status').textContent = `${file.name} loaded`;
+  } catch (error) {
+    $('status').textContent = `could not load ${file.name}: ${error.message ?? error}`;
+  }
+}
+
+$('file').addEventListener('change', (e) => {
+  if (e.target.files.length) loadFile(e.target.files[0]);
+});
+window.addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
+window.addEventListener('dragleave', () => document.body.classList.remove('dragging'));
+window.addEventListener('drop', (e) => {
+  e.preventDefault();
+  document.body.classList.remove('dragging');
+  if (e.dataTransfer.files.length) loadFile(e.dataTransfer.files[0]);
+});
+
+function frame() {
+  updateProbe();
+  controls.update();
+  renderer.render(scene, camera);
+  requestAnimationFrame(frame);
+}
+
+async function start() {
+  resize();
+  await init();
+  const response = await fetch('assets/bunny.meshq');
+  if (!response.ok) throw new Error(`assets/bunny.meshq: HTTP ${response.status} (run scripts/build-web.sh)`);
+  const bytes = new Uint8Array(await response.arrayBuffer());
+  const t0 = performance.now();
+  const bvh = MeshBvh.fromBlob(bytes);
+  show(bvh, 'stanford-bunny.meshq (prebuilt blob)', 'load time', performance.now() - t0, bytes.length);
+  $('status').textContent = 'ready: click to pick, move the mouse to probe';
+  demo.ready = true;
+  requestAnimationFrame(frame);
+}
+
+start().catch((error) => {
+  $('status').textContent = `failed: ${error.message ?? error}`;
+  demo.error = String(error.message ?? error);
+});

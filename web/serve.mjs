@@ -1,0 +1,59 @@
+// Serves the demo on 127.0.0.1 and prints its URL. Port: MESHQ_PORT (default 8173; 0 or a
+// taken port: a free one the OS picks). GET /__meshq-demo answers "meshq-demo <token>" so a test can check that this server,
+// not another one on the same port, is the one answering.
+import { createServer } from 'node:http';
+import { createReadStream, statSync } from 'node:fs';
+import { extname, join, normalize, sep } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = fileURLToPath(new URL('.', import.meta.url));
+const token = process.env.MESHQ_SERVER_TOKEN ?? 'meshq';
+const types = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.json': 'application/json',
+  '.wasm': 'application/wasm',
+  '.meshq': 'application/octet-stream',
+  '.png': 'image/png',
+};
+
+const server = createServer((request, response) => {
+  const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
+  if (path === '/__meshq-demo') {
+    response.writeHead(200, { 'content-type': 'text/plain' });
+    response.end(`meshq-demo ${token}`);
+    return;
+  }
+  const file = normalize(join(root, path.endsWith('/') ? `${path}index.html` : path));
+  if (!file.startsWith(root.endsWith(sep) ? root : root + sep)) {
+    response.writeHead(403).end();
+    return;
+  }
+  try {
+    if (!statSync(file).isFile()) throw new Error('not a file');
+  } catch {
+    response.writeHead(404, { 'content-type': 'text/plain' }).end('not found');
+    return;
+  }
+  response.writeHead(200, {
+    'content-type': types[extname(file)] ?? 'application/octet-stream',
+    'cache-control': 'no-store',
+  });
+  createReadStream(file).pipe(response);
+});
+
+// A fixed default port for people (8173), a free one when it is taken or MESHQ_PORT=0.
+const wanted = Number(process.env.MESHQ_PORT ?? 8173);
+server.on('error', (error) => {
+  if (error.code === 'EADDRINUSE' && wanted !== 0) {
+    server.listen(0, '127.0.0.1');
+  } else {
+    throw error;
+  }
+});
+server.listen(wanted, '127.0.0.1', () => {
+  const { port } = server.address();
+  console.log(`meshq demo: http://127.0.0.1:${port}/`);
+});

@@ -1,0 +1,114 @@
+// End to end in real headless Chromium (Debian's chromium, driven by playwright-core): open
+// the demo, wait for the bunny blob, click the canvas centre, check that the displayed hit
+// equals the native answer for that exact ray (the meshq command, run on the same blob), load
+// another blob through the file input, run the benchmark button, and save a screenshot.
+// Run after scripts/build-web.sh: node web/tests/e2e.mjs (MESHQ_BIN: the native meshq binary).
+import assert from 'node:assert/strict';
+import { spawn, execFileSync } from 'node:child_process';
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const root = fileURLToPath(new URL('../..', import.meta.url));
+const meshq = process.env.MESHQ_BIN ?? join(root, 'target/release/meshq');
+const out = join(root, 'target/e2e');
+mkdirSync(out, { recursive: true });
+const scratch = mkdtempSync(join(tmpdir(), 'meshq-e2e-'));
+
+// Our server, on a port the OS picks; the token proves it is ours answering.
+const token = `e2e-${process.pid}-${Date.now()}`;
+const server = spawn(process.execPath, [join(root, 'web/serve.mjs')], {
+  env: { ...process.env, MESHQ_PORT: '0', MESHQ_SERVER_TOKEN: token },
+  stdio: ['ignore', 'pipe', 'inherit'],
+});
+const url = await new Promise((resolve, reject) => {
+  let text = '';
+  server.stdout.on('data', (chunk) => {
+    text += chunk;
+    const m = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
+    if (m) resolve(m[0]);
+  });
+  server.on('exit', (code) => reject(new Error(`server exited with ${code}`)));
+});
+const identity = await (await fetch(new URL('__meshq-demo', url))).text();
+assert.equal(identity, `meshq-demo ${token}`, 'another server answers on our port');
+
+// Never hang CI: whatever happens, stop after three minutes.
+const watchdog = setTimeout(() => {
+  console.error('e2e: timed out');
+  server.kill();
+  process.exit(1);
+}, 180000);
+process.on('exit', () => server.kill());
+
+// launch() gives the browser a fresh temporary profile (--user-data-dir) of its own.
+let browser = null;
+const errors = [];
+try {
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    timeout: 60000,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  });
+  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  await page.waitForFunction(() => window.meshqDemo?.ready || window.meshqDemo?.error, null, { timeout: 60000 });
+  assert.equal(await page.evaluate(() => window.meshqDemo.error), undefined);
+  assert.equal(await page.textContent('#stat-triangles'), '69,451');
+
+  // Click the canvas centre: the camera looks at the bunny's centre, so this hits it.
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+  await page.waitForFunction(() => window.meshqDemo.lastRay !== null);
+  const { lastRay, lastHit } = await page.evaluate(() => window.meshqDemo);
+  assert.ok(lastHit, 'the centre ray hits the bunny');
+  const shownTriangle = Number(await page.textContent('#hit-triangle'));
+  const shownDistance = await page.textContent('#hit-distance');
+
+  // The native answer for the same f32 ray, from the same blob.
+  const rays = join(scratch, 'ray.bin');
+  const hits = join(scratch, 'hit.bin');
+  writeFileSync(rays, Buffer.from(Float32Array.from([...lastRay.origin, ...lastRay.direction]).buffer));
+  execFileSync(meshq, ['raycast', join(root, 'web/assets/bunny.meshq'), '--rays', rays, '--out', hits]);
+  const record = readFileSync(hits);
+  const nativeT = record.readFloatLE(0);
+  const nativeTriangle = record.readUInt32LE(4);
+  assert.equal(shownTriangle, nativeTriangle, 'displayed triangle = native');
+  assert.equal(lastHit.triangle, nativeTriangle);
+  assert.equal(Math.fround(lastHit.distance), nativeT, 'distance bits = native');
+  assert.equal(shownDistance, Number(nativeT).toPrecision(9), 'displayed distance = native');
+  console.log(`centre click: triangle ${shownTriangle}, distance ${shownDistance} — equal to native`);
+
+  // The BVH view and the benchmark button.
+  await page.check('#bvh-show');
+  assert.match(await page.textContent('#bvh-level-text'), /level \d+: \d+ boxes/);
+  await page.click('#bench');
+  await page.waitForFunction(() => window.meshqDemo.bench !== null, null, { timeout: 120000 });
+  const bench = await page.evaluate(() => window.meshqDemo.bench);
+  assert.equal(bench.rays, 1000000);
+  assert.ok(bench.hits > 300000, `benchmark hits: ${bench.hits}`);
+  console.log(`benchmark button: ${(bench.raysPerSecond / 1e6).toFixed(2)} M rays/s in headless Chromium`);
+  await page.screenshot({ path: join(out, 'demo-bunny.png') });
+
+  // Another blob through the file input: spot, baked by the command.
+  const spot = join(scratch, 'spot.meshq');
+  execFileSync(meshq, ['bake', join(root, 'assets/spot.obj'), '-o', spot]);
+  await page.setInputFiles('#file', spot);
+  await page.waitForFunction(() => window.meshqDemo.source === 'spot.meshq');
+  assert.equal(await page.textContent('#stat-triangles'), '5,856');
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+  await page.waitForFunction(() => window.meshqDemo.lastHit !== null);
+  await page.screenshot({ path: join(out, 'demo-spot.png') });
+  assert.deepEqual(errors, [], 'no console errors');
+  console.log(`end to end in Chromium: ok (screenshots in ${out})`);
+} finally {
+  clearTimeout(watchdog);
+  await browser?.close();
+  server.kill();
+  rmSync(scratch, { recursive: true, force: true });
+}

@@ -1,0 +1,113 @@
+// The three.js drop-in against three's own brute-force Raycaster (every triangle tested), in
+// Node, on the bundled bunny: same first hit for 10,000 random rays (DESIGN.md workload), the
+// same full intersection lists, material sides, near/far and a transformed mesh.
+// Run after scripts/wasm.sh: node web/tests/three-dropin.mjs
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import * as THREE from 'three';
+import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { mergeVertices } from 'three/addons/utils/BufferGeometryUtils.js';
+import { acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from '../../wasm/pkg-nodejs/three.mjs';
+import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+
+const root = fileURLToPath(new URL('../..', import.meta.url));
+const RAYS = Number(process.env.MESHQ_DROPIN_RAYS ?? 10000);
+
+const obj = new OBJLoader().parse(readFileSync(`${root}/assets/stanford-bunny.obj`, 'utf8'));
+const loaded = obj.children[0].geometry;
+loaded.deleteAttribute('normal');
+loaded.deleteAttribute('uv');
+const indexed = mergeVertices(loaded);
+
+// Two meshes sharing a geometry: one raycasts through meshq, one with three's brute force.
+THREE.BufferGeometry.prototype.computeBoundsTree = computeBoundsTree;
+THREE.BufferGeometry.prototype.disposeBoundsTree = disposeBoundsTree;
+const material = new THREE.MeshBasicMaterial({ side: THREE.DoubleSide });
+const fast = new THREE.Mesh(indexed, material);
+fast.raycast = acceleratedRaycast;
+const brute = new THREE.Mesh(indexed, material);
+indexed.computeBoundsTree();
+assert.equal(indexed.boundsTree.triangleCount, indexed.index.count / 3);
+
+const rays = meshq.randomRays(indexed.boundsTree.bounds(), 1, RAYS);
+const raycaster = new THREE.Raycaster();
+
+function cast(mesh, k, firstHitOnly) {
+  raycaster.set(
+    new THREE.Vector3(rays[6 * k], rays[6 * k + 1], rays[6 * k + 2]),
+    new THREE.Vector3(rays[6 * k + 3], rays[6 * k + 4], rays[6 * k + 5]),
+  );
+  raycaster.firstHitOnly = firstHitOnly;
+  return raycaster.intersectObject(mesh, false);
+}
+
+// Equal, or a tie: both hit points at the same distance (a ray through a shared edge).
+function sameHit(a, b, what) {
+  const close = Math.abs(a.distance - b.distance) <= 1e-5 * Math.max(1, b.distance);
+  assert.ok(close, `${what}: distance ${a.distance} vs three ${b.distance}`);
+  assert.ok(a.point.distanceTo(b.point) <= 1e-5 * Math.max(1, b.distance), `${what}: point`);
+  if (a.faceIndex !== b.faceIndex) return false;
+  assert.deepEqual([a.face.a, a.face.b, a.face.c], [b.face.a, b.face.b, b.face.c], `${what}: face`);
+  assert.ok(a.face.normal.distanceTo(b.face.normal) < 1e-4, `${what}: face normal`);
+  assert.equal(a.object, fast);
+  return true;
+}
+
+let hits = 0;
+let ties = 0;
+const started = performance.now();
+for (let k = 0; k < RAYS; k++) {
+  const ours = cast(fast, k, true);
+  const theirs = cast(brute, k, false);
+  assert.equal(ours.length > 0, theirs.length > 0, `ray ${k}: hit or miss`);
+  if (!ours.length) continue;
+  hits++;
+  if (!sameHit(ours[0], theirs[0], `ray ${k}`)) ties++;
+}
+console.log(`first hit: ${RAYS} rays, ${hits} hits, all equal to three's brute force ` +
+  `(${ties} ties on a shared edge) in ${((performance.now() - started) / 1000).toFixed(1)} s`);
+assert.ok(hits > RAYS / 4);
+assert.ok(ties <= RAYS / 1000, `${ties} ties is too many to be edge hits`);
+
+// Full lists (firstHitOnly unset): every intersection, in order.
+for (let k = 0; k < 300; k++) {
+  const ours = cast(fast, k, false);
+  const theirs = cast(brute, k, false);
+  assert.equal(ours.length, theirs.length, `ray ${k}: number of intersections`);
+  ours.forEach((hit, i) => sameHit(hit, theirs[i], `ray ${k}, intersection ${i}`));
+}
+
+// Material sides, near/far and a moved, rotated, scaled mesh.
+for (const side of [THREE.FrontSide, THREE.BackSide]) {
+  material.side = side;
+  for (let k = 0; k < 300; k++) {
+    const ours = cast(fast, k, true);
+    const theirs = cast(brute, k, false);
+    assert.equal(ours.length > 0, theirs.length > 0, `side ${side}, ray ${k}`);
+    if (ours.length) sameHit(ours[0], theirs[0], `side ${side}, ray ${k}`);
+  }
+}
+material.side = THREE.DoubleSide;
+for (const mesh of [fast, brute]) {
+  // Small enough that the rays, placed around the untransformed bunny, still hit it.
+  mesh.position.set(0.01, -0.02, 0.005);
+  mesh.rotation.set(0.2, 0.3, -0.1);
+  mesh.scale.set(1.2, 0.9, 1.1);
+  mesh.updateMatrixWorld(true);
+}
+raycaster.near = 0.12;
+raycaster.far = 0.2;
+let limited = 0;
+for (let k = 0; k < 300; k++) {
+  const ours = cast(fast, k, false);
+  const theirs = cast(brute, k, false);
+  assert.equal(ours.length, theirs.length, `transformed, near/far, ray ${k}`);
+  ours.forEach((hit, i) => sameHit(hit, theirs[i], `transformed, ray ${k}, intersection ${i}`));
+  limited += ours.length;
+}
+assert.ok(limited > 50, `the near/far window keeps some hits (${limited})`);
+
+indexed.disposeBoundsTree();
+assert.equal(indexed.boundsTree, null);
+console.log('three.js drop-in: full lists, sides, near/far and transforms agree with three');
