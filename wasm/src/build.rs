@@ -2,12 +2,12 @@
 
 use js_sys::{Array, Uint16Array, Uint32Array};
 use meshq::blob::BlobView;
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef};
 use meshq::mesh::MeshRef;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
-use crate::storage::{Owner, Storage, Views};
+use crate::storage::{LeafOrder, Owner, Storage, Views};
 
 fn error(e: impl core::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
@@ -77,15 +77,15 @@ pub fn build(
     let n = triangles.len();
     let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
     let mut order = vec![0u32; n];
+    let mut packed = vec![PackedTriangle::EMPTY; n];
     {
         let mesh = MeshRef::new(&positions, &triangles)
             .validate()
             .map_err(error)?;
         let mut scratch = vec![PrimRef::EMPTY; n];
-        let used = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch)
-            .map_err(error)?
-            .nodes()
-            .len();
+        let bvh = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch).map_err(error)?;
+        bvh.pack_triangles(&mesh, &mut packed).map_err(error)?;
+        let used = bvh.nodes().len();
         nodes.truncate(used);
     }
     let owner = Owner::Built {
@@ -93,6 +93,7 @@ pub fn build(
         triangles,
         nodes,
         order,
+        packed,
     };
     Storage::try_new(owner, views)
 }
@@ -109,6 +110,7 @@ fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
             triangles,
             nodes,
             order,
+            packed,
         } => {
             // Checked again here because the views must borrow from the owner; it is linear
             // and cheap next to the build.
@@ -116,7 +118,14 @@ fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
                 .validate()
                 .map_err(error)?;
             let bvh = Bvh::from_parts(nodes, order, &mesh).map_err(error)?;
-            Ok(Views::Built { mesh, bvh })
+            if packed.len() != order.len() {
+                return Err(JsError::new("packed triangles do not match the tree"));
+            }
+            Ok(Views::Built {
+                mesh,
+                bvh,
+                packed: LeafOrder(packed),
+            })
         }
         Owner::Blob(bytes) => BlobView::parse(bytes).map(Views::Blob).map_err(error),
     }

