@@ -7,6 +7,7 @@ use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
+use crate::mesh_bvh::xyz_ray;
 use crate::options::ray_options;
 use crate::storage::Views;
 
@@ -62,8 +63,7 @@ impl MeshBvh {
         far: f32,
         side: Option<u8>,
     ) -> Result<Vec<f64>, JsError> {
-        let ray = Ray::new(glam::Vec3::new(ox, oy, oz), glam::Vec3::new(dx, dy, dz))
-            .with_range(near, far);
+        let ray = xyz_ray(ox, oy, oz, dx, dy, dz, near, far);
         let views = self.storage.borrow_dependent();
         let mut visitor = AllHits {
             views,

@@ -5,32 +5,15 @@
 use wasm_bindgen::prelude::*;
 
 #[wasm_bindgen(inline_js = "
-export function meshq_ray_hit(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
-  return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
-}
-export function meshq_closest(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
+export function meshq_result(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
   return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
 }
 ")]
 extern "C" {
-    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`.
+    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`: a ray hit
+    /// (`distance` = `t`) or a closest point (`distance` from the query point).
     #[allow(clippy::too_many_arguments)]
-    pub fn meshq_ray_hit(
-        distance: f32,
-        px: f32,
-        py: f32,
-        pz: f32,
-        triangle: u32,
-        u: f32,
-        v: f32,
-        nx: f32,
-        ny: f32,
-        nz: f32,
-    ) -> JsValue;
-
-    /// The same shape for a closest point (`distance` from the query point).
-    #[allow(clippy::too_many_arguments)]
-    pub fn meshq_closest(
+    pub fn meshq_result(
         distance: f32,
         px: f32,
         py: f32,

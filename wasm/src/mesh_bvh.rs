@@ -6,7 +6,7 @@ use meshq::bvh::BuildConfig;
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use wasm_bindgen::prelude::*;
 
-use crate::js_objects::{meshq_closest, meshq_ray_hit};
+use crate::js_objects::meshq_result;
 use crate::options::{build_config, ray_options};
 use crate::storage::{Owner, Storage, Views};
 
@@ -34,13 +34,33 @@ pub(crate) fn vec3(values: &[f32], what: &str) -> Result<Vec3, JsError> {
     }
 }
 
+/// The ray `origin + t·direction`, `t` in `[near, far]`, from two 3-number arrays.
+fn array_ray(origin: &[f32], direction: &[f32], near: f32, far: f32) -> Result<Ray, JsError> {
+    Ok(Ray::new(vec3(origin, "origin")?, vec3(direction, "direction")?).with_range(near, far))
+}
+
+/// The same ray from plain numbers.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn xyz_ray(
+    ox: f32,
+    oy: f32,
+    oz: f32,
+    dx: f32,
+    dy: f32,
+    dz: f32,
+    near: f32,
+    far: f32,
+) -> Ray {
+    Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz)).with_range(near, far)
+}
+
 fn hit_object(views: &Views<'_>, ray: &Ray, hit: RayHit) -> JsValue {
     let p = ray.origin + ray.dir * hit.t;
     let n = views
         .triangle(hit.tri)
         .and_then(|t| t.unit_normal())
         .unwrap_or(Vec3::ZERO);
-    meshq_ray_hit(hit.t, p.x, p.y, p.z, hit.tri, hit.u, hit.v, n.x, n.y, n.z)
+    meshq_result(hit.t, p.x, p.y, p.z, hit.tri, hit.u, hit.v, n.x, n.y, n.z)
 }
 
 fn closest_object(views: &Views<'_>, c: ClosestPoint) -> JsValue {
@@ -49,7 +69,7 @@ fn closest_object(views: &Views<'_>, c: ClosestPoint) -> JsValue {
         .and_then(|t| t.unit_normal())
         .unwrap_or(Vec3::ZERO);
     let p = c.point;
-    meshq_closest(
+    meshq_result(
         c.distance_squared.sqrt(),
         p.x,
         p.y,
@@ -174,9 +194,7 @@ impl MeshBvh {
         far: f32,
         side: Option<u8>,
     ) -> Result<JsValue, JsError> {
-        let ray =
-            Ray::new(vec3(origin, "origin")?, vec3(direction, "direction")?).with_range(near, far);
-        self.cast(&ray, side)
+        self.cast(&array_ray(origin, direction, near, far)?, side)
     }
 
     /// [`MeshBvh::raycast`] with the ray as plain numbers: nothing is allocated per call.
@@ -194,8 +212,7 @@ impl MeshBvh {
         far: f32,
         side: Option<u8>,
     ) -> Result<JsValue, JsError> {
-        let ray = Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz)).with_range(near, far);
-        self.cast(&ray, side)
+        self.cast(&xyz_ray(ox, oy, oz, dx, dy, dz, near, far), side)
     }
 
     /// Whether the ray hits anything in `[near, far]` (occlusion, line of sight); faster than
@@ -209,8 +226,7 @@ impl MeshBvh {
         far: f32,
         side: Option<u8>,
     ) -> Result<bool, JsError> {
-        let ray =
-            Ray::new(vec3(origin, "origin")?, vec3(direction, "direction")?).with_range(near, far);
+        let ray = array_ray(origin, direction, near, far)?;
         Ok(self
             .storage
             .borrow_dependent()
