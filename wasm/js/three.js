@@ -60,6 +60,18 @@ function corner(geometry, triangle, k) {
   return geometry.index ? geometry.index.getX(3 * triangle + k) : 3 * triangle + k;
 }
 
+/** `attribute` at the barycentric point `barycoord` of corners `ia, ib, ic`, into `target`
+ *  (scratch vectors `pa, pb, pc` of the same size). */
+function interpolate(attribute, ia, ib, ic, barycoord, target, pa, pb, pc) {
+  pa.fromBufferAttribute(attribute, ia);
+  pb.fromBufferAttribute(attribute, ib);
+  pc.fromBufferAttribute(attribute, ic);
+  return target
+    .addScaledVector(pa, barycoord.x)
+    .addScaledVector(pb, barycoord.y)
+    .addScaledVector(pc, barycoord.z);
+}
+
 function intersection(mesh, raycaster, t, triangle, u, v) {
   const point = direction.clone().multiplyScalar(t).add(origin).applyMatrix4(mesh.matrixWorld);
   const distance = raycaster.ray.origin.distanceTo(point);
@@ -84,25 +96,11 @@ function intersection(mesh, raycaster, t, triangle, u, v) {
     barycoord,
   };
   const uv = geometry.attributes.uv;
-  if (uv) {
-    ta.fromBufferAttribute(uv, ia);
-    tb.fromBufferAttribute(uv, ib);
-    tc.fromBufferAttribute(uv, ic);
-    hit.uv = new Vector2()
-      .addScaledVector(ta, barycoord.x)
-      .addScaledVector(tb, barycoord.y)
-      .addScaledVector(tc, barycoord.z);
-  }
+  if (uv) hit.uv = interpolate(uv, ia, ib, ic, barycoord, new Vector2(), ta, tb, tc);
   const normals = geometry.attributes.normal;
   if (normals) {
-    a.fromBufferAttribute(normals, ia);
-    b.fromBufferAttribute(normals, ib);
-    c.fromBufferAttribute(normals, ic);
-    hit.normal = new Vector3()
-      .addScaledVector(a, barycoord.x)
-      .addScaledVector(b, barycoord.y)
-      .addScaledVector(c, barycoord.z)
-      .normalize();
+    // As three does: interpolated, not renormalised, facing the ray.
+    hit.normal = interpolate(normals, ia, ib, ic, barycoord, new Vector3(), a, b, c);
     if (hit.normal.dot(direction) > 0) hit.normal.multiplyScalar(-1);
   }
   return hit;

@@ -129,6 +129,34 @@ for (let k = 0; k < 300; k++) {
 }
 assert.ok(limited > 50, `the near/far window keeps some hits (${limited})`);
 
+// Interpolated attributes: uv and vertex normal on a sphere that has both.
+{
+  const sphere = new THREE.SphereGeometry(0.05, 48, 32);
+  sphere.computeBoundsTree();
+  const ours = new THREE.Mesh(sphere, material);
+  ours.raycast = acceleratedRaycast;
+  const reference = new THREE.Mesh(sphere, material);
+  const sphereRays = meshq.randomRays(sphere.boundsTree.bounds(), 7, 200);
+  let checked = 0;
+  for (let k = 0; k < 200; k++) {
+    raycaster.set(
+      new THREE.Vector3(...sphereRays.subarray(6 * k, 6 * k + 3)),
+      new THREE.Vector3(...sphereRays.subarray(6 * k + 3, 6 * k + 6)),
+    );
+    raycaster.near = 0;
+    raycaster.far = Infinity;
+    const [a] = raycaster.intersectObject(ours, false);
+    const [b] = raycaster.intersectObject(reference, false);
+    assert.equal(Boolean(a), Boolean(b), `sphere ray ${k}`);
+    if (!a || a.faceIndex !== b.faceIndex) continue;
+    assert.ok(a.uv.distanceTo(b.uv) < 1e-4, `sphere ray ${k}: uv`);
+    assert.ok(a.normal.distanceTo(b.normal) < 1e-4, `sphere ray ${k}: normal`);
+    checked++;
+  }
+  assert.ok(checked > 100, `uv and normal compared on ${checked} hits`);
+  sphere.disposeBoundsTree();
+}
+
 indexed.disposeBoundsTree();
 assert.equal(indexed.boundsTree, null);
 console.log('three.js drop-in: full lists, sides, near/far and transforms agree with three');
