@@ -1,63 +1,110 @@
 //! Binned SAH split search (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 //! Hierarchies").
 
-use glam::Vec3;
+use glam::{BVec3A, Vec3A};
 
+use super::build_box::BuildBox;
+use super::lanes::clamped_indices;
 use super::{BuildConfig, PrimRef};
-use crate::math::Aabb;
 
 const MAX_BINS: usize = BuildConfig::MAX_BINS as usize;
 
-/// Maps a centroid to its bin along an axis. The same instance decides binning and
+/// Maps a (doubled) centroid to its bin on each axis. The same instance decides binning and
 /// partitioning, so both always agree.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Binner {
-    origin: Vec3,
-    scale: Vec3,
+    origin: Vec3A,
+    scale: Vec3A,
     last: u32,
+    /// `last` in every lane.
+    last_lanes: Vec3A,
 }
 
 impl Binner {
-    fn new(centers: &Aabb, bins: u32) -> Self {
-        let e = centers.extent();
+    fn new(centroids: &BuildBox, bins: u32) -> Self {
+        let e = centroids.extent();
         let k = bins as f32;
         // An axis with no extent gets scale 0: every centroid lands in bin 0 and no split
         // along it is valid.
         let s = |x: f32| if x > 0.0 { k / x } else { 0.0 };
         Self {
-            origin: centers.min,
-            scale: Vec3::new(s(e.x), s(e.y), s(e.z)),
+            origin: centroids.min,
+            scale: Vec3A::new(s(e.x), s(e.y), s(e.z)),
             last: bins - 1,
+            last_lanes: Vec3A::splat((bins - 1) as f32),
         }
     }
 
+    /// `as` saturates (and maps NaN to 0), so no input can index past the bins.
     #[inline(always)]
-    fn bin(&self, c: Vec3, axis: usize) -> u32 {
-        let f = match axis {
-            0 => (c.x - self.origin.x) * self.scale.x,
-            1 => (c.y - self.origin.y) * self.scale.y,
-            _ => (c.z - self.origin.z) * self.scale.z,
-        };
-        // `as` saturates (and maps NaN to 0), so no input can index past the bins.
+    fn clamp(&self, f: f32) -> u32 {
         (f as u32).min(self.last)
+    }
+
+    /// The bin on every axis at once (one vector subtraction and multiplication).
+    #[inline(always)]
+    fn bins(&self, c2: Vec3A) -> [usize; 3] {
+        clamped_indices((c2 - self.origin) * self.scale, self.last_lanes)
+    }
+
+    /// The bin on one axis: the same operations on one lane, so always the same answer as
+    /// [`Binner::bins`].
+    #[inline(always)]
+    fn bin(&self, c2: Vec3A, axis: usize) -> u32 {
+        let f = match axis {
+            0 => (c2.x - self.origin.x) * self.scale.x,
+            1 => (c2.y - self.origin.y) * self.scale.y,
+            _ => (c2.z - self.origin.z) * self.scale.z,
+        };
+        self.clamp(f)
     }
 }
 
-#[derive(Clone, Copy)]
-struct Bin {
-    bounds: Aabb,
-    count: u32,
+/// The bins of one axis: a box and a triangle count each.
+struct AxisBins {
+    boxes: [BuildBox; MAX_BINS],
+    counts: [u32; MAX_BINS],
 }
 
-const EMPTY_BIN: Bin = Bin {
-    bounds: Aabb::EMPTY,
-    count: 0,
-};
+impl AxisBins {
+    const EMPTY: Self = Self {
+        boxes: [BuildBox::EMPTY; MAX_BINS],
+        counts: [0; MAX_BINS],
+    };
 
-fn merge(a: Bin, b: &Bin) -> Bin {
-    Bin {
-        bounds: a.bounds.union(b.bounds),
-        count: a.count + b.count,
+    #[inline(always)]
+    fn add(&mut self, bin: usize, p: &PrimRef) {
+        if let (Some(b), Some(c)) = (self.boxes.get_mut(bin), self.counts.get_mut(bin)) {
+            *b = b.union(p.bounds());
+            *c += 1;
+        }
+    }
+
+    /// Adds `other`'s first `used` bins into these.
+    fn merge(&mut self, other: &Self, used: usize) {
+        let mine = self.boxes.iter_mut().zip(self.counts.iter_mut());
+        let theirs = other.boxes.iter().zip(&other.counts);
+        for ((b, c), (ob, oc)) in mine.zip(theirs).take(used) {
+            *b = b.union(*ob);
+            *c += oc;
+        }
+    }
+
+    fn reset(&mut self, used: usize) {
+        if let (Some(b), Some(c)) = (self.boxes.get_mut(..used), self.counts.get_mut(..used)) {
+            b.fill(BuildBox::EMPTY);
+            c.fill(0);
+        }
+    }
+
+    /// Union and total count of `bins`.
+    fn total(&self, bins: core::ops::Range<usize>) -> (BuildBox, usize) {
+        let boxes = self.boxes.get(bins.clone()).unwrap_or_default();
+        let counts = self.counts.get(bins).unwrap_or_default();
+        (
+            boxes.iter().fold(BuildBox::EMPTY, |a, b| a.union(*b)),
+            counts.iter().map(|&c| c as usize).sum(),
+        )
     }
 }
 
@@ -72,131 +119,205 @@ pub(super) struct Split {
     /// `A_L·N_L + A_R·N_R` (half areas).
     pub cost: f32,
     pub left_count: usize,
-    pub left: Aabb,
-    pub right: Aabb,
+    pub left: BuildBox,
+    pub right: BuildBox,
 }
 
 /// Bin storage reused across every node of a build, so a node only resets the bins it uses.
 pub(super) struct Binning {
-    bins: [[Bin; MAX_BINS]; 3],
-    /// Half area and count of bins `[0, i]` on the axis being swept.
-    prefix_area: [f32; MAX_BINS],
-    prefix_count: [u32; MAX_BINS],
+    axes: [AxisBins; 3],
+    /// A second set that takes every other triangle of large nodes: consecutive triangles
+    /// often share a bin, and alternating sets keeps each read-modify-write of a bin from
+    /// waiting on the one just before it.
+    odd: [AxisBins; 3],
+    /// Half area of bins `[i, wanted)`, one lane per axis.
+    right_area: [Vec3A; MAX_BINS],
+    /// Triangle count of bins `[i, wanted)` (as `f32`, like the SAH cost), one lane per axis.
+    right_count: [Vec3A; MAX_BINS],
+}
+
+/// Half areas of three boxes at once, one per lane, each `xy + yz + zx` of its extent in that
+/// order (empty boxes give meaningless values; callers mask them by count).
+#[inline(always)]
+fn half_areas(b: &[BuildBox; 3]) -> Vec3A {
+    let [e0, e1, e2] = b.map(|b| b.extent());
+    let ex = Vec3A::new(e0.x, e1.x, e2.x);
+    let ey = Vec3A::new(e0.y, e1.y, e2.y);
+    let ez = Vec3A::new(e0.z, e1.z, e2.z);
+    ex * ey + ey * ez + ez * ex
 }
 
 impl Binning {
+    /// Nodes with at least this many triangles bin into two sets.
+    const TWO_SETS_FROM: usize = 256;
+
     pub const fn new() -> Self {
         Self {
-            bins: [[EMPTY_BIN; MAX_BINS]; 3],
-            prefix_area: [0.0; MAX_BINS],
-            prefix_count: [0; MAX_BINS],
+            axes: [AxisBins::EMPTY, AxisBins::EMPTY, AxisBins::EMPTY],
+            odd: [AxisBins::EMPTY, AxisBins::EMPTY, AxisBins::EMPTY],
+            right_area: [Vec3A::ZERO; MAX_BINS],
+            right_count: [Vec3A::ZERO; MAX_BINS],
+        }
+    }
+
+    /// Adds bin `i` of every axis to the running boxes and counts.
+    #[inline(always)]
+    fn accumulate(&self, i: usize, run: &mut [BuildBox; 3], count: &mut [u32; 3]) {
+        for ((bins, r), c) in self.axes.iter().zip(run.iter_mut()).zip(count.iter_mut()) {
+            if let (Some(b), Some(n)) = (bins.boxes.get(i), bins.counts.get(i)) {
+                *r = r.union(*b);
+                *c += n;
+            }
         }
     }
 
     /// Bins `prims` by centroid on all three axes in one pass and returns the split with the
     /// lowest SAH cost (ties: lower axis, then lower bin), or `None` when no axis separates the
-    /// centroids. Small nodes use at most one bin per triangle: more bins would mostly stay
-    /// empty and only cost sweep time.
-    pub fn find_split(&mut self, prims: &[PrimRef], centers: &Aabb, bins: u32) -> Option<Split> {
+    /// centroids (or every cost overflows). Small nodes use at most one bin per triangle: more
+    /// bins would mostly stay empty and only cost sweep time. The sweeps run on all three axes
+    /// at once, one SIMD lane each.
+    pub fn find_split(
+        &mut self,
+        prims: &[PrimRef],
+        centroids: &BuildBox,
+        bins: u32,
+    ) -> Option<Split> {
         let wanted = (bins as usize).min(prims.len()).clamp(2, MAX_BINS);
-        let binner = Binner::new(centers, wanted as u32);
-        for axis_bins in &mut self.bins {
-            if let Some(used) = axis_bins.get_mut(..wanted) {
-                used.fill(EMPTY_BIN);
+        let binner = Binner::new(centroids, wanted as u32);
+        for axis in &mut self.axes {
+            axis.reset(wanted);
+        }
+        let [xs, ys, zs] = &mut self.axes;
+        if prims.len() < Self::TWO_SETS_FROM {
+            for p in prims {
+                let [bx, by, bz] = binner.bins(p.centroid2());
+                xs.add(bx, p);
+                ys.add(by, p);
+                zs.add(bz, p);
+            }
+        } else {
+            for axis in &mut self.odd {
+                axis.reset(wanted);
+            }
+            let [xo, yo, zo] = &mut self.odd;
+            let mut pairs = prims.chunks_exact(2);
+            for pair in &mut pairs {
+                if let [p, q] = pair {
+                    let [bx, by, bz] = binner.bins(p.centroid2());
+                    let [cx, cy, cz] = binner.bins(q.centroid2());
+                    xs.add(bx, p);
+                    ys.add(by, p);
+                    zs.add(bz, p);
+                    xo.add(cx, q);
+                    yo.add(cy, q);
+                    zo.add(cz, q);
+                }
+            }
+            for p in pairs.remainder() {
+                let [bx, by, bz] = binner.bins(p.centroid2());
+                xs.add(bx, p);
+                ys.add(by, p);
+                zs.add(bz, p);
+            }
+            for (even, odd) in self.axes.iter_mut().zip(&self.odd) {
+                even.merge(odd, wanted);
             }
         }
-        let [xs, ys, zs] = &mut self.bins;
-        for p in prims {
-            let slots = [
-                xs.get_mut(binner.bin(p.center, 0) as usize),
-                ys.get_mut(binner.bin(p.center, 1) as usize),
-                zs.get_mut(binner.bin(p.center, 2) as usize),
-            ];
-            for b in slots.into_iter().flatten() {
-                b.bounds = b.bounds.union(p.bounds);
-                b.count += 1;
+        let as_f32 = |c: [u32; 3]| Vec3A::new(c[0] as f32, c[1] as f32, c[2] as f32);
+        // Right to left: what lies at or above each bin.
+        let mut run = [BuildBox::EMPTY; 3];
+        let mut count = [0u32; 3];
+        for i in (1..wanted).rev() {
+            self.accumulate(i, &mut run, &mut count);
+            if let (Some(area), Some(n)) = (self.right_area.get_mut(i), self.right_count.get_mut(i))
+            {
+                *area = half_areas(&run);
+                *n = as_f32(count);
             }
         }
-        let mut best: Option<(usize, u32, f32, usize)> = None;
-        for axis in 0..3 {
-            let Some(axis_bins) = self.bins.get(axis).and_then(|b| b.get(..wanted)) else {
+        // Left to right: split below bin i + 1. Strictly better only, so the lowest bin wins a
+        // tie within an axis.
+        let mut run = [BuildBox::EMPTY; 3];
+        let mut count = [0u32; 3];
+        let mut best_cost = Vec3A::INFINITY;
+        let mut best_bin = Vec3A::ZERO;
+        for i in 0..wanted - 1 {
+            self.accumulate(i, &mut run, &mut count);
+            let (Some(&right_area), Some(&right_count)) =
+                (self.right_area.get(i + 1), self.right_count.get(i + 1))
+            else {
                 continue;
             };
-            let mut run = EMPTY_BIN;
-            for ((area, count), b) in self
-                .prefix_area
-                .iter_mut()
-                .zip(self.prefix_count.iter_mut())
-                .zip(axis_bins)
-            {
-                if b.count > 0 {
-                    run = merge(run, b);
-                }
-                *area = run.bounds.half_area();
-                *count = run.count;
-            }
-            let mut right = EMPTY_BIN;
-            for i in (1..wanted).rev() {
-                let (Some(b), Some(&left_area), Some(&left_count)) = (
-                    axis_bins.get(i),
-                    self.prefix_area.get(i - 1),
-                    self.prefix_count.get(i - 1),
-                ) else {
-                    continue;
-                };
-                if b.count > 0 {
-                    right = merge(right, b);
-                }
-                if left_count == 0 || right.count == 0 {
-                    continue;
-                }
-                let cost =
-                    left_area * left_count as f32 + right.bounds.half_area() * right.count as f32;
-                // Sweeping down, `<=` keeps the lowest bin among equal costs of this axis; a
-                // later axis must be strictly better.
-                let better = best.is_none_or(|(a, _, c, _)| cost < c || (cost == c && a == axis));
-                if better {
-                    best = Some((axis, i as u32, cost, left_count as usize));
-                }
+            let left_count = as_f32(count);
+            let cost = half_areas(&run) * left_count + right_area * right_count;
+            let better = left_count.cmpgt(Vec3A::ZERO)
+                & right_count.cmpgt(Vec3A::ZERO)
+                & cost.cmplt(best_cost);
+            best_cost = Vec3A::select(better, cost, best_cost);
+            best_bin = Vec3A::select(better, Vec3A::splat((i + 1) as f32), best_bin);
+        }
+        // The lowest axis wins a tie between axes.
+        let mut best: Option<(usize, usize, f32)> = None;
+        for (axis, (cost, bin)) in best_cost
+            .to_array()
+            .into_iter()
+            .zip(best_bin.to_array())
+            .enumerate()
+        {
+            if cost < best.map_or(f32::INFINITY, |b| b.2) {
+                best = Some((axis, bin as usize, cost));
             }
         }
-        let (axis, bin, cost, left_count) = best?;
+        let (axis, bin, cost) = best?;
         // Rebuild both sides' exact bounds from the chosen axis's bins.
-        let axis_bins = self.bins.get(axis)?.get(..wanted)?;
-        let (left_bins, right_bins) = axis_bins.split_at(bin as usize);
-        let left = left_bins.iter().fold(EMPTY_BIN, merge);
-        let right = right_bins.iter().fold(EMPTY_BIN, merge);
+        let chosen = self.axes.get(axis)?;
+        let (left, left_count) = chosen.total(0..bin);
+        let (right, _) = chosen.total(bin..wanted);
         Some(Split {
             binner,
             axis,
-            bin,
+            bin: bin as u32,
             cost,
             left_count,
-            left: left.bounds,
-            right: right.bounds,
+            left,
+            right,
         })
     }
 }
 
-/// Reorders `prims` so that those binned below `split.bin` come first; returns how many, and
-/// the centroid bounds of both sides (gathered here, in the pass that touches every triangle
-/// anyway).
-pub(super) fn partition(prims: &mut [PrimRef], split: &Split) -> (usize, Aabb, Aabb) {
-    let mut i = 0;
-    let mut j = prims.len();
-    let (mut left, mut right) = (Aabb::EMPTY, Aabb::EMPTY);
-    while i < j {
+/// Reorders `prims`, and `tris` alongside, so that those binned below `split.bin` come first;
+/// returns how many, and the (doubled) centroid bounds of both sides, gathered here in the pass
+/// that touches every triangle anyway. `prims` and `tris` have the same length.
+///
+/// Branch-free Lomuto partition: every element is swapped with the first right-side slot
+/// whichever side it goes to (swapping two right-side elements changes nothing that matters),
+/// so the unpredictable side test never becomes a mispredicted branch.
+pub(super) fn partition(
+    prims: &mut [PrimRef],
+    tris: &mut [u32],
+    split: &Split,
+) -> (usize, BuildBox, BuildBox) {
+    let len = prims.len().min(tris.len());
+    let mut k = 0;
+    let (mut left, mut right) = (BuildBox::EMPTY, BuildBox::EMPTY);
+    for i in 0..len {
         let Some(p) = prims.get(i) else {
             break;
         };
-        if split.binner.bin(p.center, split.axis) < split.bin {
-            left = left.grown(p.center);
-            i += 1;
-        } else {
-            right = right.grown(p.center);
-            j -= 1;
-            prims.swap(i, j);
+        let c = p.centroid2();
+        let goes_left = split.binner.bin(c, split.axis) < split.bin;
+        let side = BVec3A::splat(goes_left);
+        let (grown_left, grown_right) = (left.grown(c), right.grown(c));
+        left.min = Vec3A::select(side, grown_left.min, left.min);
+        left.max = Vec3A::select(side, grown_left.max, left.max);
+        right.min = Vec3A::select(side, right.min, grown_right.min);
+        right.max = Vec3A::select(side, right.max, grown_right.max);
+        // k <= i < len.
+        if k < len {
+            prims.swap(k, i);
+            tris.swap(k, i);
         }
+        k += usize::from(goes_left);
     }
-    (i, left, right)
+    (k, left, right)
 }

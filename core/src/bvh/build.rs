@@ -1,10 +1,14 @@
 //! The top-down binned SAH builder. Iterative, with a fixed task stack; writes only into the
 //! caller's buffers, and only after every size and limit has been checked.
 
+use glam::Vec3A;
+
 use super::binning::{Binning, partition};
+use super::build_box::BuildBox;
+use super::lanes::{max_lanes, min_lanes};
+use super::median::{bounds_of, median_split};
 use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, node_capacity};
 use crate::error::{BufferKind, BuildError};
-use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 
 /// What the builder produced: how many nodes it used and how deep the tree is.
@@ -19,8 +23,9 @@ struct Task {
     begin: usize,
     end: usize,
     level: u32,
-    bounds: Aabb,
-    centers: Aabb,
+    bounds: BuildBox,
+    /// Bounds of the doubled centroids ([`PrimRef::centroid2`]).
+    centroids: BuildBox,
 }
 
 fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildError> {
@@ -32,12 +37,6 @@ fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildE
         });
     }
     Ok(())
-}
-
-fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
-    prims.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), p| {
-        (b.union(p.bounds), c.grown(p.center))
-    })
 }
 
 pub(super) fn build_into(
@@ -70,15 +69,17 @@ pub(super) fn build_into(
             depth: 0,
         });
     }
-    for (tri, p) in (0u32..).zip(prims.iter_mut()) {
-        let bounds = mesh.triangle(tri).map_or(Aabb::EMPTY, |t| t.bounds());
-        *p = PrimRef {
-            bounds,
-            center: bounds.center(),
-            tri,
-        };
+    for ((tri, p), o) in (0u32..).zip(prims.iter_mut()).zip(order.iter_mut()) {
+        *p = mesh.triangle(tri).map_or(PrimRef::EMPTY, |t| {
+            let [a, b, c] = [t.a, t.b, t.c].map(Vec3A::from);
+            PrimRef {
+                min: min_lanes(c, min_lanes(b, a)),
+                max: max_lanes(c, max_lanes(b, a)),
+            }
+        });
+        *o = tri;
     }
-    let (bounds, centers) = bounds_of(prims);
+    let (bounds, centroids) = bounds_of(prims);
 
     let mut stack = [None::<Task>; MAX_DEPTH as usize];
     let mut sp = 0;
@@ -88,7 +89,7 @@ pub(super) fn build_into(
         end: n,
         level: 1,
         bounds,
-        centers,
+        centroids,
     });
     let mut node_count = 1;
     let mut depth = 0;
@@ -96,22 +97,29 @@ pub(super) fn build_into(
     while let Some(task) = next.take() {
         depth = depth.max(task.level);
         let count = task.end - task.begin;
-        let Some(range) = prims.get_mut(task.begin..task.end) else {
+        let (Some(range), Some(tris)) = (
+            prims.get_mut(task.begin..task.end),
+            order.get_mut(task.begin..task.end),
+        ) else {
             break;
         };
-        let children = split_node(config, &task, range, &mut binning);
+        let children = split_node(config, &task, range, tris, &mut binning);
         let Some(slot) = nodes.get_mut(task.node) else {
             break;
         };
         match children {
             None => {
                 // Leaf: begin < n ≤ u32::MAX and count ≤ max_leaf_size, so both fit.
-                *slot = BvhNode::new(task.bounds.padded(), task.begin as u32, count as u32);
+                *slot = BvhNode::new(
+                    task.bounds.to_aabb().padded(),
+                    task.begin as u32,
+                    count as u32,
+                );
             }
             Some((left_count, (lb, lc), (rb, rc))) => {
                 let left = node_count;
                 node_count += 2;
-                *slot = BvhNode::new(task.bounds.padded(), left as u32, 0);
+                *slot = BvhNode::new(task.bounds.to_aabb().padded(), left as u32, 0);
                 let mid = task.begin + left_count;
                 let right_task = Task {
                     node: left + 1,
@@ -119,7 +127,7 @@ pub(super) fn build_into(
                     end: task.end,
                     level: task.level + 1,
                     bounds: rb,
-                    centers: rc,
+                    centroids: rc,
                 };
                 // Pending right siblings number at most one per level above, so the stack
                 // (MAX_DEPTH slots) cannot fill: the level limit was checked up front.
@@ -137,7 +145,7 @@ pub(super) fn build_into(
                     end: mid,
                     level: task.level + 1,
                     bounds: lb,
-                    centers: lc,
+                    centroids: lc,
                 });
                 continue;
             }
@@ -147,20 +155,19 @@ pub(super) fn build_into(
             next = stack.get_mut(sp).and_then(Option::take);
         }
     }
-    for (o, p) in order.iter_mut().zip(prims.iter()) {
-        *o = p.tri;
-    }
     Ok(Built { node_count, depth })
 }
 
-type Side = (Aabb, Aabb);
+/// A child's box and the bounds of its doubled centroids.
+type Side = (BuildBox, BuildBox);
 
 /// Decides a node: `None` for a leaf, or the left count and both sides' bounds after reordering
-/// `prims` into left-then-right.
+/// `prims` (and `tris` alongside) into left-then-right.
 fn split_node(
     config: &BuildConfig,
     task: &Task,
     prims: &mut [PrimRef],
+    tris: &mut [u32],
     binning: &mut Binning,
 ) -> Option<(usize, Side, Side)> {
     let count = prims.len();
@@ -171,7 +178,7 @@ fn split_node(
     let child_capacity = config.subtree_capacity(task.level + 1);
     let area = task.bounds.half_area();
     if area > 0.0
-        && let Some(split) = binning.find_split(prims, &task.centers, config.bins)
+        && let Some(split) = binning.find_split(prims, &task.centroids, config.bins)
     {
         {
             let split_cost = config.traversal_cost + config.triangle_cost * (split.cost / area);
@@ -181,7 +188,7 @@ fn split_node(
             }
             let right_count = count - split.left_count;
             if split.left_count <= child_capacity && right_count <= child_capacity {
-                let (left_count, left_centers, right_centers) = partition(prims, &split);
+                let (left_count, left_centers, right_centers) = partition(prims, tris, &split);
                 return Some((
                     left_count,
                     (split.left, left_centers),
@@ -193,29 +200,5 @@ fn split_node(
     if may_be_leaf {
         return None;
     }
-    Some(median_split(prims, &task.centers))
-}
-
-/// Splits at the median centroid along the widest centroid axis (by triangle index when all
-/// centroids coincide). Used when SAH finds nothing or would exceed the depth limit; halving
-/// keeps the subtree within it. A full sort with a total key makes the order independent of
-/// the sort algorithm, so builds stay bit-identical everywhere.
-fn median_split(prims: &mut [PrimRef], centers: &Aabb) -> (usize, Side, Side) {
-    let e = centers.extent();
-    let axis = if e.x >= e.y && e.x >= e.z {
-        0
-    } else if e.y >= e.z {
-        1
-    } else {
-        2
-    };
-    let key = |p: &PrimRef| match axis {
-        0 => p.center.x,
-        1 => p.center.y,
-        _ => p.center.z,
-    };
-    prims.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)).then(a.tri.cmp(&b.tri)));
-    let mid = prims.len() / 2;
-    let (l, r) = prims.split_at(mid);
-    (mid, bounds_of(l), bounds_of(r))
+    Some(median_split(prims, tris, &task.centroids))
 }

@@ -21,9 +21,12 @@
 mod arrays;
 mod binning;
 mod build;
+mod build_box;
 pub(crate) mod check;
 pub(crate) mod closest;
 mod config;
+mod lanes;
+mod median;
 mod node;
 pub(crate) mod overlap;
 mod packed;
