@@ -9,30 +9,34 @@
 
 use glam::Vec3A;
 
+/// Targets whose glam `min`/`max` are the comparison-rule instructions named above.
+const GLAM_FOLLOWS_A_RULE: bool = cfg!(any(
+    all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse2"
+    ),
+    all(target_arch = "wasm32", target_feature = "simd128")
+));
+
+/// The operand order that makes glam's `x.min(y)` mean `a < b ? a : b` and `x.max(y)` mean
+/// `a > b ? a : b`: MINPS/MAXPS return their second operand unless the first wins, while
+/// `pmin`/`pmax` return their first unless the second wins.
+#[inline(always)]
+fn glam_order(a: Vec3A, b: Vec3A) -> (Vec3A, Vec3A) {
+    if cfg!(target_arch = "wasm32") {
+        (b, a)
+    } else {
+        (a, b)
+    }
+}
+
 /// `a < b ? a : b` in every lane.
 #[inline(always)]
 pub(super) fn min_lanes(a: Vec3A, b: Vec3A) -> Vec3A {
-    #[cfg(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse2"
-    ))]
-    {
-        // glam's `min` is MINPS, which returns its second operand unless the first is less.
-        a.min(b)
-    }
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    {
-        // glam's `min` is `f32x4.pmin`: `x.min(y)` is `y < x ? y : x`.
-        b.min(a)
-    }
-    #[cfg(not(any(
-        all(
-            any(target_arch = "x86", target_arch = "x86_64"),
-            target_feature = "sse2"
-        ),
-        all(target_arch = "wasm32", target_feature = "simd128")
-    )))]
-    {
+    if GLAM_FOLLOWS_A_RULE {
+        let (x, y) = glam_order(a, b);
+        x.min(y)
+    } else {
         Vec3A::select(a.cmplt(b), a, b)
     }
 }
@@ -40,27 +44,10 @@ pub(super) fn min_lanes(a: Vec3A, b: Vec3A) -> Vec3A {
 /// `a > b ? a : b` in every lane.
 #[inline(always)]
 pub(super) fn max_lanes(a: Vec3A, b: Vec3A) -> Vec3A {
-    #[cfg(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse2"
-    ))]
-    {
-        // glam's `max` is MAXPS, which returns its second operand unless the first is greater.
-        a.max(b)
-    }
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    {
-        // glam's `max` is `f32x4.pmax`: `x.max(y)` is `x < y ? y : x`.
-        b.max(a)
-    }
-    #[cfg(not(any(
-        all(
-            any(target_arch = "x86", target_arch = "x86_64"),
-            target_feature = "sse2"
-        ),
-        all(target_arch = "wasm32", target_feature = "simd128")
-    )))]
-    {
+    if GLAM_FOLLOWS_A_RULE {
+        let (x, y) = glam_order(a, b);
+        x.max(y)
+    } else {
         Vec3A::select(a.cmpgt(b), a, b)
     }
 }
