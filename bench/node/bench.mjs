@@ -8,7 +8,7 @@ import { fileURLToPath } from 'node:url';
 import * as THREE from 'three';
 import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
 import { mergeVertices } from 'three/examples/jsm/utils/BufferGeometryUtils.js';
-import { MeshBVH } from 'three-mesh-bvh';
+import { MeshBVH, SAH } from 'three-mesh-bvh';
 import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
@@ -51,13 +51,24 @@ function report(workload, meshqMs, peerMs, count, unit) {
   log(`${workload.padEnd(44)} ${row.ratio.toFixed(2)}×${rate}`);
 }
 
-// Build: meshq's default (balanced binned SAH) against three-mesh-bvh's default options.
+// Build: meshq's default (balanced binned SAH) against three-mesh-bvh's default options
+// (CENTER splits).
 let bvh = null;
 const buildMeshq = time(() => { bvh?.free(); bvh = meshq.MeshBvh.build(positions, index); }, 5);
 const buildPeer = time(() => new MeshBVH(geometry), 5);
 const peer = new MeshBVH(geometry);
 log(`bunny: ${index.length / 3} triangles; meshq build ${buildMeshq.toFixed(1)} ms, three-mesh-bvh ${buildPeer.toFixed(1)} ms`);
 report('build (default settings)', buildMeshq, buildPeer);
+// Like for like: meshq's fast preset splits at the centre, as three-mesh-bvh's default
+// (CENTER) does; meshq's default is binned SAH, as three-mesh-bvh's SAH strategy is.
+let fastBvh = null;
+const buildFast = time(() => { fastBvh?.free(); fastBvh = meshq.MeshBvh.build(positions, index, { quality: 'fast' }); }, 5);
+report('build, centre splits: fast vs default (CENTER)', buildFast, buildPeer);
+// three-mesh-bvh reorders the index it builds over: give its SAH builds their own copy so the
+// tree `peer` keeps matching its geometry.
+const sahGeometry = geometry.clone();
+const buildPeerSah = time(() => new MeshBVH(sahGeometry, { strategy: SAH }), 3);
+report('build, SAH: balanced vs strategy SAH', buildMeshq, buildPeerSah);
 const blob = bvh.toBlob();
 const loadMeshq = time(() => meshq.MeshBvh.fromBlob(blob).free(), 5);
 log(`meshq fromBlob (validated load of a ${blob.length}-byte blob): ${loadMeshq.toFixed(1)} ms`);
@@ -109,6 +120,14 @@ function batch(rays) {
 const nRandom = RAYS;
 report('random rays, batched vs raycastFirst', time(batch(random), 3),
   time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+{
+  const n = nRandom;
+  const distances = new Float32Array(n);
+  const triangles = new Uint32Array(n);
+  report('random rays, batched on the fast tree vs raycastFirst',
+    time(() => fastBvh.raycastBatch(random, 0, Infinity, distances, triangles), 3),
+    time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+}
 report('camera rays 1024², batched vs raycastFirst', time(batch(camera), 3),
   time(() => peerFirstHits(camera, camera.length / 6), 3), camera.length / 6, 'rays');
 
@@ -161,3 +180,4 @@ report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
 
 if (json) console.log(JSON.stringify({ triangles: index.length / 3, results }, null, 2));
 bvh.free();
+fastBvh.free();

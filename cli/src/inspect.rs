@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 use meshq::blob::{BlobHeader, BlobTree, MeshLayout};
-use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
+use meshq::bvh::{LEAF_HISTOGRAM_LEN, SplitStrategy, TreeStats};
 use serde::Serialize;
 
 use crate::output;
@@ -42,6 +42,8 @@ struct Report {
 
 #[derive(Serialize)]
 struct Config {
+    /// `"sah"` or `"centre"`.
+    split: &'static str,
     bins: u32,
     max_leaf_size: u32,
     max_depth: u32,
@@ -99,6 +101,10 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
         bounds_min: h.bounds.min.to_array(),
         bounds_max: h.bounds.max.to_array(),
         config: Config {
+            split: match h.config.split {
+                SplitStrategy::Sah => "sah",
+                SplitStrategy::Centre => "centre",
+            },
             bins: h.config.bins,
             max_leaf_size: h.config.max_leaf_size,
             max_depth: h.config.max_depth,
@@ -136,10 +142,17 @@ fn print(r: &Report) {
     );
     println!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
     let c = &r.config;
-    println!(
-        "  built with {} bins, leaves up to {}, max depth {}, costs traversal {} / triangle {}",
-        c.bins, c.max_leaf_size, c.max_depth, c.traversal_cost, c.triangle_cost
-    );
+    if c.split == "centre" {
+        println!(
+            "  built with centre splits, leaves up to {}, max depth {}",
+            c.max_leaf_size, c.max_depth
+        );
+    } else {
+        println!(
+            "  built with binned SAH: {} bins, leaves up to {}, max depth {}, costs traversal {} / triangle {}",
+            c.bins, c.max_leaf_size, c.max_depth, c.traversal_cost, c.triangle_cost
+        );
+    }
     println!("  SAH cost {:.2}", r.sah_cost);
     let sizes: Vec<String> = r
         .leaf_sizes

@@ -42,14 +42,25 @@ pub fn assets_dir() -> PathBuf {
 /// If the file is missing or unreadable.
 #[must_use]
 pub fn load_mesh(name: &str) -> LoadedMesh {
-    let path = assets_dir().join(format!("{name}.obj"));
+    load_obj(&assets_dir().join(format!("{name}.obj")))
+}
+
+/// Loads an OBJ file the way [`load_mesh`] does, named after its file stem.
+///
+/// # Panics
+/// If the file is missing or unreadable.
+#[must_use]
+pub fn load_obj(path: &std::path::Path) -> LoadedMesh {
+    let name = path
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _) = tobj::load_obj(&path, &options)
+    let (models, _) = tobj::load_obj(path, &options)
         .unwrap_or_else(|e| panic!("cannot load {}: {e}", path.display()));
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
@@ -64,7 +75,7 @@ pub fn load_mesh(name: &str) -> LoadedMesh {
         );
     }
     LoadedMesh {
-        name: name.to_owned(),
+        name,
         positions,
         triangles,
     }

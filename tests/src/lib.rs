@@ -8,6 +8,6 @@ pub mod oracle;
 pub mod owned;
 pub mod workload;
 
-pub use assets::{LoadedMesh, MESHES, load_mesh};
+pub use assets::{LoadedMesh, MESHES, load_mesh, load_obj};
 pub use meshq_workload::SplitMix64;
 pub use owned::{OwnedBvh, bake, encode};

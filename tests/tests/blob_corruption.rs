@@ -124,18 +124,25 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
     let bytes = bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap();
 
     let mut future = bytes.clone();
-    future[4] = 2; // the version varint follows the magic
-    blob::reseal(&mut future).unwrap_err(); // the header of version 2 is not read at all
+    assert_eq!(future[4], 2, "the version varint follows the magic");
+    future[4] = 3;
+    blob::reseal(&mut future).unwrap_err(); // the header of version 3 is not read at all
     let err = BlobView::parse(&future).unwrap_err();
     assert_eq!(
         err,
         BlobError::UnsupportedVersion {
-            found: 2,
+            found: 3,
             oldest: 1,
-            newest: 1
+            newest: 2
         }
     );
-    assert!(err.to_string().contains("versions 1 to 1"), "{err}");
+    assert!(err.to_string().contains("versions 1 to 2"), "{err}");
+    let mut past = bytes.clone();
+    past[4] = 0;
+    assert!(matches!(
+        BlobView::parse(&past).unwrap_err(),
+        BlobError::UnsupportedVersion { found: 0, .. }
+    ));
 
     let mut foreign = bytes.clone();
     foreign[0] = b'X';

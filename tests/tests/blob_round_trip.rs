@@ -228,7 +228,7 @@ struct WholeBlob {
     depth: u32,
     bounds_min: [f32; 3],
     bounds_max: [f32; 3],
-    config: BuildConfig,
+    config: ConfigMirror,
     #[serde(with = "postcard::fixint::le")]
     mesh_checksum: u32,
     #[serde(with = "postcard::fixint::le")]
@@ -238,6 +238,17 @@ struct WholeBlob {
     nodes: Vec<NodeMirror>,
     order: Vec<Fixed>,
     section: SectionMirror,
+}
+
+/// The config as the format documents it: the split tag, then the rest.
+#[derive(Deserialize, Debug, PartialEq)]
+struct ConfigMirror {
+    split: u32,
+    bins: u32,
+    max_leaf_size: u32,
+    max_depth: u32,
+    traversal_cost: f32,
+    triangle_cost: f32,
 }
 
 #[derive(Deserialize, Debug, PartialEq)]
@@ -264,10 +275,14 @@ enum SectionMirror {
 fn a_blob_is_one_postcard_message() {
     let loaded = load_mesh("teapot");
     let mesh = loaded.valid();
-    let config = BuildConfig::default();
-    let owned = OwnedBvh::build(&mesh, &config).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
-    for layout in LAYOUTS {
+    for (config, split_tag, layout) in [
+        (BuildConfig::default(), 0, MeshLayout::Indexed),
+        (BuildConfig::default(), 0, MeshLayout::Packed),
+        (BuildConfig::default(), 0, MeshLayout::Omitted),
+        (BuildConfig::fast(), 1, MeshLayout::Indexed),
+    ] {
+        let owned = OwnedBvh::build(&mesh, &config).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
         let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
         let whole: WholeBlob = postcard::from_bytes(&bytes).unwrap();
         // from_bytes ignores trailing bytes; the message must use every byte.
@@ -282,7 +297,20 @@ fn a_blob_is_one_postcard_message() {
         assert_eq!(whole.depth, bvh.depth());
         assert_eq!(whole.bounds_min, bvh.bounds().min.to_array());
         assert_eq!(whole.bounds_max, bvh.bounds().max.to_array());
-        assert_eq!(whole.config, config);
+        let c = &whole.config;
+        assert_eq!(
+            (c.split, c.bins, c.max_leaf_size, c.max_depth),
+            (
+                split_tag,
+                config.bins,
+                config.max_leaf_size,
+                config.max_depth
+            )
+        );
+        assert_eq!(
+            (c.traversal_cost, c.triangle_cost),
+            (config.traversal_cost, config.triangle_cost)
+        );
         assert_eq!(whole.mesh_checksum, mesh_checksum(&mesh));
         assert!(whole.payload_len > 0);
         assert_ne!(whole.checksum, 0);
@@ -316,5 +344,42 @@ fn a_blob_is_one_postcard_message() {
             (MeshLayout::Omitted, SectionMirror::Omitted) => {}
             (l, s) => panic!("{l:?} decoded as {s:?}"),
         }
+    }
+}
+
+#[test]
+fn format_1_blobs_still_load_and_answer_exactly() {
+    // Baked by the format-1 writer (before the split strategy was recorded) from the OBJ next
+    // to it; this build must still read it, as binned SAH, and answer like brute force.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    let bytes = std::fs::read(dir.join("wavy-grid-format1.msq")).unwrap();
+    let loaded = meshq_tests::load_obj(&dir.join("wavy-grid.obj"));
+    let mesh = loaded.valid();
+    let view = BlobView::parse(&bytes).unwrap();
+    let h = view.header();
+    assert_eq!(h.version, 1);
+    assert_ne!(h.version, FORMAT_VERSION);
+    assert_eq!(h.config, BuildConfig::balanced());
+    assert_eq!(h.config.split, meshq::bvh::SplitStrategy::Sah);
+    assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
+    assert_eq!(h.triangle_count as usize, mesh.triangle_count());
+    let brute = BruteForce::new(&mesh);
+    let options = RayOptions::default();
+    let rays = workload::random_rays(&loaded.positions, 2_000, 0xF1);
+    let hits = rays
+        .iter()
+        .filter(|r| {
+            let got = view.raycast_with(r, &options);
+            assert_eq!(hit_key(got), hit_key(brute.raycast(r, &options)), "{r:?}");
+            got.is_some()
+        })
+        .count();
+    assert!(hits > 100, "only {hits} hits: the rays miss the grid");
+    for p in workload::closest_points(&loaded.positions, 500, 0xF2) {
+        assert_eq!(
+            point_key(view.closest_point(p, f32::INFINITY)),
+            point_key(brute.closest_point(p, f32::INFINITY)),
+            "{p}"
+        );
     }
 }

@@ -153,8 +153,9 @@ fn every_structure_and_the_golden_file_agree_with_brute_force() {
 
 const BLOBS_HEADER: &str = "\
 # meshq blob golden file: length and header checksum (CRC-32 over every other byte) of each
-# bundled mesh's blob with the default build config and the indexed mesh layout. Builds are
-# deterministic, so the WebAssembly build must produce these exact bytes too.
+# bundled mesh's blob with the indexed mesh layout, built with the default config (binned SAH)
+# and, as `<mesh>-fast`, with the fast preset (centre splits). Builds are deterministic, so
+# the WebAssembly build must produce these exact bytes too.
 ";
 
 fn blobs_path() -> PathBuf {
@@ -162,25 +163,24 @@ fn blobs_path() -> PathBuf {
 }
 
 #[test]
-fn default_blobs_match_the_golden_blob_file() {
+fn default_and_fast_blobs_match_the_golden_blob_file() {
     let mut file = String::from(BLOBS_HEADER);
-    for name in MESHES {
-        let loaded = load_mesh(name);
-        let mesh = loaded.valid();
-        let blob = bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap();
-        // Deterministic: a second bake gives the same bytes.
-        assert_eq!(
-            bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap(),
-            blob
-        );
-        let header = meshq::blob::BlobHeader::read(&blob).unwrap();
-        writeln!(
-            file,
-            "{name} bytes={} checksum={:#010x}",
-            blob.len(),
-            header.checksum
-        )
-        .unwrap();
+    for (suffix, config) in [("", BuildConfig::default()), ("-fast", BuildConfig::fast())] {
+        for name in MESHES {
+            let loaded = load_mesh(name);
+            let mesh = loaded.valid();
+            let blob = bake(&mesh, &config, MeshLayout::Indexed).unwrap();
+            // Deterministic: a second bake gives the same bytes.
+            assert_eq!(bake(&mesh, &config, MeshLayout::Indexed).unwrap(), blob);
+            let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+            writeln!(
+                file,
+                "{name}{suffix} bytes={} checksum={:#010x}",
+                blob.len(),
+                header.checksum
+            )
+            .unwrap();
+        }
     }
     if std::env::var_os("MESHQ_BLESS_GOLDEN").is_some() {
         std::fs::write(blobs_path(), &file).unwrap();

@@ -2,7 +2,7 @@
 //! permutation, builds are deterministic, answers stay exact for every config, and the
 //! validator rejects corrupted structures.
 
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, RayOptions};
+use meshq::bvh::{BuildConfig, Bvh, BvhNode, RayOptions, SplitStrategy};
 use meshq::error::StructureError;
 use meshq::mesh::ValidMesh;
 use meshq_tests::oracle::BruteForce;
@@ -29,6 +29,15 @@ fn configs() -> Vec<(String, BuildConfig)> {
             BuildConfig {
                 max_leaf_size,
                 ..BuildConfig::default()
+            },
+        ));
+    }
+    for max_leaf_size in [1, 4, 16] {
+        out.push((
+            format!("centre, leaf {max_leaf_size}"),
+            BuildConfig {
+                max_leaf_size,
+                ..BuildConfig::fast()
             },
         ));
     }
@@ -131,28 +140,122 @@ fn a_tight_depth_limit_is_met_with_median_splits() {
     let loaded = load_mesh("stanford-bunny");
     let mesh = loaded.valid();
     let n = mesh.triangle_count();
-    // The smallest depth whose complete tree of 4-triangle leaves holds the bunny.
-    let min_depth = (1..=64).find(|d| 4usize << (d - 1) >= n).unwrap();
-    let config = BuildConfig {
-        max_depth: min_depth,
-        ..BuildConfig::default()
-    };
-    let owned = OwnedBvh::build(&mesh, &config).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
-    assert!(
-        bvh.depth() <= min_depth,
-        "depth {} > {min_depth}",
-        bvh.depth()
-    );
-    Expected::new(&mesh, &loaded.positions).assert_matches(&bvh, &mesh, "tight depth");
-    let too_shallow = BuildConfig {
-        max_depth: min_depth - 1,
-        ..BuildConfig::default()
-    };
-    assert!(matches!(
-        OwnedBvh::build(&mesh, &too_shallow),
-        Err(meshq::error::BuildError::TooDeep { .. })
-    ));
+    let expected = Expected::new(&mesh, &loaded.positions);
+    for base in [BuildConfig::balanced(), BuildConfig::fast()] {
+        let leaf = base.max_leaf_size as usize;
+        // The smallest depth whose complete tree of full leaves holds the bunny.
+        let min_depth = (1..=64).find(|d| leaf << (d - 1) >= n).unwrap();
+        let config = BuildConfig {
+            max_depth: min_depth,
+            ..base
+        };
+        let owned = OwnedBvh::build(&mesh, &config).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
+        assert!(
+            bvh.depth() <= min_depth,
+            "{:?}: depth {} > {min_depth}",
+            base.split,
+            bvh.depth()
+        );
+        expected.assert_matches(&bvh, &mesh, &format!("tight depth, {:?}", base.split));
+        let too_shallow = BuildConfig {
+            max_depth: min_depth - 1,
+            ..base
+        };
+        assert!(matches!(
+            OwnedBvh::build(&mesh, &too_shallow),
+            Err(meshq::error::BuildError::TooDeep { .. })
+        ));
+    }
+}
+
+/// Bounds of the doubled centroids (`min + max` of each triangle's box, the builder's key) of
+/// `tris`, computed here from the mesh independently of the builder.
+fn doubled_centroid_bounds(mesh: &ValidMesh<'_>, tris: &[u32]) -> ([f32; 3], [f32; 3]) {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for &t in tris {
+        let c = doubled_centroid(mesh, t);
+        for k in 0..3 {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(c[k]);
+        }
+    }
+    (lo, hi)
+}
+
+fn doubled_centroid(mesh: &ValidMesh<'_>, tri: u32) -> [f32; 3] {
+    let t = mesh.triangle(tri).unwrap();
+    let (a, b, c) = (t.a.to_array(), t.b.to_array(), t.c.to_array());
+    std::array::from_fn(|k| a[k].min(b[k]).min(c[k]) + a[k].max(b[k]).max(c[k]))
+}
+
+/// Slots `[begin, end)` of the order array under `node` (leaf ranges tile it left to right).
+fn slot_range(nodes: &[BvhNode], node: usize) -> (usize, usize) {
+    let n = nodes[node];
+    if n.count > 0 {
+        return (n.first as usize, (n.first + n.count) as usize);
+    }
+    let (begin, _) = slot_range(nodes, n.first as usize);
+    let (_, end) = slot_range(nodes, n.first as usize + 1);
+    (begin, end)
+}
+
+#[test]
+fn centre_splits_follow_the_centre_rule() {
+    // Every inner node of a centre-split tree divides its triangles at the middle of their
+    // centroid bounds on the longest axis (lowest axis on ties): left strictly below, right
+    // at or above. Checked against the definition, recomputed from the mesh; the only
+    // allowed exception is the median fallback when all centroids coincide.
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let config = BuildConfig::fast();
+        assert_eq!(config.split, SplitStrategy::Centre);
+        let owned = OwnedBvh::build(&mesh, &config).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
+        let (nodes, order) = (bvh.nodes(), bvh.order());
+        let mut inner = 0;
+        for (i, node) in nodes.iter().enumerate() {
+            let (begin, end) = slot_range(nodes, i);
+            if node.count > 0 {
+                assert!(
+                    node.count <= config.max_leaf_size,
+                    "{name}: leaf {i} too big"
+                );
+                continue;
+            }
+            inner += 1;
+            assert!(
+                end - begin > config.max_leaf_size as usize,
+                "{name}: node {i} with {} triangles was split",
+                end - begin
+            );
+            let (lo, hi) = doubled_centroid_bounds(&mesh, &order[begin..end]);
+            let e: [f32; 3] = std::array::from_fn(|k| hi[k] - lo[k]);
+            if e == [0.0; 3] {
+                continue;
+            }
+            let axis = if e[0] >= e[1] && e[0] >= e[2] {
+                0
+            } else if e[1] >= e[2] {
+                1
+            } else {
+                2
+            };
+            let mid = (lo[axis] + hi[axis]) * 0.5;
+            let (mid_slot, _) = slot_range(nodes, node.first as usize + 1);
+            for (slot, &t) in order.iter().enumerate().take(end).skip(begin) {
+                let below = doubled_centroid(&mesh, t)[axis] < mid;
+                assert_eq!(
+                    below,
+                    slot < mid_slot,
+                    "{name}: node {i}, triangle {t} on the wrong side"
+                );
+            }
+        }
+        assert!(inner > 0, "{name}: no inner nodes checked");
+    }
 }
 
 #[test]

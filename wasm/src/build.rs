@@ -42,9 +42,11 @@ pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsError> {
     ))
 }
 
-/// Validates the mesh, builds its BVH into exactly sized buffers and keeps both.
+/// Validates the mesh, builds its BVH into exactly sized buffers and keeps both. The flat
+/// arrays are kept as they came from JavaScript (copied once, by wasm-bindgen) and viewed as
+/// triples in place.
 pub fn build(
-    positions: &[f32],
+    positions: Vec<f32>,
     indices: Option<Vec<u32>>,
     config: &BuildConfig,
 ) -> Result<Storage, JsError> {
@@ -54,33 +56,27 @@ pub fn build(
             positions.len()
         )));
     }
-    let positions: Vec<[f32; 3]> = positions
-        .chunks_exact(3)
-        .map(|p| [p[0], p[1], p[2]])
-        .collect();
-    let flat = match indices {
+    let indices = match indices {
         Some(flat) => flat,
         None => {
-            let n =
-                u32::try_from(positions.len()).map_err(|_| JsError::new("too many vertices"))?;
+            let n = u32::try_from(positions.len() / 3)
+                .map_err(|_| JsError::new("too many vertices"))?;
             (0..n).collect()
         }
     };
-    if !flat.len().is_multiple_of(3) {
+    if !indices.len().is_multiple_of(3) {
         return Err(JsError::new(&format!(
             "{} corner indices is not a multiple of 3 (three per triangle)",
-            flat.len()
+            indices.len()
         )));
     }
-    let triangles: Vec<[u32; 3]> = flat.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
-
-    let n = triangles.len();
+    let n = indices.len() / 3;
     let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
     let mut order = vec![0u32; n];
     let mut packed = vec![PackedTriangle::EMPTY; n];
     {
-        let mesh = MeshRef::new(&positions, &triangles)
-            .validate()
+        let mesh = MeshRef::from_flat(&positions, &indices)
+            .and_then(MeshRef::validate)
             .map_err(error)?;
         let mut scratch = vec![PrimRef::EMPTY; n];
         let bvh = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch).map_err(error)?;
@@ -90,7 +86,7 @@ pub fn build(
     }
     let owner = Owner::Built {
         positions,
-        triangles,
+        indices,
         nodes,
         order,
         packed,
@@ -107,17 +103,18 @@ fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
     match owner {
         Owner::Built {
             positions,
-            triangles,
+            indices,
             nodes,
             order,
             packed,
         } => {
-            // Checked again here because the views must borrow from the owner; it is linear
-            // and cheap next to the build.
-            let mesh = MeshRef::new(positions, triangles)
-                .validate()
+            // The views must borrow from the owner, so the mesh is validated again (one
+            // vectorised pass) and the tree re-borrowed with the topology check only: it was
+            // built from this very mesh a moment ago.
+            let mesh = MeshRef::from_flat(positions, indices)
+                .and_then(MeshRef::validate)
                 .map_err(error)?;
-            let bvh = Bvh::from_parts(nodes, order, &mesh).map_err(error)?;
+            let bvh = Bvh::from_built_parts(nodes, order, &mesh).map_err(error)?;
             if packed.len() != order.len() {
                 return Err(JsError::new("packed triangles do not match the tree"));
             }

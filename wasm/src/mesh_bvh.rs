@@ -88,10 +88,12 @@ impl MeshBvh {
     /// Builds a BVH from the arrays of a three.js `BufferGeometry`: `positions` (a
     /// `Float32Array`, 3 numbers per vertex) and `indices` (`Uint32Array`, `Uint16Array`, array,
     /// or `null` for non-indexed geometry). `options`: `{ quality: "fast" | "balanced" | "high",
-    /// maxLeafSize, bins }`, all optional. Throws on an invalid mesh (index out of range,
+    /// maxLeafSize, bins }`, all optional; `"balanced"` (binned SAH) by default, `"fast"` builds
+    /// with centre splits (like three-mesh-bvh's default) about four times sooner for somewhat
+    /// slower rays. Throws on an invalid mesh (index out of range,
     /// non-finite position…) with the core error's message.
     pub fn build(
-        positions: &[f32],
+        positions: Vec<f32>,
         indices: JsValue,
         options: JsValue,
     ) -> Result<MeshBvh, JsError> {

@@ -11,10 +11,10 @@ use self_cell::self_cell;
 pub enum Owner {
     /// Built in this module from JavaScript arrays.
     Built {
-        /// Vertex positions.
-        positions: Vec<[f32; 3]>,
-        /// Triangle corner indices.
-        triangles: Vec<[u32; 3]>,
+        /// Vertex positions, `x y z` per vertex.
+        positions: Vec<f32>,
+        /// Triangle corner indices, three per triangle.
+        indices: Vec<u32>,
         /// The used BVH nodes.
         nodes: Vec<BvhNode>,
         /// The BVH's triangle order.

@@ -48,12 +48,20 @@ fn load(obj: &str) -> (Vec<f32>, Vec<u32>) {
     (positions, indices)
 }
 
-fn build(obj: &str) -> MeshBvh {
+/// Builds with `options` (`undefined` for the default).
+fn build(obj: &str, options: &JsValue) -> MeshBvh {
     let (positions, indices) = load(obj);
     let indices = Uint32Array::from(&indices[..]);
-    MeshBvh::build(&positions, indices.into(), JsValue::UNDEFINED)
+    MeshBvh::build(positions, indices.into(), options.clone())
         .map_err(JsValue::from)
         .unwrap()
+}
+
+/// `{ quality: "fast" }`.
+fn fast() -> JsValue {
+    let options = js_sys::Object::new();
+    Reflect::set(&options, &"quality".into(), &"fast".into()).unwrap();
+    options.into()
 }
 
 struct Wasm<'a>(&'a MeshBvh);
@@ -70,7 +78,8 @@ impl ParityTarget for Wasm<'_> {
     }
 }
 
-/// `bytes=… checksum=0x…` of a mesh's default blob, from the golden blob file.
+/// `bytes=… checksum=0x…` of a golden blob (`<mesh>` or `<mesh>-fast`), from the golden blob
+/// file.
 fn golden_blob(mesh: &str) -> (usize, u32) {
     let line = BLOBS
         .lines()
@@ -88,20 +97,24 @@ fn golden_blob(mesh: &str) -> (usize, u32) {
 
 #[wasm_bindgen_test]
 fn every_mesh_matches_the_golden_digest_and_blob() {
-    for (name, obj) in MESHES {
-        let built = build(obj);
+    let presets = [("", JsValue::UNDEFINED), ("-fast", fast())];
+    for ((name, obj), (suffix, options)) in MESHES
+        .iter()
+        .flat_map(|m| presets.iter().map(move |p| (m, p)))
+    {
+        let built = build(obj, options);
         let golden = find_golden(GOLDEN, name).unwrap();
         assert_eq!(built.triangle_count(), golden.triangles, "{name}");
         let report = run_parity(&golden.spec, built.root_bounds(), &mut Wasm(&built));
         assert_eq!(report, golden.report, "{name}: built in WebAssembly");
 
         let blob = built.to_blob(None).map_err(JsValue::from).unwrap();
-        let (bytes, checksum) = golden_blob(name);
+        let (bytes, checksum) = golden_blob(&format!("{name}{suffix}"));
         let header = meshq::blob::BlobHeader::read(&blob).unwrap();
         assert_eq!(
             (blob.len(), header.checksum),
             (bytes, checksum),
-            "{name}: blob bytes"
+            "{name}{suffix}: blob bytes"
         );
 
         let loaded = MeshBvh::from_blob(&blob).map_err(JsValue::from).unwrap();
@@ -121,7 +134,7 @@ fn number(object: &JsValue, path: &[&str]) -> f64 {
 
 #[wasm_bindgen_test]
 fn javascript_results_carry_the_core_answers() {
-    let bvh = build(MESHES[2].1);
+    let bvh = build(MESHES[2].1, &JsValue::UNDEFINED);
     let bounds = bvh.root_bounds();
     let spec = ParitySpec::DEFAULT;
     let (mut hits, mut misses) = (0, 0);
@@ -195,7 +208,7 @@ fn javascript_results_carry_the_core_answers() {
 fn bad_input_throws_with_the_core_message() {
     let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
     let bad = Uint32Array::from(&[0u32, 1, 7][..]);
-    let error = MeshBvh::build(&positions, bad.into(), JsValue::UNDEFINED)
+    let error = MeshBvh::build(positions.to_vec(), bad.into(), JsValue::UNDEFINED)
         .err()
         .unwrap();
     let message = js_sys::Error::from(JsValue::from(error)).message();
@@ -204,7 +217,7 @@ fn bad_input_throws_with_the_core_message() {
         "message names the index"
     );
     assert!(MeshBvh::from_blob(&[1, 2, 3]).is_err());
-    let ok = MeshBvh::build(&positions, JsValue::NULL, JsValue::UNDEFINED)
+    let ok = MeshBvh::build(positions.to_vec(), JsValue::NULL, JsValue::UNDEFINED)
         .map_err(JsValue::from)
         .unwrap();
     assert_eq!(ok.triangle_count(), 1);

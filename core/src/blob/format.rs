@@ -7,13 +7,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::bvh::{BuildConfig, BvhNode};
+use crate::bvh::{BuildConfig, BvhNode, SplitStrategy};
 
 /// The first four bytes of every blob.
 pub const MAGIC: [u8; 4] = *b"MSHQ";
 
-/// The format version this build writes.
-pub const FORMAT_VERSION: u16 = 1;
+/// The format version this build writes. Version 2 added the split strategy to the config;
+/// version 1 blobs (always binned SAH) are still read.
+pub const FORMAT_VERSION: u16 = 2;
 
 /// The oldest format version this build reads.
 pub const OLDEST_READABLE_VERSION: u16 = 1;
@@ -97,7 +98,7 @@ impl MeshLayout {
     }
 }
 
-/// The fields after the magic and version (version 1), up to the checksum.
+/// The fields after the magic and version (version 2), up to the checksum.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub(crate) struct HeaderFields {
     /// [`StructureKind`] tag.
@@ -115,6 +116,60 @@ pub(crate) struct HeaderFields {
     pub mesh_checksum: u32,
     #[serde(with = "postcard::fixint::le")]
     pub payload_len: u64,
+}
+
+/// Version 1's config: [`BuildConfig`] before the split strategy existed (always SAH).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct ConfigV1 {
+    pub bins: u32,
+    pub max_leaf_size: u32,
+    pub max_depth: u32,
+    pub traversal_cost: f32,
+    pub triangle_cost: f32,
+}
+
+/// Version 1's header fields: [`HeaderFields`] with a [`ConfigV1`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct HeaderFieldsV1 {
+    pub kind: u32,
+    pub mesh: u32,
+    pub triangle_count: u32,
+    pub vertex_count: u32,
+    pub node_count: u32,
+    pub depth: u32,
+    pub bounds_min: [f32; 3],
+    pub bounds_max: [f32; 3],
+    pub config: ConfigV1,
+    #[serde(with = "postcard::fixint::le")]
+    pub mesh_checksum: u32,
+    #[serde(with = "postcard::fixint::le")]
+    pub payload_len: u64,
+}
+
+impl From<HeaderFieldsV1> for HeaderFields {
+    fn from(f: HeaderFieldsV1) -> Self {
+        let c = f.config;
+        Self {
+            kind: f.kind,
+            mesh: f.mesh,
+            triangle_count: f.triangle_count,
+            vertex_count: f.vertex_count,
+            node_count: f.node_count,
+            depth: f.depth,
+            bounds_min: f.bounds_min,
+            bounds_max: f.bounds_max,
+            config: BuildConfig {
+                split: SplitStrategy::Sah,
+                bins: c.bins,
+                max_leaf_size: c.max_leaf_size,
+                max_depth: c.max_depth,
+                traversal_cost: c.traversal_cost,
+                triangle_cost: c.triangle_cost,
+            },
+            mesh_checksum: f.mesh_checksum,
+            payload_len: f.payload_len,
+        }
+    }
 }
 
 /// A node record: [`BvhNode`] with fixed-width little-endian integers (32 bytes).

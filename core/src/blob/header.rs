@@ -3,8 +3,8 @@
 use glam::Vec3;
 
 use super::format::{
-    FORMAT_VERSION, FixedU32, HeaderFields, MAGIC, MeshLayout, OLDEST_READABLE_VERSION,
-    StructureKind,
+    FORMAT_VERSION, FixedU32, HeaderFields, HeaderFieldsV1, MAGIC, MeshLayout,
+    OLDEST_READABLE_VERSION, StructureKind,
 };
 use super::reader::Reader;
 use crate::bvh::BuildConfig;
@@ -31,7 +31,10 @@ pub struct BlobHeader {
     pub depth: u32,
     /// The root's padded box ([`Aabb::EMPTY`] when empty).
     pub bounds: Aabb,
-    /// The config the tree was built with (informational).
+    /// The config the tree was built with (informational; [`SplitStrategy::Sah`] for version 1
+    /// blobs, which had no other).
+    ///
+    /// [`SplitStrategy::Sah`]: crate::bvh::SplitStrategy::Sah
     pub config: BuildConfig,
     /// [`mesh_checksum`](super::mesh_checksum) of the mesh the blob was baked from.
     pub mesh_checksum: u32,
@@ -66,7 +69,11 @@ impl BlobHeader {
                 newest: FORMAT_VERSION,
             });
         }
-        let f: HeaderFields = r.value(BlobSection::Header)?;
+        let f: HeaderFields = if version == 1 {
+            r.value::<HeaderFieldsV1>(BlobSection::Header)?.into()
+        } else {
+            r.value(BlobSection::Header)?
+        };
         let FixedU32(checksum) = r.value(BlobSection::Header)?;
         let kind = StructureKind::from_tag(f.kind)
             .ok_or(BlobError::UnsupportedStructure { kind: f.kind })?;

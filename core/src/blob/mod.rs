@@ -21,7 +21,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! # Format (version 1)
+//! # Format (version 2)
 //!
 //! One [postcard](https://docs.rs/postcard) message, fields back to back. *varint* is postcard's
 //! LEB128-style unsigned varint; *fixed* integers are little-endian of the stated width; every
@@ -36,7 +36,7 @@
 //! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
 //! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and tree |
 //! | bounds | 6 × `f32` | root box min xyz, max xyz (padded) |
-//! | config | varint `u32` × 3, `f32` × 2 | [`BuildConfig`](crate::bvh::BuildConfig): bins, max_leaf_size, max_depth, traversal_cost, triangle_cost |
+//! | config | varint `u32` × 4, `f32` × 2 | [`BuildConfig`](crate::bvh::BuildConfig): split (tag: 0 SAH, 1 centre), bins, max_leaf_size, max_depth, traversal_cost, triangle_cost |
 //! | mesh_checksum | fixed `u32` | [`mesh_checksum`] of the mesh baked from |
 //! | payload_len | fixed `u64` | bytes after the header |
 //! | checksum | fixed `u32` | CRC-32/ISO-HDLC of every blob byte except these four |
@@ -52,6 +52,9 @@
 //! record increments [`FORMAT_VERSION`]; a reader refuses versions outside
 //! [`OLDEST_READABLE_VERSION`]`..=`[`FORMAT_VERSION`] with
 //! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
+//! Version 1 differs only in the config, which lacks the split tag (it was always SAH); this
+//! build reads it as SAH.
+//!
 //! Within a version the bytes are stable: the same mesh and config give the same blob on every
 //! target and every release that writes that version.
 

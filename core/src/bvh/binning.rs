@@ -1,10 +1,11 @@
 //! Binned SAH split search (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 //! Hierarchies").
 
-use glam::{BVec3A, Vec3A};
+use glam::Vec3A;
 
 use super::build_box::BuildBox;
 use super::lanes::clamped_indices;
+use super::partition::{centroid_bounds, partition_by};
 use super::{BuildConfig, PrimRef};
 
 const MAX_BINS: usize = BuildConfig::MAX_BINS as usize;
@@ -286,38 +287,14 @@ impl Binning {
 }
 
 /// Reorders `prims`, and `tris` alongside, so that those binned below `split.bin` come first;
-/// returns how many, and the (doubled) centroid bounds of both sides, gathered here in the pass
-/// that touches every triangle anyway. `prims` and `tris` have the same length.
-///
-/// Branch-free Lomuto partition: every element is swapped with the first right-side slot
-/// whichever side it goes to (swapping two right-side elements changes nothing that matters),
-/// so the unpredictable side test never becomes a mispredicted branch.
+/// returns how many, and the (doubled) centroid bounds of both sides. `prims` and `tris` have
+/// the same length.
 pub(super) fn partition(
     prims: &mut [PrimRef],
     tris: &mut [u32],
     split: &Split,
 ) -> (usize, BuildBox, BuildBox) {
-    let len = prims.len().min(tris.len());
-    let mut k = 0;
-    let (mut left, mut right) = (BuildBox::EMPTY, BuildBox::EMPTY);
-    for i in 0..len {
-        let Some(p) = prims.get(i) else {
-            break;
-        };
-        let c = p.centroid2();
-        let goes_left = split.binner.bin(c, split.axis) < split.bin;
-        let side = BVec3A::splat(goes_left);
-        let (grown_left, grown_right) = (left.grown(c), right.grown(c));
-        left.min = Vec3A::select(side, grown_left.min, left.min);
-        left.max = Vec3A::select(side, grown_left.max, left.max);
-        right.min = Vec3A::select(side, right.min, grown_right.min);
-        right.max = Vec3A::select(side, right.max, grown_right.max);
-        // k <= i < len.
-        if k < len {
-            prims.swap(k, i);
-            tris.swap(k, i);
-        }
-        k += usize::from(goes_left);
-    }
-    (k, left, right)
+    let k = partition_by(prims, tris, |c| split.binner.bin(c, split.axis) < split.bin);
+    let (left, right) = prims.split_at(k.min(prims.len()));
+    (k, centroid_bounds(left), centroid_bounds(right))
 }

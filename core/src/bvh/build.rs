@@ -1,13 +1,15 @@
-//! The top-down binned SAH builder. Iterative, with a fixed task stack; writes only into the
+//! The top-down builder (binned SAH or centre splits). Iterative, with a fixed task stack; writes only into the
 //! caller's buffers, and only after every size and limit has been checked.
 
 use glam::Vec3A;
 
 use super::binning::{Binning, partition};
 use super::build_box::BuildBox;
+use super::centre::{Side, centre_split};
 use super::lanes::{max_lanes, min_lanes};
-use super::median::{bounds_of, median_split};
-use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, node_capacity};
+use super::median::median_split;
+use super::partition::bounds_of;
+use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, SplitStrategy, node_capacity};
 use crate::error::{BufferKind, BuildError};
 use crate::mesh::ValidMesh;
 
@@ -158,9 +160,6 @@ pub(super) fn build_into(
     Ok(Built { node_count, depth })
 }
 
-/// A child's box and the bounds of its doubled centroids.
-type Side = (BuildBox, BuildBox);
-
 /// Decides a node: `None` for a leaf, or the left count and both sides' bounds after reordering
 /// `prims` (and `tris` alongside) into left-then-right.
 fn split_node(
@@ -176,6 +175,14 @@ fn split_node(
     }
     let may_be_leaf = count <= config.max_leaf_size as usize;
     let child_capacity = config.subtree_capacity(task.level + 1);
+    if config.split == SplitStrategy::Centre {
+        if may_be_leaf {
+            return None;
+        }
+        let centre = centre_split(prims, tris, &task.centroids)
+            .filter(|&(left, ..)| left <= child_capacity && count - left <= child_capacity);
+        return Some(centre.unwrap_or_else(|| median_split(prims, tris, &task.centroids)));
+    }
     let area = task.bounds.half_area();
     if area > 0.0
         && let Some(split) = binning.find_split(prims, &task.centroids, config.bins)

@@ -3,17 +3,38 @@ use serde::{Deserialize, Serialize};
 use super::MAX_DEPTH;
 use crate::error::BuildError;
 
+/// How the builder divides a node's triangles in two.
+///
+/// On the wire (blob header) a varint tag: 0 = [`SplitStrategy::Sah`], 1 =
+/// [`SplitStrategy::Centre`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum SplitStrategy {
+    /// Binned surface area heuristic: at each node, triangle centroids are sorted into `bins`
+    /// equal slices along each axis and the split with the lowest cost
+    /// `C = traversal_cost + (A_L·N_L + A_R·N_R)/A · triangle_cost` is taken, or a leaf is made
+    /// when `N·triangle_cost` is not more than that (and `N ≤ max_leaf_size`). The best trees.
+    #[default]
+    Sah,
+    /// The middle of the centroid bounds on their longest axis (the lowest axis on a tie):
+    /// triangles whose centroid lies below it go left. Every node of more than `max_leaf_size`
+    /// triangles is split; `bins` and the two costs are not used. About four times quicker
+    /// to build than [`SplitStrategy::Sah`], for trees that answer rays 10–20 % more slowly
+    /// (measured on the bunny). The same rule as three-mesh-bvh's default (`CENTER`).
+    Centre,
+}
+
 /// How a BVH is built. Use a preset ([`BuildConfig::fast`], [`BuildConfig::balanced`] — the
 /// default — or [`BuildConfig::high_quality`]) and adjust fields as needed.
 ///
-/// The builder is binned SAH: at each node it sorts triangle centroids into `bins` equal
-/// slices along each axis and takes the split with the lowest cost
-/// `C = traversal_cost + (A_L·N_L + A_R·N_R)/A · triangle_cost`, or makes a leaf when
-/// `N·triangle_cost` is not more than that (and `N ≤ max_leaf_size`).
+/// Whatever the strategy, a split that would leave one side empty or exceed the depth limit
+/// falls back to a median split (by centroid, then triangle index), so any mesh that fits
+/// within `max_depth` builds.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BuildConfig {
-    /// Bins per axis, `2..=`[`BuildConfig::MAX_BINS`]. More bins find better splits and build
-    /// more slowly.
+    /// How nodes are split.
+    pub split: SplitStrategy,
+    /// Bins per axis for [`SplitStrategy::Sah`], `2..=`[`BuildConfig::MAX_BINS`] (checked
+    /// whatever the strategy). More bins find better splits and build a little more slowly.
     pub bins: u32,
     /// Most triangles in a leaf, `1..=`[`BuildConfig::MAX_LEAF_SIZE`]. Larger leaves give
     /// shallower, smaller trees and more triangle tests per ray.
@@ -22,9 +43,9 @@ pub struct BuildConfig {
     /// fails with [`BuildError::TooDeep`]; near the limit the builder switches to median splits
     /// so any mesh that can fit does fit. Lower it to bound traversal stacks further.
     pub max_depth: u32,
-    /// Relative cost of visiting a node, finite and `≥ 0`.
+    /// Relative cost of visiting a node, finite and `≥ 0` (SAH only).
     pub traversal_cost: f32,
-    /// Relative cost of one ray–triangle test, finite and `> 0`.
+    /// Relative cost of one ray–triangle test, finite and `> 0` (SAH only).
     pub triangle_cost: f32,
 }
 
@@ -40,11 +61,13 @@ impl BuildConfig {
     /// Upper bound of [`BuildConfig::max_leaf_size`].
     pub const MAX_LEAF_SIZE: u32 = 64;
 
-    /// Quickest build: 8 bins, leaves of up to 8 triangles.
+    /// Quickest build: centre splits ([`SplitStrategy::Centre`]), leaves of up to 8
+    /// triangles.
     #[must_use]
     pub const fn fast() -> Self {
         Self {
-            bins: 8,
+            split: SplitStrategy::Centre,
+            bins: 32,
             max_leaf_size: 8,
             max_depth: MAX_DEPTH,
             traversal_cost: 1.0,
@@ -52,10 +75,11 @@ impl BuildConfig {
         }
     }
 
-    /// The default: 32 bins, leaves of up to 4 triangles.
+    /// The default: binned SAH with 32 bins, leaves of up to 4 triangles.
     #[must_use]
     pub const fn balanced() -> Self {
         Self {
+            split: SplitStrategy::Sah,
             bins: 32,
             max_leaf_size: 4,
             max_depth: MAX_DEPTH,
@@ -64,10 +88,12 @@ impl BuildConfig {
         }
     }
 
-    /// Best trees: 64 bins, leaves of up to 4 triangles, splitting a little more eagerly.
+    /// Best trees: binned SAH with 64 bins, leaves of up to 4 triangles, splitting a little
+    /// more eagerly.
     #[must_use]
     pub const fn high_quality() -> Self {
         Self {
+            split: SplitStrategy::Sah,
             bins: 64,
             max_leaf_size: 4,
             max_depth: MAX_DEPTH,

@@ -2,6 +2,7 @@
 
 use super::PrimRef;
 use super::build_box::BuildBox;
+use super::partition::sides_of;
 
 /// Splits at the median centroid along the widest centroid axis (by triangle index when all
 /// centroids coincide), reordering `prims` and `tris` (same length) alike. Used when SAH finds
@@ -24,17 +25,8 @@ pub(super) fn median_split(
     let len = prims.len().min(tris.len());
     heap_sort(prims, tris, len, axis);
     let mid = len / 2;
-    let (left_prims, right_prims) = prims.split_at(mid.min(prims.len()));
-    (mid, bounds_of(left_prims), bounds_of(right_prims))
-}
-
-/// Bounds of the boxes and of the doubled centroids of `prims`.
-pub(super) fn bounds_of(prims: &[PrimRef]) -> (BuildBox, BuildBox) {
-    prims
-        .iter()
-        .fold((BuildBox::EMPTY, BuildBox::EMPTY), |(b, c), p| {
-            (b.union(p.bounds()), c.grown(p.centroid2()))
-        })
+    let (left, right) = sides_of(prims, mid);
+    (mid, left, right)
 }
 
 /// Component `axis` of `v` (z for anything above 1).

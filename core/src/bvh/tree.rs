@@ -7,8 +7,9 @@ use crate::mesh::ValidMesh;
 
 /// A built BVH: a read-only view over the caller's node and order buffers.
 ///
-/// Created only by [`Bvh::build`], [`Bvh::from_parts`] (validating) or [`Bvh::refit`], so its
-/// structure is always valid: every query terminates, stays in bounds and never panics. It
+/// Created only by [`Bvh::build`], [`Bvh::from_parts`] (validating),
+/// [`Bvh::from_built_parts`] (topology only) or [`Bvh::refit`], so its structure is always
+/// valid: every query terminates, stays in bounds and never panics. It
 /// does not hold the mesh; pass the same [`ValidMesh`] it was built from to each query (a
 /// different mesh gives meaningless answers, never a panic).
 #[derive(Clone, Copy, Debug)]
@@ -65,6 +66,46 @@ impl<'a> Bvh<'a> {
         Ok(bvh)
     }
 
+    /// A view over nodes and order that [`Bvh::build`] wrote for `mesh` and nothing has changed
+    /// since, for re-borrowing a tree after its buffers moved (into a struct that owns them,
+    /// say). Checks what safety needs — topology, depth, leaf ranges tiling `order`, triangle
+    /// indices below the mesh's count — but not box nesting or triangle containment, the
+    /// costly part of [`Bvh::from_parts`] (a leaf's triangles are gathered from the mesh for
+    /// that). Boxes that are wrong give wrong answers, never a panic or an endless query; when
+    /// the arrays come from anywhere else, use [`Bvh::from_parts`].
+    ///
+    /// # Errors
+    /// The first [`StructureError`] found.
+    pub fn from_built_parts(
+        nodes: &'a [BvhNode],
+        order: &'a [u32],
+        mesh: &ValidMesh<'_>,
+    ) -> Result<Self, StructureError> {
+        let mut bvh = Self {
+            nodes,
+            order,
+            depth: 0,
+        };
+        bvh.depth = check(&bvh, None::<&ValidMesh<'_>>, CheckLevel::Topology)?;
+        let count = mesh.triangle_count();
+        // One pass without early exit (it vectorises); the slow search only names the culprit.
+        if !order
+            .iter()
+            .fold(true, |ok, &t| ok & ((t as usize) < count))
+        {
+            let (slot, &tri) = order
+                .iter()
+                .enumerate()
+                .find(|&(_, &t)| t as usize >= count)
+                .unwrap_or((0, &0));
+            return Err(StructureError::TriangleOutOfRange {
+                node: leaf_of_slot(nodes, slot),
+                tri,
+            });
+        }
+        Ok(bvh)
+    }
+
     /// A view over arrays already known to be valid (decoded from a validated blob).
     #[cfg_attr(not(feature = "blob"), allow(dead_code))]
     pub(crate) const fn from_validated(nodes: &'a [BvhNode], order: &'a [u32], depth: u32) -> Self {
@@ -116,4 +157,16 @@ impl<'a> Bvh<'a> {
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::EMPTY, BvhNode::aabb)
     }
+}
+
+/// The index of the leaf whose range holds order slot `slot` (0 when none does).
+fn leaf_of_slot(nodes: &[BvhNode], slot: usize) -> u32 {
+    nodes
+        .iter()
+        .position(|n| {
+            let first = n.first as usize;
+            n.is_leaf() && (first..first.saturating_add(n.count as usize)).contains(&slot)
+        })
+        .and_then(|i| u32::try_from(i).ok())
+        .unwrap_or(0)
 }

@@ -73,11 +73,29 @@ impl<'a> MeshRef<'a> {
         u32::try_from(self.triangles.len()).map_err(|_| MeshError::TooManyTriangles {
             count: self.triangles.len(),
         })?;
-        for (vertex, &p) in (0u32..).zip(self.positions) {
-            check_vertex(vertex, p)?;
+        // A fast pass decides; only a bad mesh takes the slow pass that names the culprit. One
+        // comparison per coordinate covers both rules of `check_vertex` (NaN and ±∞ fail
+        // `abs() <= MAX_COORDINATE` too), and both folds run without early exits, so they
+        // vectorise.
+        let coordinates_ok = self
+            .positions
+            .iter()
+            .flatten()
+            .fold(true, |ok, c| ok & (c.abs() <= MAX_COORDINATE));
+        if !coordinates_ok {
+            for (vertex, &p) in (0u32..).zip(self.positions) {
+                check_vertex(vertex, p)?;
+            }
         }
-        for (triangle, &t) in (0u32..).zip(self.triangles) {
-            check_triangle(triangle, t, vertex_count)?;
+        let indices_ok = self
+            .triangles
+            .iter()
+            .flatten()
+            .fold(true, |ok, &i| ok & (i < vertex_count));
+        if !indices_ok {
+            for (triangle, &t) in (0u32..).zip(self.triangles) {
+                check_triangle(triangle, t, vertex_count)?;
+            }
         }
         Ok(ValidMesh::new_unchecked_by_validate(
             self.positions,
