@@ -355,3 +355,45 @@ fn validator_rejects_corruption() {
         StructureError::EmptyMismatch
     ));
 }
+
+#[test]
+fn built_parts_are_checked_for_safety_but_not_for_boxes() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let good = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let view = Bvh::from_built_parts(&good.nodes, &good.order, &mesh).unwrap();
+    assert_eq!(view.depth(), good.view(&mesh).unwrap().depth());
+    let inner = good.nodes.iter().position(|n| !n.is_leaf()).unwrap();
+    let leaf = good.nodes.iter().position(BvhNode::is_leaf).unwrap();
+    let corrupt = |f: &dyn Fn(&mut OwnedBvh)| {
+        let mut bad = good.clone();
+        f(&mut bad);
+        Bvh::from_built_parts(&bad.nodes, &bad.order, &mesh).map(|_| ())
+    };
+    // Whatever would let a query loop or index out of bounds is refused…
+    assert!(matches!(
+        corrupt(&|b| b.nodes[inner].first = inner as u32),
+        Err(StructureError::ChildNotAfterParent { .. })
+    ));
+    assert!(matches!(
+        corrupt(&|b| b.nodes[inner].first = u32::MAX - 1),
+        Err(StructureError::ChildOutOfRange { .. })
+    ));
+    let slot = good.nodes[leaf].first as usize;
+    assert_eq!(
+        corrupt(&|b| b.order[slot] = 1_000_000),
+        Err(StructureError::TriangleOutOfRange {
+            node: leaf as u32,
+            tri: 1_000_000
+        })
+    );
+    assert!(matches!(
+        corrupt(&|b| {
+            b.order.pop();
+        }),
+        Err(StructureError::LeafRangeOutOfBounds { .. }
+            | StructureError::LeafRangesNotContiguous { .. })
+    ));
+    // …while a wrong box, which only spoils answers, is the documented blind spot.
+    assert_eq!(corrupt(&|b| b.nodes[leaf].max = b.nodes[leaf].min), Ok(()));
+}
