@@ -5,10 +5,10 @@ use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
 
 use super::checksum::{digest, mesh_checksum};
 use super::format::{
-    CHECKSUM_BYTES, FORMAT_VERSION, FixedU32, HeaderFields, MAGIC, MeshLayout, NodeRecord,
-    StructureKind, TriangleRecord,
+    CHECKSUM_BYTES, ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC,
+    MeshLayout, NodeRecord, StructureKind, TriangleRecord,
 };
-use crate::bvh::{BuildConfig, Bvh, PackedTriangle};
+use crate::bvh::{BuildConfig, Bvh, PackedTriangle, SplitStrategy};
 use crate::error::{BlobError, BlobSection};
 use crate::mesh::ValidMesh;
 
@@ -112,7 +112,10 @@ pub(crate) fn blob_checksum(blob: &[u8], header_len: usize) -> u32 {
 struct Header {
     magic: [u8; 4],
     version: u16,
-    fields: HeaderFields,
+    counts: HeaderCounts,
+    split: SplitStrategy,
+    costs: ConfigCosts,
+    seal: HeaderSeal,
     checksum: FixedU32,
 }
 
@@ -128,7 +131,7 @@ fn header(
     Ok(Header {
         magic: MAGIC,
         version: FORMAT_VERSION,
-        fields: HeaderFields {
+        counts: HeaderCounts {
             kind: StructureKind::Bvh.tag(),
             mesh: options.mesh.tag(),
             triangle_count: count(mesh.triangle_count())?,
@@ -137,7 +140,10 @@ fn header(
             depth: bvh.depth(),
             bounds_min: bounds.min.to_array(),
             bounds_max: bounds.max.to_array(),
-            config: options.config,
+        },
+        split: options.config.split,
+        costs: ConfigCosts::of(&options.config),
+        seal: HeaderSeal {
             mesh_checksum: mesh_checksum(mesh),
             payload_len: u64::try_from(payload_len).map_err(|_| BlobError::TooLarge)?,
         },

@@ -98,9 +98,9 @@ impl MeshLayout {
     }
 }
 
-/// The fields after the magic and version (version 2), up to the checksum.
+/// The header fields between the version and the config (every version).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct HeaderFields {
+pub(crate) struct HeaderCounts {
     /// [`StructureKind`] tag.
     pub kind: u32,
     /// [`MeshLayout`] tag.
@@ -111,16 +111,13 @@ pub(crate) struct HeaderFields {
     pub depth: u32,
     pub bounds_min: [f32; 3],
     pub bounds_max: [f32; 3],
-    pub config: BuildConfig,
-    #[serde(with = "postcard::fixint::le")]
-    pub mesh_checksum: u32,
-    #[serde(with = "postcard::fixint::le")]
-    pub payload_len: u64,
 }
 
-/// Version 1's config: [`BuildConfig`] before the split strategy existed (always SAH).
+/// The config fields after the split tag: all of version 1's config, which had no tag (it was
+/// always SAH). The header is read piece by piece so that both versions share one decoder,
+/// which keeps the firmware's code small.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct ConfigV1 {
+pub(crate) struct ConfigCosts {
     pub bins: u32,
     pub max_leaf_size: u32,
     pub max_depth: u32,
@@ -128,46 +125,36 @@ pub(crate) struct ConfigV1 {
     pub triangle_cost: f32,
 }
 
-/// Version 1's header fields: [`HeaderFields`] with a [`ConfigV1`].
+/// The header fields after the config, before the header checksum.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct HeaderFieldsV1 {
-    pub kind: u32,
-    pub mesh: u32,
-    pub triangle_count: u32,
-    pub vertex_count: u32,
-    pub node_count: u32,
-    pub depth: u32,
-    pub bounds_min: [f32; 3],
-    pub bounds_max: [f32; 3],
-    pub config: ConfigV1,
+pub(crate) struct HeaderSeal {
     #[serde(with = "postcard::fixint::le")]
     pub mesh_checksum: u32,
     #[serde(with = "postcard::fixint::le")]
     pub payload_len: u64,
 }
 
-impl From<HeaderFieldsV1> for HeaderFields {
-    fn from(f: HeaderFieldsV1) -> Self {
-        let c = f.config;
+impl ConfigCosts {
+    /// The costs of `config`.
+    pub(crate) const fn of(config: &BuildConfig) -> Self {
         Self {
-            kind: f.kind,
-            mesh: f.mesh,
-            triangle_count: f.triangle_count,
-            vertex_count: f.vertex_count,
-            node_count: f.node_count,
-            depth: f.depth,
-            bounds_min: f.bounds_min,
-            bounds_max: f.bounds_max,
-            config: BuildConfig {
-                split: SplitStrategy::Sah,
-                bins: c.bins,
-                max_leaf_size: c.max_leaf_size,
-                max_depth: c.max_depth,
-                traversal_cost: c.traversal_cost,
-                triangle_cost: c.triangle_cost,
-            },
-            mesh_checksum: f.mesh_checksum,
-            payload_len: f.payload_len,
+            bins: config.bins,
+            max_leaf_size: config.max_leaf_size,
+            max_depth: config.max_depth,
+            traversal_cost: config.traversal_cost,
+            triangle_cost: config.triangle_cost,
+        }
+    }
+
+    /// The config these costs belong to, with the given split strategy.
+    pub(crate) const fn with_split(self, split: SplitStrategy) -> BuildConfig {
+        BuildConfig {
+            split,
+            bins: self.bins,
+            max_leaf_size: self.max_leaf_size,
+            max_depth: self.max_depth,
+            traversal_cost: self.traversal_cost,
+            triangle_cost: self.triangle_cost,
         }
     }
 }

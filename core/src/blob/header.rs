@@ -3,11 +3,11 @@
 use glam::Vec3;
 
 use super::format::{
-    FORMAT_VERSION, FixedU32, HeaderFields, HeaderFieldsV1, MAGIC, MeshLayout,
+    ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
     OLDEST_READABLE_VERSION, StructureKind,
 };
 use super::reader::Reader;
-use crate::bvh::BuildConfig;
+use crate::bvh::{BuildConfig, SplitStrategy};
 use crate::error::{BlobError, BlobSection};
 use crate::math::Aabb;
 
@@ -69,11 +69,15 @@ impl BlobHeader {
                 newest: FORMAT_VERSION,
             });
         }
-        let f: HeaderFields = if version == 1 {
-            r.value::<HeaderFieldsV1>(BlobSection::Header)?.into()
+        let f: HeaderCounts = r.value(BlobSection::Header)?;
+        // Version 1 had no split tag: every tree was binned SAH.
+        let split = if version == 1 {
+            SplitStrategy::Sah
         } else {
             r.value(BlobSection::Header)?
         };
+        let costs: ConfigCosts = r.value(BlobSection::Header)?;
+        let seal: HeaderSeal = r.value(BlobSection::Header)?;
         let FixedU32(checksum) = r.value(BlobSection::Header)?;
         let kind = StructureKind::from_tag(f.kind)
             .ok_or(BlobError::UnsupportedStructure { kind: f.kind })?;
@@ -82,7 +86,7 @@ impl BlobHeader {
             section: BlobSection::MeshLayout,
         })?;
         let header_len = r.offset();
-        let total_len = usize::try_from(f.payload_len)
+        let total_len = usize::try_from(seal.payload_len)
             .ok()
             .and_then(|p| p.checked_add(header_len))
             .ok_or(BlobError::TooLarge)?;
@@ -98,8 +102,8 @@ impl BlobHeader {
                 Vec3::from_array(f.bounds_min),
                 Vec3::from_array(f.bounds_max),
             ),
-            config: f.config,
-            mesh_checksum: f.mesh_checksum,
+            config: costs.with_split(split),
+            mesh_checksum: seal.mesh_checksum,
             checksum,
             header_len,
             total_len,
