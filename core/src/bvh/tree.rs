@@ -57,13 +57,19 @@ impl<'a> Bvh<'a> {
         order: &'a [u32],
         mesh: &ValidMesh<'_>,
     ) -> Result<Self, StructureError> {
-        let mut bvh = Self {
-            nodes,
-            order,
-            depth: 0,
-        };
-        bvh.depth = check(&bvh, Some(mesh), CheckLevel::Full)?;
-        Ok(bvh)
+        Self::checked(nodes, order, Some(mesh), CheckLevel::Full)
+    }
+
+    /// A view over `nodes` and `order` once [`check`] at `level` passes.
+    fn checked(
+        nodes: &'a [BvhNode],
+        order: &'a [u32],
+        mesh: Option<&ValidMesh<'_>>,
+        level: CheckLevel,
+    ) -> Result<Self, StructureError> {
+        let unchecked = Self::from_validated(nodes, order, 0);
+        let depth = check(&unchecked, mesh, level)?;
+        Ok(Self::from_validated(nodes, order, depth))
     }
 
     /// A view over nodes and order that [`Bvh::build`] wrote for `mesh` and nothing has changed
@@ -81,12 +87,7 @@ impl<'a> Bvh<'a> {
         order: &'a [u32],
         mesh: &ValidMesh<'_>,
     ) -> Result<Self, StructureError> {
-        let mut bvh = Self {
-            nodes,
-            order,
-            depth: 0,
-        };
-        bvh.depth = check(&bvh, None::<&ValidMesh<'_>>, CheckLevel::Topology)?;
+        let bvh = Self::checked(nodes, order, None, CheckLevel::Topology)?;
         let count = mesh.triangle_count();
         // One pass without early exit (it vectorises); the slow search only names the culprit.
         if !order
@@ -106,8 +107,8 @@ impl<'a> Bvh<'a> {
         Ok(bvh)
     }
 
-    /// A view over arrays already known to be valid (decoded from a validated blob).
-    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
+    /// A view over arrays already known to be valid (decoded from a validated blob, or about
+    /// to be checked).
     pub(crate) const fn from_validated(nodes: &'a [BvhNode], order: &'a [u32], depth: u32) -> Self {
         Self {
             nodes,
