@@ -17,7 +17,12 @@ export interface BuildOptions {
 export function computeBoundsTree(this: BufferGeometry, options?: BuildOptions): MeshBvh;
 /** Frees `this.boundsTree`. */
 export function disposeBoundsTree(this: BufferGeometry): void;
-/** Replacement for `THREE.Mesh.prototype.raycast`. */
+/**
+ * Replacement for `THREE.Mesh.prototype.raycast`: the same `intersects` as three's, honouring
+ * `near`/`far`, `firstHitOnly`, the material's `side`, the draw range, and groups with an array
+ * of materials. Falls back to three's raycast for morph targets, skinning, instancing, and
+ * ranges that start inside a triangle.
+ */
 export function acceleratedRaycast(this: Mesh, raycaster: Raycaster, intersects: Intersection[]): void;
 export { MeshBvh };
 

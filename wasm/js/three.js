@@ -7,10 +7,12 @@
 //   geometry.computeBoundsTree();          // or geometry.boundsTree = MeshBvh.fromBlob(bytes)
 //
 // Raycaster results keep three's shape (distance, point, face, faceIndex, object, barycoord,
-// uv, normal), respect raycaster.near / far, the material's side and raycaster.firstHitOnly.
-// Meshes without a bounds tree, with an array of materials, morph targets or skinning, and
-// instanced meshes fall back to three's own raycast.
-import { Mesh, Matrix4, Triangle, Vector2, Vector3 } from 'three';
+// uv, normal), respect raycaster.near / far, the material's side, raycaster.firstHitOnly, the
+// geometry's draw range, and groups with an array of materials (as three does: each group is
+// tested with its own material's side and reported with its materialIndex). Meshes without a
+// bounds tree, with morph targets or skinning, instanced meshes, and draw ranges or groups that
+// do not start on a whole triangle fall back to three's own raycast.
+import { DoubleSide, FrontSide, Mesh, Matrix4, Triangle, Vector2, Vector3 } from 'three';
 import { MeshBvh } from './meshq_wasm.js';
 
 const threeRaycast = Mesh.prototype.raycast;
@@ -72,7 +74,7 @@ function interpolate(attribute, ia, ib, ic, barycoord, target, pa, pb, pc) {
     .addScaledVector(pc, barycoord.z);
 }
 
-function intersection(mesh, raycaster, t, triangle, u, v) {
+function intersection(mesh, raycaster, t, triangle, u, v, materialIndex = 0) {
   const point = direction.clone().multiplyScalar(t).add(origin).applyMatrix4(mesh.matrixWorld);
   const distance = raycaster.ray.origin.distanceTo(point);
   if (distance < raycaster.near || distance > raycaster.far) return null;
@@ -91,7 +93,7 @@ function intersection(mesh, raycaster, t, triangle, u, v) {
     distance,
     point,
     object: mesh,
-    face: { a: ia, b: ib, c: ic, normal, materialIndex: 0 },
+    face: { a: ia, b: ib, c: ic, normal, materialIndex },
     faceIndex: triangle,
     barycoord,
   };
@@ -106,12 +108,59 @@ function intersection(mesh, raycaster, t, triangle, u, v) {
   return hit;
 }
 
+/** The triangles three would test, as `{ from, to, side, materialIndex }` ranges of triangle
+ *  indices (`to` exclusive): `null` when that is every triangle with the one material,
+ *  `undefined` when a range does not start on a whole triangle (three then reads corners across
+ *  triangles, which only its own raycast reproduces). */
+function triangleRanges(geometry, material) {
+  const count = geometry.index ? geometry.index.count : geometry.attributes.position.count;
+  const whole = Math.floor(count / 3);
+  const drawStart = geometry.drawRange.start;
+  const drawEnd = drawStart + geometry.drawRange.count;
+  // Corner positions [start, end) as three loops over them: a triangle per start position.
+  const range = (start, end, side, materialIndex) => {
+    start = Math.max(0, start);
+    end = Math.min(count, end);
+    if (start % 3 !== 0) return undefined;
+    return { from: start / 3, to: Math.min(whole, Math.ceil(end / 3)), side, materialIndex };
+  };
+  if (!Array.isArray(material)) {
+    if (drawStart <= 0 && drawEnd >= count) return null;
+    const only = range(drawStart, drawEnd, material.side, 0);
+    return only && [only];
+  }
+  const ranges = [];
+  for (const group of geometry.groups) {
+    const groupMaterial = material[group.materialIndex];
+    if (!groupMaterial) continue;
+    const r = range(Math.max(group.start, drawStart),
+      Math.min(group.start + group.count, drawEnd), groupMaterial.side, group.materialIndex);
+    if (!r) return undefined;
+    ranges.push(r);
+  }
+  return ranges;
+}
+
+/** Whether a hit on `triangle` counts for a material with `side`: three keeps a front-side hit
+ *  when the ray meets the face against its normal, a back-side hit when along it. */
+function facingAllows(geometry, triangle, side) {
+  if (side === DoubleSide) return true;
+  const position = geometry.attributes.position;
+  a.fromBufferAttribute(position, corner(geometry, triangle, 0));
+  b.fromBufferAttribute(position, corner(geometry, triangle, 1));
+  c.fromBufferAttribute(position, corner(geometry, triangle, 2));
+  const facing = c.sub(a).cross(b.sub(a)).dot(direction); // −(normal · direction)
+  return side === FrontSide ? facing > 0 : facing < 0;
+}
+
 /** Replacement for `THREE.Mesh.prototype.raycast` that uses `geometry.boundsTree`. */
 export function acceleratedRaycast(raycaster, intersects) {
-  const bvh = this.geometry.boundsTree;
+  const geometry = this.geometry;
+  const bvh = geometry.boundsTree;
   const material = this.material;
-  if (!bvh || material === undefined || Array.isArray(material) || this.isInstancedMesh ||
-      this.isSkinnedMesh || (this.morphTargetInfluences && this.morphTargetInfluences.length)) {
+  const ranges = bvh && material !== undefined ? triangleRanges(geometry, material) : undefined;
+  if (ranges === undefined || this.isInstancedMesh || this.isSkinnedMesh ||
+      (this.morphTargetInfluences && this.morphTargetInfluences.length)) {
     threeRaycast.call(this, raycaster, intersects);
     return;
   }
@@ -121,19 +170,49 @@ export function acceleratedRaycast(raycaster, intersects) {
   origin.copy(raycaster.ray.origin).applyMatrix4(inverse);
   end.copy(raycaster.ray.origin).add(raycaster.ray.direction).applyMatrix4(inverse);
   direction.subVectors(end, origin);
-  const side = material.side;
+  if (ranges === null) {
+    raycastWhole(this, bvh, raycaster, intersects, material.side);
+  } else {
+    raycastRanges(this, bvh, raycaster, intersects, ranges);
+  }
+}
+
+/** Every triangle, one material: the culling happens in meshq. */
+function raycastWhole(mesh, bvh, raycaster, intersects, side) {
   if (raycaster.firstHitOnly === true) {
     const first = bvh.raycastXyz(origin.x, origin.y, origin.z, direction.x, direction.y,
       direction.z, raycaster.near, raycaster.far, side);
-    const hit = first && intersection(this, raycaster, first.distance, first.triangle, first.u, first.v);
+    const hit = first && intersection(mesh, raycaster, first.distance, first.triangle, first.u, first.v);
     if (hit) intersects.push(hit);
     return;
   }
   const all = bvh.raycastAll(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z,
     raycaster.near, raycaster.far, side);
   for (let k = 0; k < all.length; k += 4) {
-    const hit = intersection(this, raycaster, all[k], all[k + 1], all[k + 2], all[k + 3]);
+    const hit = intersection(mesh, raycaster, all[k], all[k + 1], all[k + 2], all[k + 3]);
     if (hit) intersects.push(hit);
+  }
+}
+
+/** Only the triangles of `ranges`, each with its material's side: every hit is listed nearest
+ *  first and filtered here. A triangle in two ranges is reported twice, as three does. */
+function raycastRanges(mesh, bvh, raycaster, intersects, ranges) {
+  const sides = new Set(ranges.map((r) => r.side));
+  // One side for all: meshq culls; mixed sides: meshq keeps both faces and each range filters.
+  const side = sides.size === 1 ? ranges[0].side : DoubleSide;
+  const all = bvh.raycastAll(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z,
+    raycaster.near, raycaster.far, side);
+  for (let k = 0; k < all.length; k += 4) {
+    const triangle = all[k + 1];
+    for (const r of ranges) {
+      if (triangle < r.from || triangle >= r.to) continue;
+      if (side === DoubleSide && !facingAllows(mesh.geometry, triangle, r.side)) continue;
+      const hit = intersection(mesh, raycaster, all[k], triangle, all[k + 2], all[k + 3],
+        r.materialIndex);
+      if (!hit) continue;
+      intersects.push(hit);
+      if (raycaster.firstHitOnly === true) return;
+    }
   }
 }
 

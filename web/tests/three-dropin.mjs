@@ -1,6 +1,7 @@
 // The three.js drop-in against three's own brute-force Raycaster (every triangle tested), in
 // Node, on the bundled bunny: same first hit for 10,000 random rays (DESIGN.md workload), the
-// same full intersection lists, material sides, near/far and a transformed mesh.
+// same full intersection lists, material sides, near/far, a transformed mesh, draw ranges and
+// groups with an array of materials.
 // Run after scripts/wasm.sh: node web/tests/three-dropin.mjs
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -128,6 +129,77 @@ for (let k = 0; k < 300; k++) {
   limited += ours.length;
 }
 assert.ok(limited > 50, `the near/far window keeps some hits (${limited})`);
+
+// Draw ranges, and groups with an array of materials of different sides (one group
+// overlapping another, so its triangles are reported twice, as three does).
+for (const mesh of [fast, brute]) {
+  mesh.position.set(0, 0, 0);
+  mesh.rotation.set(0, 0, 0);
+  mesh.scale.set(1, 1, 1);
+  mesh.updateMatrixWorld(true);
+}
+raycaster.near = 0;
+raycaster.far = Infinity;
+// Counts the queries that reach meshq, to tell the accelerated path from three's fallback.
+const tree = indexed.boundsTree;
+let accelerated = 0;
+for (const name of ['raycastAll', 'raycastXyz']) {
+  const query = tree[name];
+  tree[name] = (...args) => {
+    accelerated++;
+    return query.apply(tree, args);
+  };
+}
+function compareLists(what, expectAccelerated = true) {
+  const before = accelerated;
+  let listed = 0;
+  for (let k = 0; k < 300; k++) {
+    const ours = cast(fast, k, false);
+    const theirs = cast(brute, k, false);
+    assert.equal(ours.length, theirs.length, `${what}, ray ${k}: number of intersections`);
+    const matched = ours.filter((hit, i) => sameHit(hit, theirs[i], `${what}, ray ${k}, intersection ${i}`));
+    if (matched.length === ours.length) {
+      // A triangle in two groups is listed twice at the same distance; three's two distances
+      // differ in the last bits (it swaps the corners for back sides), so its order of the two
+      // is arbitrary: compare which (triangle, material) pairs are listed, not their order.
+      const pairs = (hits) => hits.map((h) => `${h.faceIndex}/${h.face.materialIndex}`).sort();
+      assert.deepEqual(pairs(ours), pairs(theirs), `${what}, ray ${k}: triangles and materials`);
+    }
+    const [first] = cast(fast, k, true);
+    assert.equal(Boolean(first), theirs.length > 0, `${what}, ray ${k}: first hit or miss`);
+    if (first) sameHit(first, theirs[0], `${what}, ray ${k}, first hit`);
+    listed += ours.length;
+  }
+  assert.equal(accelerated - before, expectAccelerated ? 600 : 0, `${what}: queries through meshq`);
+  return listed;
+}
+const corners = indexed.index.count;
+const third = 3 * Math.floor(corners / 9);
+indexed.setDrawRange(3 * 1000, 3 * Math.floor(corners / 6));
+const ranged = compareLists('draw range');
+const sides = [THREE.FrontSide, THREE.BackSide, THREE.DoubleSide];
+const materials = sides.map((side) => new THREE.MeshBasicMaterial({ side }));
+fast.material = materials;
+brute.material = materials;
+indexed.addGroup(0, third, 0);
+indexed.addGroup(third, third, 1);
+indexed.addGroup(2 * third, corners - 2 * third, 2);
+indexed.addGroup(3 * Math.floor(third / 9), third, 2);
+indexed.setDrawRange(0, Infinity);
+const grouped = compareLists('groups');
+indexed.setDrawRange(3 * 2000, 3 * Math.floor(corners / 4));
+const both = compareLists('groups within a draw range');
+// A group starting inside a triangle: three reads corners across triangles; only its own
+// raycast reproduces that, so the drop-in hands such meshes to it.
+indexed.setDrawRange(0, Infinity);
+indexed.addGroup(1, 3 * 500, 0);
+compareLists('a group not starting on a triangle', false);
+console.log(`draw range and groups: ${ranged}, ${grouped} and ${both} intersections equal to three's`);
+assert.ok(ranged > 30 && grouped > 100 && both > 30, 'the ranges keep some hits');
+indexed.clearGroups();
+indexed.setDrawRange(0, Infinity);
+fast.material = material;
+brute.material = material;
 
 // Interpolated attributes: uv and vertex normal on a sphere that has both.
 {
