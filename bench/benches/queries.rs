@@ -14,7 +14,8 @@ use criterion::{
 };
 use glam::{Vec3, Vec3A};
 use meshq::bvh::{
-    BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, RayOptions, TriangleTest, node_capacity,
+    BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, RayOptions, TriangleTest, WideNode,
+    node_capacity,
 };
 use meshq::math::Ray;
 use meshq_tests::{LoadedMesh, OwnedBvh, load_mesh, workload};
@@ -268,6 +269,8 @@ fn raycast(c: &mut Criterion) {
     let packed = bvh
         .pack_triangles(&mesh, &mut storage)
         .unwrap_or_else(|e| panic!("{e}"));
+    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+    let wide = bvh.widen(&mut wide_nodes).unwrap_or_else(|e| panic!("{e}"));
     let obvhs_medium = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
     let obvhs_fast = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::fast_build());
     let parry = parry_peer::build(&s.mesh);
@@ -324,6 +327,20 @@ fn raycast(c: &mut Criterion) {
                     .count()
             })
         });
+        group.bench_function("meshq_wide_watertight", |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|r| wide.raycast(&mesh, r).is_some())
+                    .count()
+            })
+        });
+        group.bench_function("meshq_wide_packed_watertight", |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|r| wide.raycast(&packed, r).is_some())
+                    .count()
+            })
+        });
         group.bench_function("obvhs_medium", |b| {
             b.iter(|| {
                 rays.iter()
@@ -372,6 +389,22 @@ fn raycast(c: &mut Criterion) {
                 .count()
         })
     });
+    group.bench_function("meshq_wide_watertight", |b| {
+        b.iter(|| {
+            s.random
+                .iter()
+                .filter(|r| wide.raycast_any(&mesh, r))
+                .count()
+        })
+    });
+    group.bench_function("meshq_wide_packed_watertight", |b| {
+        b.iter(|| {
+            s.random
+                .iter()
+                .filter(|r| wide.raycast_any(&packed, r))
+                .count()
+        })
+    });
     group.bench_function("obvhs_medium", |b| {
         b.iter(|| {
             s.random
@@ -393,6 +426,8 @@ fn closest_point(c: &mut Criterion) {
     let packed = bvh
         .pack_triangles(&mesh, &mut storage)
         .unwrap_or_else(|e| panic!("{e}"));
+    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+    let wide = bvh.widen(&mut wide_nodes).unwrap_or_else(|e| panic!("{e}"));
     let mut group = c.benchmark_group("closest_point");
     configure(&mut group, s.points.len());
     group.bench_function("meshq", |b| {
@@ -417,6 +452,23 @@ fn closest_point(c: &mut Criterion) {
                 .sum::<f32>()
         })
     });
+    for (name, packed_source) in [("meshq_wide", false), ("meshq_wide_packed", true)] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                s.points
+                    .iter()
+                    .map(|&p| {
+                        let found = if packed_source {
+                            wide.closest_point(&packed, p, f32::INFINITY)
+                        } else {
+                            wide.closest_point(&mesh, p, f32::INFINITY)
+                        };
+                        found.map_or(0.0, |c| c.distance_squared)
+                    })
+                    .sum::<f32>()
+            })
+        });
+    }
     group.bench_function("parry3d", |b| {
         b.iter(|| {
             s.points

@@ -33,7 +33,8 @@
 //!   Möller–Trumbore and watertight forms, closest points on plane/segment/triangle,
 //!   point-in-triangle, segment–segment, line–line, triangle–triangle, triangle–box).
 //! - [`mesh`]: [`MeshRef`](mesh::MeshRef) and its validation into [`ValidMesh`](mesh::ValidMesh).
-//! - [`bvh`]: the binned-SAH BVH, its builder, traversal, queries, refit and validator.
+//! - [`bvh`]: the binned-SAH BVH, its builder, traversal, queries, refit and validator, and
+//!   [`WideBvh`](bvh::WideBvh), the same tree collapsed four-wide for faster queries.
 //! - [`query`]: the [`MeshQuery`](query::MeshQuery) trait every structure implements.
 //! - [`error`]: [`MeshError`](error::MeshError), [`BuildError`](error::BuildError),
 //!   [`StructureError`](error::StructureError).

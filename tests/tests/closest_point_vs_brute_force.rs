@@ -1,7 +1,8 @@
 //! Closest-point queries on every bundled mesh equal a brute-force scan (same bits, same
-//! triangle under the tie rule), with and without a maximum distance.
+//! triangle under the tie rule), with and without a maximum distance, on the binary tree and
+//! on the four-wide tree collapsed from it.
 
-use meshq::bvh::{BuildConfig, PackedTriangle};
+use meshq::bvh::{BuildConfig, PackedTriangle, WideNode};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
 
@@ -18,6 +19,8 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         let bvh = owned.view(&mesh).unwrap();
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
+        let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+        let wide = bvh.widen(&mut wide_nodes).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let points = workload::closest_points(&loaded.positions, QUERIES, 0xC105E);
@@ -38,6 +41,14 @@ fn closest_point_matches_brute_force_on_every_mesh() {
             assert_eq!(key(got), key(expected), "{name}: point {i} {p}");
             let from_packed = bvh.closest_point(&packed, p, f32::INFINITY);
             assert_eq!(key(from_packed), key(expected), "{name}: packed, point {i}");
+            let from_wide = wide.closest_point(&mesh, p, f32::INFINITY);
+            assert_eq!(key(from_wide), key(expected), "{name}: wide, point {i}");
+            let wide_packed = wide.closest_point(&packed, p, f32::INFINITY);
+            assert_eq!(
+                key(wide_packed),
+                key(expected),
+                "{name}: wide packed, point {i}"
+            );
             if i >= LIMITED_QUERIES {
                 continue;
             }
@@ -50,6 +61,8 @@ fn closest_point_matches_brute_force_on_every_mesh() {
                 key(expected),
                 "{name}: point {i} {p} within {max}"
             );
+            let from_wide = wide.closest_point(&packed, p, max);
+            assert_eq!(key(from_wide), key(expected), "{name}: wide, point {i}");
             limited_hits += usize::from(got.is_some());
         }
         assert!(

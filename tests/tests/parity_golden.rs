@@ -2,9 +2,9 @@
 //! firmware check too.
 //!
 //! For every bundled mesh the parity run ([`meshq_workload::parity`]) is answered by a
-//! brute-force scan over all triangles; the in-memory BVH and blob views in every mesh layout
-//! must give the same digest, and the file must record exactly that digest. After an intended
-//! change of results, rewrite the file with
+//! brute-force scan over all triangles; the in-memory BVH, its four-wide collapse and blob
+//! views in every mesh layout must give the same digest, and the file must record exactly that
+//! digest. After an intended change of results, rewrite the file with
 //! `MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test parity_golden`.
 
 use std::fmt::Write as _;
@@ -12,7 +12,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use meshq::blob::{BlobView, MeshLayout};
-use meshq::bvh::{BuildConfig, Bvh, RayOptions};
+use meshq::bvh::{BuildConfig, Bvh, RayOptions, WideBvh, WideNode};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq::mesh::ValidMesh;
 use meshq_tests::oracle::BruteForce;
@@ -47,6 +47,23 @@ impl ParityTarget for InMemory<'_> {
     }
     fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
         self.bvh.closest_point(&self.mesh, point, f32::INFINITY)
+    }
+}
+
+struct Wide<'a> {
+    wide: WideBvh<'a>,
+    mesh: ValidMesh<'a>,
+}
+
+impl ParityTarget for Wide<'_> {
+    fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
+        self.wide.raycast(&self.mesh, ray)
+    }
+    fn raycast_any(&mut self, ray: &Ray) -> bool {
+        self.wide.raycast_any(&self.mesh, ray)
+    }
+    fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
+        self.wide.closest_point(&self.mesh, point, f32::INFINITY)
     }
 }
 
@@ -94,6 +111,12 @@ fn computed_line(name: &str) -> String {
         in_memory, expected,
         "{name}: in-memory BVH against brute force"
     );
+    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+    let wide = bvh.widen(&mut wide_nodes).unwrap();
+    // The root's child boxes are padded around their own triangles: inside the root's box.
+    assert!(bounds.contains_aabb(&wide.bounds()), "{name}: wide bounds");
+    let from_wide = run_parity(&spec, bounds, &mut Wide { wide, mesh });
+    assert_eq!(from_wide, expected, "{name}: wide BVH against brute force");
 
     let layouts = [MeshLayout::Indexed, MeshLayout::Packed, MeshLayout::Omitted];
     for layout in layouts {

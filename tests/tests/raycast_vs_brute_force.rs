@@ -1,8 +1,11 @@
 //! Closest-hit and any-hit on every bundled mesh equal a brute-force scan over all triangles
 //! with the same primitive: identical `t` bits, the same triangle (lower index on ties), the
-//! same barycentrics.
+//! same barycentrics. Checked on the binary tree and on the four-wide tree collapsed from it,
+//! reading triangles from the mesh and from packed copies.
 
-use meshq::bvh::{BuildConfig, Bvh, PackedTriangle, PackedTriangles, RayOptions, TriangleTest};
+use meshq::bvh::{
+    BuildConfig, Bvh, PackedTriangle, PackedTriangles, RayOptions, TriangleTest, WideBvh, WideNode,
+};
 use meshq::geom::CullMode;
 use meshq::math::Ray;
 use meshq::mesh::ValidMesh;
@@ -14,8 +17,10 @@ const WATERTIGHT_RAYS: usize = 100_000;
 /// Random rays per mesh with Möller–Trumbore (the brute-force scan dominates the run time).
 const MOLLER_TRUMBORE_RAYS: usize = 25_000;
 
+#[allow(clippy::too_many_arguments)]
 fn assert_same(
     bvh: &Bvh<'_>,
+    wide: &WideBvh<'_>,
     mesh: &ValidMesh<'_>,
     packed: &PackedTriangles<'_>,
     brute: &BruteForce,
@@ -42,6 +47,19 @@ fn assert_same(
             bvh.raycast_any_with(packed, ray, options),
             expected.is_some()
         );
+        let from_wide = wide.raycast_with(mesh, ray, options);
+        assert_eq!(bits(from_wide), bits(expected), "{what}: wide, ray {i}");
+        let wide_packed = wide.raycast_with(packed, ray, options);
+        assert_eq!(
+            bits(wide_packed),
+            bits(expected),
+            "{what}: wide packed, ray {i}"
+        );
+        assert_eq!(
+            wide.raycast_any_with(packed, ray, options),
+            expected.is_some(),
+            "{what}: wide any-hit disagrees on ray {i}"
+        );
         hits += usize::from(expected.is_some());
     }
     hits
@@ -54,6 +72,8 @@ fn run(name: &str, test: TriangleTest) {
     let bvh = owned.view(&mesh).unwrap();
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
     let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
+    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+    let wide = bvh.widen(&mut wide_nodes).unwrap();
     let options = RayOptions {
         test,
         cull: CullMode::None,
@@ -64,12 +84,12 @@ fn run(name: &str, test: TriangleTest) {
     };
     let brute = BruteForce::new(&mesh);
     let rays = workload::random_rays(&loaded.positions, count, 0x5EED_0001);
-    let hits = assert_same(&bvh, &mesh, &packed, &brute, &rays, &options, name);
+    let hits = assert_same(&bvh, &wide, &mesh, &packed, &brute, &rays, &options, name);
     // The workload aims every ray at the bounding box: a good share must hit, or the test
     // would prove little.
     assert!(hits > count / 5, "{name}: only {hits} hits");
     let camera = workload::camera_rays(&loaded.positions, 64, 64);
-    assert_same(&bvh, &mesh, &packed, &brute, &camera, &options, name);
+    assert_same(&bvh, &wide, &mesh, &packed, &brute, &camera, &options, name);
 }
 
 #[test]
@@ -105,6 +125,8 @@ fn culling_and_ray_ranges_match_brute_force() {
         let bvh = owned.view(&mesh).unwrap();
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
+        let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+        let wide = bvh.widen(&mut wide_nodes).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let rays: Vec<Ray> = workload::random_rays(&loaded.positions, 3_000, 7)
@@ -121,6 +143,7 @@ fn culling_and_ray_ranges_match_brute_force() {
             for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
                 assert_same(
                     &bvh,
+                    &wide,
                     &mesh,
                     &packed,
                     &brute,

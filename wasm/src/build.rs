@@ -2,7 +2,7 @@
 
 use js_sys::{Array, Uint16Array, Uint32Array};
 use meshq::blob::BlobView;
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef};
+use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, WideNode};
 use meshq::mesh::MeshRef;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
@@ -74,22 +74,29 @@ pub fn build(
     let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
     let mut order = vec![0u32; n];
     let mut packed = vec![PackedTriangle::EMPTY; n];
-    {
+    let wide = {
         let mesh = MeshRef::from_flat(&positions, &indices)
             .and_then(MeshRef::validate)
             .map_err(error)?;
         let mut scratch = vec![PrimRef::EMPTY; n];
         let bvh = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch).map_err(error)?;
         bvh.pack_triangles(&mesh, &mut packed).map_err(error)?;
+        // Sized by the bound, then trimmed: one collapse instead of a count and a collapse.
+        let mut wide = vec![WideNode::EMPTY; Bvh::wide_node_bound(bvh.nodes().len())];
+        let used = bvh.widen(&mut wide).map_err(error)?.nodes().len();
+        wide.truncate(used);
+        wide.shrink_to_fit();
         let used = bvh.nodes().len();
         nodes.truncate(used);
-    }
+        wide
+    };
     let owner = Owner::Built {
         positions,
         indices,
         nodes,
         order,
         packed,
+        wide,
     };
     Storage::try_new(owner, views)
 }
@@ -107,6 +114,7 @@ fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
             nodes,
             order,
             packed,
+            wide,
         } => {
             // The views must borrow from the owner, so the mesh is validated again (one
             // vectorised pass) and the tree re-borrowed with the topology check only: it was
@@ -118,9 +126,12 @@ fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
             if packed.len() != order.len() {
                 return Err(JsError::new("packed triangles do not match the tree"));
             }
+            // Checked against a fresh collapse of the tree (cheap next to the build).
+            let wide = bvh.wide_view(wide).map_err(error)?;
             Ok(Views::Built {
                 mesh,
                 bvh,
+                wide,
                 packed: LeafOrder(packed),
             })
         }

@@ -1,9 +1,11 @@
 use core::ops::ControlFlow;
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
-use super::traverse::traverse;
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, TreeArrays};
+use super::traverse::Walk;
+use super::wide::traverse::LaneVisitor;
+use super::wide::{WideNode, lanes};
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
 use crate::geom::closest_point_regions;
 use crate::math::{ClosestPoint, dot};
 
@@ -30,7 +32,8 @@ impl<S: LeafTriangles + ?Sized> BvhVisitor for Closest<'_, S> {
             Vec3A::from_array(node.max),
             self.lanes,
         );
-        let lo = d2 - d2 * MARGIN;
+        // A product, not `d2 − d2·MARGIN`: an overflowed (infinite) distance stays comparable.
+        let lo = d2 * (1.0 - MARGIN);
         (lo <= self.limit).then_some(lo)
     }
 
@@ -73,6 +76,13 @@ impl<S: LeafTriangles + ?Sized> BvhVisitor for Closest<'_, S> {
     }
 }
 
+impl<S: LeafTriangles + ?Sized> LaneVisitor for Closest<'_, S> {
+    #[inline(always)]
+    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
+        lanes::enter_point(node, self.point, self.limit, MARGIN)
+    }
+}
+
 /// Squared distance from `p` to the box `[min, max]`, in SIMD lanes where the target has them.
 ///
 /// Used only to decide what to visit (with [`MARGIN`] of slack), never for a reported
@@ -108,7 +118,7 @@ impl Bvh<'_> {
 }
 
 /// [`Bvh::closest_point`] over any storage.
-pub(crate) fn closest_point<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+pub(crate) fn closest_point<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     point: Vec3,
@@ -124,6 +134,6 @@ pub(crate) fn closest_point<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
         limit: max_distance * max_distance,
         best: None,
     };
-    traverse(tree, &mut v);
+    tree.walk(&mut v);
     v.best
 }

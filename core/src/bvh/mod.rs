@@ -38,6 +38,7 @@ mod refit;
 mod stats;
 pub(crate) mod traverse;
 mod tree;
+mod wide;
 
 pub use arrays::{LeafTriangleIds, TreeArrays};
 pub use config::{BuildConfig, SplitStrategy};
@@ -49,6 +50,7 @@ pub use raycast::{RayOptions, TriangleTest};
 pub use stats::{LEAF_HISTOGRAM_LEN, TreeStats};
 pub use traverse::BvhVisitor;
 pub use tree::Bvh;
+pub use wide::{WideBvh, WideNode};
 
 /// The deepest tree any builder makes and any loader accepts (the root is level 1).
 ///

@@ -1,9 +1,12 @@
 use core::ops::ControlFlow;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
-use super::traverse::traverse;
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, TreeArrays};
+use super::traverse::Walk;
+use super::wide::WideNode;
+use super::wide::lanes::LaneRay;
+use super::wide::traverse::LaneVisitor;
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
 use crate::geom::{CullMode, SlabRay, TriangleHit, WatertightRay, moller_trumbore};
 use crate::math::{Ray, RayHit};
 
@@ -83,6 +86,8 @@ fn enter_box(slab: &SlabRay, node: &BvhNode) -> Option<f32> {
 struct ClosestHit<'m, S: ?Sized, K> {
     source: &'m S,
     slab: SlabRay,
+    /// The same ray for wide nodes (optimised away when the tree is binary).
+    lanes: LaneRay,
     kernel: K,
     best: Option<RayHit>,
 }
@@ -125,9 +130,19 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for ClosestHit<'_, S, K> {
     }
 }
 
+impl<S: LeafTriangles + ?Sized, K: Kernel> LaneVisitor for ClosestHit<'_, S, K> {
+    #[inline(always)]
+    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
+        self.lanes
+            .enter(node, self.slab.t_min, self.slab.t_max, MARGIN)
+    }
+}
+
 struct AnyHit<'m, S: ?Sized, K> {
     source: &'m S,
     slab: SlabRay,
+    /// The same ray for wide nodes (optimised away when the tree is binary).
+    lanes: LaneRay,
     kernel: K,
     found: bool,
 }
@@ -152,6 +167,14 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for AnyHit<'_, S, K> {
             }
         }
         ControlFlow::Continue(())
+    }
+}
+
+impl<S: LeafTriangles + ?Sized, K: Kernel> LaneVisitor for AnyHit<'_, S, K> {
+    #[inline(always)]
+    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
+        self.lanes
+            .enter(node, self.slab.t_min, self.slab.t_max, MARGIN)
     }
 }
 
@@ -204,7 +227,7 @@ impl Bvh<'_> {
 
 /// [`Bvh::raycast_with`] over any storage.
 #[inline]
-pub(crate) fn raycast_with<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+pub(crate) fn raycast_with<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     ray: &Ray,
@@ -218,7 +241,7 @@ pub(crate) fn raycast_with<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
 
 /// [`Bvh::raycast_any_with`] over any storage.
 #[inline]
-pub(crate) fn raycast_any_with<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+pub(crate) fn raycast_any_with<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     ray: &Ray,
@@ -262,17 +285,18 @@ struct ClosestQuery<'q, A: ?Sized, S: ?Sized> {
     source: &'q S,
 }
 
-impl<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, A, S> {
+impl<A: Walk + ?Sized, S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, A, S> {
     type Output = Option<RayHit>;
 
     fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> Option<RayHit> {
         let mut v = ClosestHit {
             source: self.source,
             slab,
+            lanes: LaneRay::new(&slab),
             kernel,
             best: None,
         };
-        traverse(self.tree, &mut v);
+        self.tree.walk(&mut v);
         v.best
     }
 }
@@ -282,17 +306,18 @@ struct AnyQuery<'q, A: ?Sized, S: ?Sized> {
     source: &'q S,
 }
 
-impl<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, A, S> {
+impl<A: Walk + ?Sized, S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, A, S> {
     type Output = bool;
 
     fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> bool {
         let mut v = AnyHit {
             source: self.source,
             slab,
+            lanes: LaneRay::new(&slab),
             kernel,
             found: false,
         };
-        traverse(self.tree, &mut v);
+        self.tree.walk(&mut v);
         v.found
     }
 }

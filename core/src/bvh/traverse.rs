@@ -1,5 +1,6 @@
 use core::ops::ControlFlow;
 
+use super::wide::traverse::LaneVisitor;
 use super::{Bvh, BvhNode, LeafTriangleIds, MAX_DEPTH, TreeArrays};
 
 /// A query over a BVH, driven by [`Bvh::traverse`]: the tree supplies boxes and triangle
@@ -26,6 +27,20 @@ pub trait BvhVisitor {
     ///
     /// [`PackedTriangles`]: super::PackedTriangles
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;
+}
+
+/// A tree the built-in queries can walk: binary arrays (in slices or a blob) or a
+/// [`WideBvh`](super::WideBvh). One query visitor serves both.
+pub(crate) trait Walk {
+    /// Runs `visitor` over the tree, nearer children first.
+    fn walk<V: LaneVisitor>(&self, visitor: &mut V);
+}
+
+impl<A: TreeArrays + ?Sized> Walk for A {
+    #[inline(always)]
+    fn walk<V: LaneVisitor>(&self, visitor: &mut V) {
+        traverse(self, visitor);
+    }
 }
 
 impl Bvh<'_> {

@@ -107,6 +107,8 @@ pub enum BufferKind {
     Scratch,
     /// Packed triangles (one [`PackedTriangle`](crate::bvh::PackedTriangle) per triangle).
     Packed,
+    /// Wide nodes (size it with [`Bvh::wide_node_count`](crate::bvh::Bvh::wide_node_count)).
+    WideNodes,
 }
 
 /// Why a structure could not be built.
@@ -153,6 +155,7 @@ impl fmt::Display for BuildError {
                     BufferKind::Order => "order",
                     BufferKind::Scratch => "scratch",
                     BufferKind::Packed => "packed triangle",
+                    BufferKind::WideNodes => "wide node",
                 };
                 write!(f, "{which} buffer too small: needed {needed}, got {got}")
             }
@@ -238,6 +241,13 @@ pub enum StructureError {
         /// The triangle index.
         tri: u32,
     },
+    /// Wide nodes are not the ones [`Bvh::widen`](crate::bvh::Bvh::widen) writes for the
+    /// tree they are paired with.
+    WideNodeMismatch {
+        /// The first wide node that differs (or the expected count when only the count
+        /// differs).
+        node: u32,
+    },
 }
 
 impl fmt::Display for StructureError {
@@ -275,6 +285,9 @@ impl fmt::Display for StructureError {
                     f,
                     "leaf {node}: triangle {tri} lies outside the leaf's bounds"
                 )
+            }
+            Self::WideNodeMismatch { node } => {
+                write!(f, "wide node {node} does not match the binary tree")
             }
         }
     }

@@ -1,0 +1,104 @@
+//! Quick A/B timing of meshq's own query paths on the bunny, interleaved round by round and
+//! reported as the best round, so machine noise hits every variant alike. The criterion bench
+//! (`cargo bench -p meshq-bench`) remains the measurement of record against the peers.
+//!
+//! `cargo run --release -p meshq-bench --example ab [substring]` (only variants whose name
+//! contains the substring run, e.g. for a profiler).
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use meshq::bvh::{BuildConfig, PackedTriangle, WideNode};
+use meshq_tests::{OwnedBvh, load_mesh, workload};
+
+const ROUNDS: usize = 11;
+
+fn main() {
+    let loaded = load_mesh("stanford-bunny");
+    let mesh = loaded.valid();
+    let rays = workload::random_rays(&loaded.positions, 200_000, 1);
+    let points = workload::closest_points(&loaded.positions, 20_000, 2);
+    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).expect("build");
+    let bvh = owned.view(&mesh).expect("view");
+    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+    let packed = bvh.pack_triangles(&mesh, &mut storage).expect("pack");
+    let start = Instant::now();
+    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+    let counted = start.elapsed();
+    let wide = bvh.widen(&mut wide_nodes).expect("widen");
+    println!(
+        "{} binary nodes -> {} wide nodes; counted in {:.2} ms, counted and collapsed in {:.2} ms",
+        bvh.nodes().len(),
+        wide.nodes().len(),
+        counted.as_secs_f64() * 1e3,
+        (start.elapsed() - counted).as_secs_f64() * 1e3
+    );
+
+    type Run<'a> = Box<dyn Fn() -> usize + 'a>;
+    let variants: Vec<(&str, usize, Run<'_>)> = vec![
+        (
+            "rays binary packed",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| bvh.raycast(&packed, r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "rays wide packed",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| wide.raycast(&packed, r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "any binary packed",
+            rays.len(),
+            Box::new(|| rays.iter().filter(|r| bvh.raycast_any(&packed, r)).count()),
+        ),
+        (
+            "any wide packed",
+            rays.len(),
+            Box::new(|| rays.iter().filter(|r| wide.raycast_any(&packed, r)).count()),
+        ),
+        (
+            "closest binary packed",
+            points.len(),
+            Box::new(|| {
+                points
+                    .iter()
+                    .filter(|&&p| bvh.closest_point(&packed, p, f32::INFINITY).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "closest wide packed",
+            points.len(),
+            Box::new(|| {
+                points
+                    .iter()
+                    .filter(|&&p| wide.closest_point(&packed, p, f32::INFINITY).is_some())
+                    .count()
+            }),
+        ),
+    ];
+    let only = std::env::args().nth(1).unwrap_or_default();
+    let variants: Vec<_> = variants
+        .into_iter()
+        .filter(|(name, _, _)| name.contains(only.as_str()))
+        .collect();
+    let mut best = vec![Duration::MAX; variants.len()];
+    for _ in 0..ROUNDS {
+        for ((_, _, run), best) in variants.iter().zip(&mut best) {
+            let start = Instant::now();
+            black_box(run());
+            *best = (*best).min(start.elapsed());
+        }
+    }
+    for ((name, n, _), best) in variants.iter().zip(&best) {
+        println!("{name:24} {:8.3} M/s", *n as f64 / best.as_secs_f64() / 1e6);
+    }
+}

@@ -1,0 +1,109 @@
+//! Collapsing a binary BVH into a four-wide one.
+
+use super::WideNode;
+use crate::bvh::{Bvh, BvhNode, MAX_DEPTH, TreeArrays};
+use crate::error::BuildError;
+
+/// Inner binary nodes waiting to become wide nodes. A wide node is no deeper than the binary
+/// node it starts from, and each one leaves at most three siblings pending per level, so a
+/// valid tree never fills this.
+const PENDING: usize = 3 * MAX_DEPTH as usize + 1;
+
+/// Collapses `tree` into wide nodes, handing each to `sink` with its index (in any order), and
+/// returns how many there are. The same tree always gives the same nodes.
+///
+/// Each wide node starts from an inner binary node's two children and repeatedly opens the
+/// inner child with the largest surface area (the one a ray is most likely to enter; the
+/// earlier lane on ties) until it has four children or only leaves. Children of one node get
+/// consecutive indices.
+pub(super) fn collapse(
+    tree: &Bvh<'_>,
+    mut sink: impl FnMut(usize, WideNode),
+) -> Result<usize, BuildError> {
+    let Some(root) = tree.node(0) else {
+        return Ok(0);
+    };
+    if root.is_leaf() {
+        let mut node = WideNode::EMPTY;
+        node.set_lane(0, &root.aabb(), root.first, root.count);
+        sink(0, node);
+        return Ok(1);
+    }
+    let too_deep = BuildError::TooDeep {
+        max_depth: MAX_DEPTH,
+        triangles: tree.slot_count(),
+    };
+    let mut pending = [(0u32, 0u32); PENDING];
+    let mut len = 1usize;
+    let mut next = 1u32;
+    while let Some(at) = len.checked_sub(1) {
+        len = at;
+        let Some(&(binary, wide)) = pending.get(at) else {
+            return Err(too_deep);
+        };
+        let Some(inner) = tree.node(binary as usize) else {
+            return Err(too_deep);
+        };
+        let (children, lanes) = open(tree, &inner);
+        let mut node = WideNode::EMPTY;
+        for (lane, &(index, child)) in children.iter().enumerate().take(lanes) {
+            if child.is_leaf() {
+                node.set_lane(lane, &child.aabb(), child.first, child.count);
+            } else {
+                node.set_lane(lane, &child.aabb(), next, 0);
+                let slot = pending.get_mut(len).ok_or(too_deep)?;
+                *slot = (index, next);
+                len += 1;
+                next = next.checked_add(1).ok_or(too_deep)?;
+            }
+        }
+        sink(wide as usize, node);
+    }
+    Ok(next as usize)
+}
+
+/// The up to four binary descendants of `inner` that become one wide node's children, as
+/// `(binary index, node)`, and how many there are. An opened child's left half takes its
+/// lane and its right half goes last (lane order carries no meaning: queries sort lanes by
+/// distance).
+fn open(tree: &Bvh<'_>, inner: &BvhNode) -> ([(u32, BvhNode); 4], usize) {
+    let mut lanes = [(0u32, BvhNode::EMPTY); 4];
+    let Some([left, right]) = tree.node_pair(inner.first as usize) else {
+        return (lanes, 0);
+    };
+    lanes[0] = (inner.first, left);
+    lanes[1] = (inner.first.wrapping_add(1), right);
+    let mut len = 2usize;
+    while len < 4 {
+        let Some((lane, first)) = widest_inner(lanes.get(..len).unwrap_or_default()) else {
+            break;
+        };
+        let Some([left, right]) = tree.node_pair(first as usize) else {
+            break;
+        };
+        if let Some(l) = lanes.get_mut(lane) {
+            *l = (first, left);
+        }
+        if let Some(r) = lanes.get_mut(len) {
+            *r = (first.wrapping_add(1), right);
+        }
+        len += 1;
+    }
+    (lanes, len)
+}
+
+/// The lane of the inner node with the largest surface area (the first on ties) and that
+/// node's first child index, or `None` when every lane is a leaf.
+fn widest_inner(lanes: &[(u32, BvhNode)]) -> Option<(usize, u32)> {
+    let mut best: Option<(usize, u32, f32)> = None;
+    for (lane, (_, node)) in lanes.iter().enumerate() {
+        if node.is_leaf() {
+            continue;
+        }
+        let area = node.aabb().half_area();
+        if best.is_none_or(|(_, _, a)| area > a) {
+            best = Some((lane, node.first, area));
+        }
+    }
+    best.map(|(lane, first, _)| (lane, first))
+}

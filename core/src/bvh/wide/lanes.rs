@@ -1,0 +1,97 @@
+//! The box tests of a wide node's four lanes, one SIMD operation per coordinate.
+//!
+//! Like the binary tree's box tests these only decide what a query visits, with the query's
+//! margin of slack, so lane-wise rounding (or a target without SIMD) never changes an answer.
+
+use glam::{Vec3, Vec4};
+
+use super::WideNode;
+use super::traverse::used_lanes;
+use crate::geom::SlabRay;
+
+/// A ray's origin and padded inverse direction (from its [`SlabRay`]) spread over four lanes,
+/// computed once per ray.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LaneRay {
+    origin: [Vec4; 3],
+    inv_dir: [Vec4; 3],
+    /// Per axis, whether the inverse direction is negative (the near plane is `max`).
+    negative: [bool; 3],
+}
+
+impl LaneRay {
+    #[inline(always)]
+    pub(crate) fn new(ray: &SlabRay) -> Self {
+        let (o, inv) = (ray.origin, ray.inv_dir);
+        Self {
+            origin: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
+            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
+            negative: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+        }
+    }
+
+    /// The lanes this ray enters within `[t_min, t_max]`, widened by `margin` (relative), and
+    /// each lane's entry distance less that margin.
+    ///
+    /// Each axis reads its near plane first (`min` for a positive inverse direction), which
+    /// gives the same interval as ordering the two slab distances, and sends an unused lane's
+    /// empty box to an empty interval.
+    #[inline(always)]
+    pub(crate) fn enter(
+        &self,
+        node: &WideNode,
+        t_min: f32,
+        t_max: f32,
+        margin: f32,
+    ) -> (u32, Vec4) {
+        let [ox, oy, oz] = self.origin;
+        let [ix, iy, iz] = self.inv_dir;
+        let [neg_x, neg_y, neg_z] = self.negative;
+        let (nx, fx) = near_far(neg_x, node.min_x, node.max_x);
+        let (ny, fy) = near_far(neg_y, node.min_y, node.max_y);
+        let (nz, fz) = near_far(neg_z, node.min_z, node.max_z);
+        let entry = ((nx - ox) * ix)
+            .max((ny - oy) * iy)
+            .max((nz - oz) * iz)
+            .max(Vec4::splat(t_min));
+        let exit = ((fx - ox) * ix)
+            .min((fy - oy) * iy)
+            .min((fz - oz) * iz)
+            .min(Vec4::splat(t_max));
+        let lo = entry - entry.abs() * margin;
+        let hi = exit + exit.abs() * margin;
+        (lo.cmple(hi).bitmask() & used_lanes(node), lo)
+    }
+}
+
+/// One axis's (near, far) planes for a ray whose inverse direction is `negative` or not.
+#[inline(always)]
+fn near_far(negative: bool, min: [f32; 4], max: [f32; 4]) -> (Vec4, Vec4) {
+    if negative {
+        (Vec4::from_array(max), Vec4::from_array(min))
+    } else {
+        (Vec4::from_array(min), Vec4::from_array(max))
+    }
+}
+
+/// The lanes whose box lies within squared distance `limit` of `point`, after shrinking each
+/// squared distance by `margin` (relative), and those shrunk squared distances.
+#[inline(always)]
+pub(crate) fn enter_point(node: &WideNode, point: Vec3, limit: f32, margin: f32) -> (u32, Vec4) {
+    let axis = |p: f32, min: [f32; 4], max: [f32; 4]| {
+        let p = Vec4::splat(p);
+        let d = (Vec4::from_array(min) - p)
+            .max(p - Vec4::from_array(max))
+            .max(Vec4::ZERO);
+        d * d
+    };
+    let d2 = axis(point.x, node.min_x, node.max_x)
+        + axis(point.y, node.min_y, node.max_y)
+        + axis(point.z, node.min_z, node.max_z);
+    // A product, not `d2 − d2·margin`: an overflowed (infinite) distance stays comparable.
+    let lo = d2 * (1.0 - margin);
+    (
+        lo.cmple(Vec4::splat(limit)).bitmask() & used_lanes(node),
+        lo,
+    )
+}

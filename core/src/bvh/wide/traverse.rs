@@ -1,0 +1,127 @@
+//! Depth-first traversal of a four-wide BVH, nearest child first.
+
+use glam::Vec4;
+
+use super::{WideBvh, WideNode};
+use crate::bvh::traverse::Walk;
+use crate::bvh::{BvhVisitor, LeafTriangleIds, MAX_DEPTH};
+
+/// A [`BvhVisitor`] that can also judge the four child boxes of a [`WideNode`] at once.
+pub(crate) trait LaneVisitor: BvhVisitor {
+    /// The lanes to enter, as a bit mask (bit `i` for lane `i`, unused lanes never set), and
+    /// each lane's key with the meaning [`BvhVisitor::enter`] gives it: smaller keys are
+    /// visited first, and [`BvhVisitor::revisit`] judges them when they come off the stack.
+    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4);
+}
+
+/// Lanes of unused children are empty boxes (`min > max`): the mask of the used ones.
+#[inline(always)]
+pub(crate) fn used_lanes(node: &WideNode) -> u32 {
+    Vec4::from_array(node.min_x)
+        .cmple(Vec4::from_array(node.max_x))
+        .bitmask()
+}
+
+/// A child to visit: an inner node (`count == 0`, `child` its index) or a leaf.
+#[derive(Clone, Copy)]
+struct Child {
+    child: u32,
+    count: u32,
+    key: f32,
+}
+
+/// Deferred children. Each level defers at most three, and a wide tree is no deeper than
+/// the binary tree it came from ([`MAX_DEPTH`]), so the stack never fills.
+const STACK: usize = 3 * MAX_DEPTH as usize;
+
+/// Runs `visitor` over `tree`: depth first, children in ascending key order (lower lane first
+/// on equal keys), with a fixed stack and no allocation.
+#[inline(always)]
+pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V) {
+    // Uninitialised until pushed: zeroing kilobytes per query would cost more than a node.
+    let mut stack = heapless::Vec::<Child, STACK>::new();
+    let mut at = Child {
+        child: 0,
+        count: 0,
+        key: 0.0,
+    };
+    loop {
+        if at.count > 0 {
+            if let Some(tris) = leaf(tree, at.child, at.count)
+                && visitor.leaf(tris).is_break()
+            {
+                return;
+            }
+        } else if let Some(node) = tree.nodes.get(at.child as usize) {
+            let (mask, keys) = visitor.enter_lanes(node);
+            let mask = mask & 0xF;
+            if mask != 0 {
+                let keys = keys.to_array();
+                let lane_of = |lane: u32| -> Child {
+                    let lane = lane as usize;
+                    Child {
+                        child: node.child.get(lane).copied().unwrap_or(0),
+                        count: node.count.get(lane).copied().unwrap_or(0),
+                        key: keys.get(lane).copied().unwrap_or(f32::INFINITY),
+                    }
+                };
+                if mask & (mask - 1) == 0 {
+                    at = lane_of(mask.trailing_zeros());
+                    continue;
+                }
+                let mut hits = [at; 4];
+                let mut n = 0usize;
+                let mut bits = mask;
+                while bits != 0 {
+                    let c = lane_of(bits.trailing_zeros());
+                    bits &= bits - 1;
+                    // Insertion by key, after equal keys, so lower lanes win ties.
+                    let mut i = n;
+                    while i > 0 {
+                        let Some(&prev) = hits.get(i - 1) else { break };
+                        if prev.key <= c.key {
+                            break;
+                        }
+                        if let Some(slot) = hits.get_mut(i) {
+                            *slot = prev;
+                        }
+                        i -= 1;
+                    }
+                    if let Some(slot) = hits.get_mut(i) {
+                        *slot = c;
+                    }
+                    n += 1;
+                }
+                // Farthest deferred first, so the nearer ones come off the stack first.
+                for c in hits.iter().take(n).skip(1).rev() {
+                    let _ = stack.push(*c);
+                }
+                at = hits[0];
+                continue;
+            }
+        }
+        loop {
+            let Some(next) = stack.pop() else {
+                return;
+            };
+            if visitor.revisit(next.key) {
+                at = next;
+                break;
+            }
+        }
+    }
+}
+
+#[inline(always)]
+fn leaf<'t>(tree: &WideBvh<'t>, first: u32, count: u32) -> Option<LeafTriangleIds<'t>> {
+    let first = first as usize;
+    let ids = tree.order.get(first..first.checked_add(count as usize)?)?;
+    Some(LeafTriangleIds::from_words(first, ids))
+}
+
+impl Walk for WideBvh<'_> {
+    #[inline(always)]
+    fn walk<V: LaneVisitor>(&self, visitor: &mut V) {
+        traverse_wide(self, visitor);
+    }
+}

@@ -1,0 +1,299 @@
+//! The four-wide BVH: its structure checked against the binary tree it was collapsed from
+//! (same leaves, each exactly once; boxes nested; children after parents), its buffer and
+//! validation errors, and its answers on the awkward meshes (one triangle, coincident
+//! centroids, degenerate triangles, tiny and huge coordinates) against brute force.
+
+use std::collections::BTreeMap;
+
+use glam::Vec3;
+use meshq::bvh::{BuildConfig, Bvh, WideBvh, WideNode};
+use meshq::error::{BufferKind, BuildError, StructureError};
+use meshq::math::{Aabb, Ray};
+use meshq::mesh::MeshRef;
+use meshq_tests::oracle::BruteForce;
+use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
+
+fn boxes_bits(b: &Aabb) -> [u32; 6] {
+    [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits)
+}
+
+/// Checks `wide` against `bvh` from first principles, returning the wide depth.
+fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize {
+    let nodes = wide.nodes();
+    // Binary leaves by range, with their boxes: each must appear exactly once as a leaf lane.
+    let mut leaves: BTreeMap<(u32, u32), [u32; 6]> = bvh
+        .nodes()
+        .iter()
+        .filter(|n| n.is_leaf())
+        .map(|n| ((n.first, n.count), boxes_bits(&n.aabb())))
+        .collect();
+    let binary_boxes: Vec<[u32; 6]> = bvh.nodes().iter().map(|n| boxes_bits(&n.aabb())).collect();
+    let mut referenced = vec![0usize; nodes.len()];
+    let mut depth = vec![0usize; nodes.len()];
+    if let Some(d) = depth.first_mut() {
+        *d = 1;
+    }
+    for (index, node) in nodes.iter().enumerate() {
+        let lanes = node.lanes();
+        let single_leaf = bvh.nodes().len() == 1;
+        assert!(
+            (if single_leaf { 1..=1 } else { 2..=4 }).contains(&lanes),
+            "{what}: node {index} has {lanes} lanes"
+        );
+        for lane in lanes..4 {
+            let unused = node.lane_box(lane);
+            assert!(unused.min.x == f32::INFINITY && unused.max.x == f32::NEG_INFINITY);
+            assert_eq!((node.child[lane], node.count[lane]), (0, 0), "{what}");
+        }
+        for lane in 0..lanes {
+            let b = node.lane_box(lane);
+            // Every lane box is one of the binary tree's boxes, bit for bit.
+            assert!(
+                binary_boxes.contains(&boxes_bits(&b)),
+                "{what}: node {index} lane {lane}"
+            );
+            let (child, count) = (node.child[lane], node.count[lane]);
+            if count > 0 {
+                let expected = leaves.remove(&(child, count));
+                assert_eq!(
+                    expected,
+                    Some(boxes_bits(&b)),
+                    "{what}: leaf lane ({child}, {count}) of node {index} is not a binary leaf, or repeats"
+                );
+            } else {
+                let c = child as usize;
+                assert!(
+                    c > index && c < nodes.len(),
+                    "{what}: node {index} child {c}"
+                );
+                referenced[c] += 1;
+                depth[c] = depth[index] + 1;
+                let inner = &nodes[c];
+                for l in 0..inner.lanes() {
+                    let cb = inner.lane_box(l);
+                    assert!(
+                        b.contains_aabb(&cb),
+                        "{what}: node {c} lane {l} is outside its parent lane"
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        leaves.is_empty(),
+        "{what}: {} binary leaves missing",
+        leaves.len()
+    );
+    assert!(
+        referenced.iter().skip(1).all(|&r| r == 1),
+        "{what}: every non-root wide node is some lane's child exactly once"
+    );
+    let wide_depth = depth.iter().copied().max().unwrap_or(0);
+    assert!(wide_depth <= bvh.depth() as usize, "{what}");
+    wide_depth
+}
+
+#[test]
+fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
+    let configs = [
+        ("default", BuildConfig::default()),
+        ("fast", BuildConfig::fast()),
+        ("high_quality", BuildConfig::high_quality()),
+        (
+            "leaf 1",
+            BuildConfig {
+                max_leaf_size: 1,
+                ..BuildConfig::default()
+            },
+        ),
+    ];
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        for (label, config) in &configs {
+            let owned = OwnedBvh::build(&mesh, config).unwrap();
+            let bvh = owned.view(&mesh).unwrap();
+            let count = bvh.wide_node_count();
+            assert!(count <= Bvh::wide_node_bound(bvh.nodes().len()));
+            // Exactly sized and bound-sized buffers give the same nodes.
+            let mut exact = vec![WideNode::EMPTY; count];
+            let wide = bvh.widen(&mut exact).unwrap();
+            assert_eq!(wide.nodes().len(), count);
+            let what = format!("{name} {label}");
+            let depth = check_against_binary(&bvh, &wide, &what);
+            let inner = bvh.nodes().iter().filter(|n| !n.is_leaf()).count();
+            // Four-wide nodes take about two binary levels at a time.
+            assert!(
+                count * 2 <= inner + inner / 4 + 1,
+                "{what}: {count} of {inner}"
+            );
+            assert!(depth < bvh.depth() as usize, "{what}: depth {depth}");
+            let mut roomy = vec![WideNode::EMPTY; Bvh::wide_node_bound(bvh.nodes().len())];
+            let again = bvh.widen(&mut roomy).unwrap();
+            assert!(
+                again
+                    .nodes()
+                    .iter()
+                    .zip(wide.nodes())
+                    .all(|(a, b)| a.same_bits(b))
+            );
+        }
+    }
+}
+
+#[test]
+fn a_short_buffer_is_an_error_and_nothing_is_written() {
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    let needed = bvh.wide_node_count();
+    let mut short = vec![WideNode::EMPTY; needed - 1];
+    assert_eq!(
+        bvh.widen(&mut short).unwrap_err(),
+        BuildError::BufferTooSmall {
+            buffer: BufferKind::WideNodes,
+            needed,
+            got: needed - 1
+        }
+    );
+    assert!(short.iter().all(|n| n.same_bits(&WideNode::EMPTY)));
+}
+
+#[test]
+fn wide_view_accepts_exactly_the_widened_nodes() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = owned.view(&mesh).unwrap();
+    let mut nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+    bvh.widen(&mut nodes).unwrap();
+    let kept = nodes.clone();
+    let view = bvh.wide_view(&kept).unwrap();
+    let ray = workload::random_rays(&loaded.positions, 1, 3)[0];
+    assert_eq!(view.raycast(&mesh, &ray), bvh.raycast(&mesh, &ray));
+
+    let mismatch = |node| Err(StructureError::WideNodeMismatch { node });
+    let mut shrunk = kept.clone();
+    shrunk[7].max_y[1] = f32::from_bits(shrunk[7].max_y[1].to_bits() - 1);
+    assert_eq!(bvh.wide_view(&shrunk).map(|_| ()), mismatch(7));
+    // A lane pointing back at the root would loop forever: refused.
+    let mut cycle = kept.clone();
+    let (at, lane) = (0..cycle.len())
+        .rev()
+        .find_map(|i| {
+            (0..cycle[i].lanes())
+                .find(|&l| cycle[i].count[l] == 0)
+                .map(|l| (i, l))
+        })
+        .unwrap();
+    cycle[at].child[lane] = 0;
+    assert_eq!(bvh.wide_view(&cycle).map(|_| ()), mismatch(at as u32));
+    let last = kept.len() - 1;
+    assert_eq!(
+        bvh.wide_view(&kept[..last]).map(|_| ()),
+        mismatch(last as u32)
+    );
+    let mut longer = kept.clone();
+    longer.push(WideNode::EMPTY);
+    assert_eq!(
+        bvh.wide_view(&longer).map(|_| ()),
+        mismatch(kept.len() as u32)
+    );
+}
+
+#[test]
+fn empty_and_single_triangle_trees() {
+    let empty = MeshRef::new(&[], &[]).validate().unwrap();
+    let owned = OwnedBvh::build(&empty, &BuildConfig::default()).unwrap();
+    let bvh = owned.view(&empty).unwrap();
+    assert_eq!(bvh.wide_node_count(), 0);
+    let mut none: [WideNode; 0] = [];
+    let wide = bvh.widen(&mut none).unwrap();
+    assert!(wide.is_empty() && wide.bounds() == Aabb::EMPTY);
+    let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
+    assert_eq!(wide.raycast(&empty, &ray), None);
+    assert!(!wide.raycast_any(&empty, &ray));
+    assert_eq!(wide.closest_point(&empty, Vec3::ZERO, f32::INFINITY), None);
+
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let one = MeshRef::new(&positions, &[[0, 1, 2]]).validate().unwrap();
+    let owned = OwnedBvh::build(&one, &BuildConfig::default()).unwrap();
+    let bvh = owned.view(&one).unwrap();
+    let mut nodes = [WideNode::EMPTY; 1];
+    let wide = bvh.widen(&mut nodes).unwrap();
+    assert_eq!(wide.nodes()[0].lanes(), 1);
+    assert_eq!(wide.bounds(), bvh.bounds());
+    let hit = wide.raycast(&one, &ray).unwrap();
+    assert_eq!((hit.tri, hit.t), (0, 1.0));
+    assert!(wide.raycast_any(&one, &ray));
+    assert!(!wide.raycast_any(&one, &ray.with_range(0.0, 0.5)));
+    let c = wide
+        .closest_point(&one, Vec3::new(2.0, 0.0, 0.0), f32::INFINITY)
+        .unwrap();
+    assert_eq!((c.tri, c.distance_squared), (0, 1.0));
+    assert_eq!(
+        wide.closest_point(&one, Vec3::new(2.0, 0.0, 0.0), 0.5),
+        None
+    );
+    assert_eq!(wide.closest_point(&one, Vec3::splat(f32::NAN), 1.0), None);
+}
+
+/// A named mesh: positions and triangles.
+type Case = (String, Vec<[f32; 3]>, Vec<[u32; 3]>);
+
+/// Meshes the binary tree's edge-case tests use, answered by the wide tree.
+#[test]
+fn awkward_meshes_match_brute_force() {
+    let spot = load_mesh("spot");
+    let mut cases: Vec<Case> = Vec::new();
+    for (scale, offset) in [(1e-6f32, 0.0f32), (1e6, -2.5e6)] {
+        let positions = spot
+            .positions
+            .iter()
+            .map(|p| p.map(|c| c * scale + offset))
+            .collect();
+        cases.push((format!("spot x{scale}"), positions, spot.triangles.clone()));
+    }
+    // Coincident centroids: every triangle is symmetric about the origin.
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for i in 0..500u32 {
+        let (s, c) = (i as f32 * 0.61).sin_cos();
+        let p0 = Vec3::new(c, s, 0.3 * (i % 7) as f32 - 0.95);
+        let p2 = Vec3::new(0.5 * c, -0.5 * s, -0.25 * p0.z);
+        positions.extend([p0, -p0, p2].map(|v| v.to_array()));
+        triangles.push([3 * i, 3 * i + 1, 3 * i + 2]);
+        // And a zero-area one at the same place, never to be returned.
+        triangles.push([3 * i, 3 * i, 3 * i + 1]);
+    }
+    cases.push(("coincident centroids".into(), positions, triangles));
+    for (what, positions, triangles) in &cases {
+        let mesh = MeshRef::new(positions, triangles).validate().unwrap();
+        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = owned.view(&mesh).unwrap();
+        let mut nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
+        let wide = bvh.widen(&mut nodes).unwrap();
+        check_against_binary(&bvh, &wide, what);
+        let brute = BruteForce::new(&mesh);
+        let mut hits = 0;
+        for ray in workload::random_rays(positions, 3_000, 31) {
+            let key = |h: Option<meshq::math::RayHit>| h.map(|h| (h.t.to_bits(), h.tri));
+            let expected = brute.raycast(&ray, &Default::default());
+            assert_eq!(key(wide.raycast(&mesh, &ray)), key(expected), "{what}");
+            assert_eq!(wide.raycast_any(&mesh, &ray), expected.is_some(), "{what}");
+            hits += usize::from(expected.is_some());
+        }
+        assert!(hits > 300, "{what}: {hits} hits");
+        for p in workload::closest_points(positions, 300, 32) {
+            let key = |c: Option<meshq::math::ClosestPoint>| {
+                c.map(|c| (c.distance_squared.to_bits(), c.tri))
+            };
+            assert_eq!(
+                key(wide.closest_point(&mesh, p, f32::INFINITY)),
+                key(brute.closest_point(p, f32::INFINITY)),
+                "{what}"
+            );
+        }
+    }
+}
