@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::bvh::{Bvh, LeafTriangles, RayOptions};
+use crate::bvh::{Bvh, LeafTriangles, RayOptions, WideBvh};
 use crate::math::{ClosestPoint, Ray, RayHit};
 
 /// Ray and point queries over a mesh through an acceleration structure.
@@ -65,5 +65,34 @@ impl MeshQuery for Bvh<'_> {
         max_distance: f32,
     ) -> Option<ClosestPoint> {
         Bvh::closest_point(self, source, point, max_distance)
+    }
+}
+
+impl MeshQuery for WideBvh<'_> {
+    fn raycast_with<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> Option<RayHit> {
+        WideBvh::raycast_with(self, source, ray, options)
+    }
+
+    fn raycast_any_with<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        ray: &Ray,
+        options: &RayOptions,
+    ) -> bool {
+        WideBvh::raycast_any_with(self, source, ray, options)
+    }
+
+    fn closest_point<S: LeafTriangles + ?Sized>(
+        &self,
+        source: &S,
+        point: Vec3,
+        max_distance: f32,
+    ) -> Option<ClosestPoint> {
+        WideBvh::closest_point(self, source, point, max_distance)
     }
 }
