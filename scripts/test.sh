@@ -18,6 +18,8 @@ cargo clippy --locked --workspace --all-targets -- -D warnings
 
 step "docs (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --locked --workspace --no-deps
+# The core alone, without the features the workspace turns on: its links must hold there too.
+RUSTDOCFLAGS="-D warnings" cargo doc --locked -p meshq --no-deps --no-default-features
 
 step "no_std core without features for Cortex-M4F and WebAssembly"
 # With blobs and the workloads, both targets are built further down: the firmware and the

@@ -48,7 +48,7 @@
 //! - Counter-clockwise triangles face the side their normal `(b − a) × (c − a)` points to.
 //!
 //! ## Features
-//! - `blob`: prebuilt blobs ([`blob`]): encode a BVH and its mesh with postcard and query them
+//! - `blob`: prebuilt blobs (module `blob`): encode a BVH and its mesh with postcard and query them
 //!   in place from bytes. Adds `postcard` and `crc` (both `no_std`, no allocation).
 //!
 //! Features add API only; none changes a layout, a wire format or a result.
