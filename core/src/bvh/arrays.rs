@@ -54,6 +54,13 @@ impl<'a> LeafTriangleIds<'a> {
         }
     }
 
+    /// Slots `first..first + count` of an order array, or `None` unless all exist.
+    #[inline(always)]
+    pub(crate) fn in_order(order: &'a [u32], first: usize, count: usize) -> Option<Self> {
+        let ids = order.get(first..first.checked_add(count)?)?;
+        Some(Self::from_words(first, ids))
+    }
+
     #[cfg_attr(not(feature = "blob"), allow(dead_code))]
     pub(crate) fn from_le_bytes(first_slot: usize, ids: &'a [[u8; 4]]) -> Self {
         Self {
@@ -114,7 +121,6 @@ impl TreeArrays for Bvh<'_> {
 
     #[inline(always)]
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
-        let ids = self.order.get(first..first.checked_add(count)?)?;
-        Some(LeafTriangleIds::from_words(first, ids))
+        LeafTriangleIds::in_order(self.order, first, count)
     }
 }

@@ -30,6 +30,15 @@ struct Child {
     key: f32,
 }
 
+impl Child {
+    /// The root node (also a placeholder: it is never anyone's child).
+    const ROOT: Self = Self {
+        child: 0,
+        count: 0,
+        key: 0.0,
+    };
+}
+
 /// Deferred children. Each level defers at most three, and a wide tree is no deeper than
 /// the binary tree it came from ([`MAX_DEPTH`]), so the stack never fills.
 const STACK: usize = 3 * MAX_DEPTH as usize;
@@ -40,11 +49,7 @@ const STACK: usize = 3 * MAX_DEPTH as usize;
 pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V) {
     // Uninitialised until pushed: zeroing kilobytes per query would cost more than a node.
     let mut stack = heapless::Vec::<Child, STACK>::new();
-    let mut at = Child {
-        child: 0,
-        count: 0,
-        key: 0.0,
-    };
+    let mut at = Child::ROOT;
     loop {
         if at.count > 0 {
             if let Some(tris) = leaf(tree, at.child, at.count)
@@ -69,29 +74,7 @@ pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V)
                     at = lane_of(mask.trailing_zeros());
                     continue;
                 }
-                let mut hits = [at; 4];
-                let mut n = 0usize;
-                let mut bits = mask;
-                while bits != 0 {
-                    let c = lane_of(bits.trailing_zeros());
-                    bits &= bits - 1;
-                    // Insertion by key, after equal keys, so lower lanes win ties.
-                    let mut i = n;
-                    while i > 0 {
-                        let Some(&prev) = hits.get(i - 1) else { break };
-                        if prev.key <= c.key {
-                            break;
-                        }
-                        if let Some(slot) = hits.get_mut(i) {
-                            *slot = prev;
-                        }
-                        i -= 1;
-                    }
-                    if let Some(slot) = hits.get_mut(i) {
-                        *slot = c;
-                    }
-                    n += 1;
-                }
+                let (hits, n) = by_key(mask, lane_of);
                 // Farthest deferred first, so the nearer ones come off the stack first.
                 for c in hits.iter().take(n).skip(1).rev() {
                     let _ = stack.push(*c);
@@ -112,11 +95,38 @@ pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V)
     }
 }
 
+/// The lanes of `mask` as children sorted by key, ascending (lower lane first on equal keys),
+/// and how many there are.
+#[inline(always)]
+fn by_key(mask: u32, lane_of: impl Fn(u32) -> Child) -> ([Child; 4], usize) {
+    let mut sorted = [Child::ROOT; 4];
+    let mut n = 0usize;
+    let mut bits = mask & 0xF;
+    while bits != 0 {
+        let c = lane_of(bits.trailing_zeros());
+        bits &= bits - 1;
+        // Insertion after equal keys keeps lanes in order among ties.
+        let mut i = n;
+        while let Some(&prev) = i.checked_sub(1).and_then(|p| sorted.get(p)) {
+            if prev.key <= c.key {
+                break;
+            }
+            if let Some(slot) = sorted.get_mut(i) {
+                *slot = prev;
+            }
+            i -= 1;
+        }
+        if let Some(slot) = sorted.get_mut(i) {
+            *slot = c;
+        }
+        n += 1;
+    }
+    (sorted, n)
+}
+
 #[inline(always)]
 fn leaf<'t>(tree: &WideBvh<'t>, first: u32, count: u32) -> Option<LeafTriangleIds<'t>> {
-    let first = first as usize;
-    let ids = tree.order.get(first..first.checked_add(count as usize)?)?;
-    Some(LeafTriangleIds::from_words(first, ids))
+    LeafTriangleIds::in_order(tree.order, first as usize, count as usize)
 }
 
 impl Walk for WideBvh<'_> {
