@@ -84,6 +84,22 @@ fn main() {
                     .count()
             }),
         ),
+        (
+            "closest wide warm",
+            points.len(),
+            Box::new(|| {
+                points
+                    .iter()
+                    .enumerate()
+                    // The same 64 points over and over: their nodes and triangles stay in
+                    // cache, so this is the query's cost without memory stalls.
+                    .filter(|&(i, _)| {
+                        let p = points[i % 64];
+                        wide.closest_point(&packed, p, f32::INFINITY).is_some()
+                    })
+                    .count()
+            }),
+        ),
     ];
     let only = std::env::args().nth(1).unwrap_or_default();
     let variants: Vec<_> = variants

@@ -56,12 +56,12 @@ pub struct LeafOrder<'a>(pub &'a [PackedTriangle]);
 impl LeafTriangles for LeafOrder<'_> {
     #[inline(always)]
     fn corners(&self, slot: usize, _tri: u32) -> Option<Triangle> {
-        let t = self.0.get(slot)?;
-        Some(Triangle::new(
-            glam::Vec3::from_array(t.a),
-            glam::Vec3::from_array(t.b),
-            glam::Vec3::from_array(t.c),
-        ))
+        self.0.get(slot).map(PackedTriangle::triangle)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.0.get(first..first.checked_add(count)?)
     }
 }
 

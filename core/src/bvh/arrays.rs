@@ -70,6 +70,14 @@ impl<'a> LeafTriangleIds<'a> {
     }
 }
 
+impl LeafTriangleIds<'_> {
+    /// The order slot of the next triangle (the first one, before iterating).
+    #[inline(always)]
+    pub(crate) const fn first_slot(&self) -> usize {
+        self.next_slot
+    }
+}
+
 impl Iterator for LeafTriangleIds<'_> {
     type Item = (usize, u32);
 

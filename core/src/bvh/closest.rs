@@ -5,26 +5,29 @@ use glam::{Vec3, Vec3A, Vec4};
 use super::traverse::Walk;
 use super::wide::traverse::LaneVisitor;
 use super::wide::{WideNode, lanes};
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
-use crate::geom::closest_point_regions;
-use crate::math::{ClosestPoint, dot};
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, PackedTriangle};
+use crate::geom::{TriangleLanes, closest_point_regions};
+use crate::math::{ClosestPoint, Triangle, dot};
 
 /// Relative slack on box distances (as in ray traversal): a box is entered when it might hold
 /// a point within a few thousand ulps of the current best, so rounding can never cull the
 /// winner or a tie.
 const MARGIN: f32 = 1.0 / 65_536.0;
 
-struct Closest<'m, S: ?Sized> {
+/// The closest-point visitor; `LANES` picks the leaf test (see [`LANES_PAY`]).
+struct Closest<'m, S: ?Sized, const LANES: bool> {
     source: &'m S,
     point: Vec3,
     /// The same point in SIMD lanes, for box distances (see [`box_distance_squared`]).
     lanes: Vec3A,
     /// Current bound on the squared distance: the best so far, or the caller's maximum.
     limit: f32,
-    best: Option<ClosestPoint>,
+    /// The best triangle so far (mesh index and corners), at squared distance `limit`. Its
+    /// closest point is worked out once, at the end.
+    best: Option<(u32, Triangle)>,
 }
 
-impl<S: LeafTriangles + ?Sized> BvhVisitor for Closest<'_, S> {
+impl<S: LeafTriangles + ?Sized, const LANES: bool> BvhVisitor for Closest<'_, S, LANES> {
     #[inline(always)]
     fn enter(&mut self, node: &BvhNode) -> Option<f32> {
         let d2 = box_distance_squared(
@@ -43,40 +46,137 @@ impl<S: LeafTriangles + ?Sized> BvhVisitor for Closest<'_, S> {
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
-        for (slot, tri) in tris {
-            let Some(t) = self.source.corners(slot, tri) else {
-                continue;
-            };
-            // The triangle's own box is a cheap lower bound on its distance: skip the full
-            // region walk when even the box is beyond the best so far.
-            let (a, b, c) = (Vec3A::from(t.a), Vec3A::from(t.b), Vec3A::from(t.c));
-            let d2 = box_distance_squared(a.min(b).min(c), a.max(b).max(c), self.lanes);
-            if d2 - d2 * MARGIN > self.limit {
-                continue;
-            }
-            let (q, u, v, feature) = closest_point_regions(self.point, t.a, t.b, t.c);
-            let d = self.point - q;
-            let candidate = ClosestPoint {
-                point: q,
-                tri,
-                u,
-                v,
-                distance_squared: dot(d, d),
-                feature,
-            };
-            if candidate.distance_squared <= self.limit
-                && self.best.is_none_or(|b| candidate.beats(&b))
-                && !t.is_degenerate()
-            {
-                self.limit = candidate.distance_squared;
-                self.best = Some(candidate);
-            }
+        if !LANES {
+            self.leaf_one_by_one(tris);
+        } else if let Some(run) = self.source.run(tris.first_slot(), tris.len()) {
+            self.leaf_run_in_lanes(run, tris);
+        } else {
+            self.leaf_gathered_in_lanes(tris);
         }
         ControlFlow::Continue(())
     }
 }
 
-impl<S: LeafTriangles + ?Sized> LaneVisitor for Closest<'_, S> {
+/// Whether the target has 128-bit SIMD for glam's `Vec4`, so four triangles cost about what
+/// one does. Without it (a Cortex-M4) the lanes would be four scalar walks with no branches
+/// to skip work, bigger and slower than the walk itself. Either way the answer is the same.
+const LANES_PAY: bool = cfg!(any(
+    target_feature = "sse2",
+    target_feature = "simd128",
+    all(target_arch = "aarch64", target_feature = "neon")
+));
+
+impl<S: LeafTriangles + ?Sized, const LANES: bool> Closest<'_, S, LANES> {
+    /// A leaf whose triangles the source stores as one run: four at a time, loaded by rows.
+    #[inline(always)]
+    fn leaf_run_in_lanes(&mut self, run: &[PackedTriangle], mut tris: LeafTriangleIds<'_>) {
+        for chunk in run.chunks(4) {
+            let mut ids = [0u32; 4];
+            for (id, (_, tri)) in ids.iter_mut().zip(&mut tris) {
+                *id = tri;
+            }
+            if let Some(lanes) = TriangleLanes::from_packed(chunk) {
+                let near = self.near_lanes(&lanes, chunk.len());
+                self.consider_lanes(near, |lane| {
+                    let t = chunk.get(lane)?;
+                    Some((*ids.get(lane)?, t.triangle()))
+                });
+            }
+        }
+    }
+
+    /// A leaf read triangle by triangle through the source, four at a time in lanes; a short
+    /// batch repeats its first triangle in the unused lanes, which are then ignored.
+    #[inline(always)]
+    fn leaf_gathered_in_lanes(&mut self, mut tris: LeafTriangleIds<'_>) {
+        loop {
+            let mut batch = [(0u32, Triangle::new(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO)); 4];
+            let mut n = 0usize;
+            for (slot, tri) in &mut tris {
+                if let (Some(t), Some(entry)) = (self.source.corners(slot, tri), batch.get_mut(n)) {
+                    *entry = (tri, t);
+                    n += 1;
+                    if n == batch.len() {
+                        break;
+                    }
+                }
+            }
+            let Some(&(_, first)) = batch.first().filter(|_| n > 0) else {
+                return;
+            };
+            let corners =
+                core::array::from_fn(|i| batch.get(i).filter(|_| i < n).map_or(first, |e| e.1));
+            let near = self.near_lanes(&TriangleLanes::new(&corners), n);
+            self.consider_lanes(near, |lane| batch.get(lane).copied());
+            if n < batch.len() {
+                return;
+            }
+        }
+    }
+
+    /// A leaf on a target without SIMD: the scalar walk per triangle, after a cheap cull by
+    /// the triangle's own box.
+    #[inline(always)]
+    fn leaf_one_by_one(&mut self, tris: LeafTriangleIds<'_>) {
+        for (slot, tri) in tris {
+            let Some(t) = self.source.corners(slot, tri) else {
+                continue;
+            };
+            let (a, b, c) = (Vec3A::from(t.a), Vec3A::from(t.b), Vec3A::from(t.c));
+            let box_d2 = box_distance_squared(a.min(b).min(c), a.max(b).max(c), self.lanes);
+            if box_d2 * (1.0 - MARGIN) > self.limit {
+                continue;
+            }
+            let (q, ..) = closest_point_regions(self.point, t.a, t.b, t.c);
+            let d = self.point - q;
+            self.consider(dot(d, d), tri, t);
+        }
+    }
+}
+
+impl<S: ?Sized, const LANES: bool> Closest<'_, S, LANES> {
+    /// The first `n` lanes whose triangle lies within the best distance so far, as a bit
+    /// mask, and every lane's squared distance.
+    #[inline(always)]
+    fn near_lanes(&self, lanes: &TriangleLanes, n: usize) -> (u32, [f32; 4]) {
+        let d2 = lanes.closest_distance_squared(self.point);
+        let near = d2.cmple(Vec4::splat(self.limit)).bitmask() & ((1u32 << n) - 1);
+        (near, d2.to_array())
+    }
+
+    /// Offers each lane of `near`, lowest first, given each lane's (mesh triangle index,
+    /// corners).
+    #[inline(always)]
+    fn consider_lanes(
+        &mut self,
+        (mut near, d2): (u32, [f32; 4]),
+        lane: impl Fn(usize) -> Option<(u32, Triangle)>,
+    ) {
+        while near != 0 {
+            let i = near.trailing_zeros() as usize;
+            near &= near - 1;
+            if let (Some((tri, t)), Some(&d2)) = (lane(i), d2.get(i)) {
+                self.consider(d2, tri, t);
+            }
+        }
+    }
+
+    /// Keeps triangle `tri` if its squared distance `d2` beats the best so far (the smaller
+    /// distance, then the lower index) and it is not degenerate.
+    #[inline(always)]
+    fn consider(&mut self, d2: f32, tri: u32, t: Triangle) {
+        let wins = match self.best {
+            None => d2 <= self.limit,
+            Some((best, _)) => d2 < self.limit || (d2 == self.limit && tri < best),
+        };
+        if wins && !t.is_degenerate() {
+            self.limit = d2;
+            self.best = Some((tri, t));
+        }
+    }
+}
+
+impl<S: LeafTriangles + ?Sized, const LANES: bool> LaneVisitor for Closest<'_, S, LANES> {
     #[inline(always)]
     fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
         lanes::enter_point(node, self.point, self.limit, MARGIN)
@@ -124,10 +224,21 @@ pub(crate) fn closest_point<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
     point: Vec3,
     max_distance: f32,
 ) -> Option<ClosestPoint> {
+    closest_point_by::<A, S, LANES_PAY>(tree, source, point, max_distance)
+}
+
+/// [`closest_point`] with the leaf test chosen by `LANES`, so tests can run the one the
+/// target would not.
+fn closest_point_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
+    tree: &A,
+    source: &S,
+    point: Vec3,
+    max_distance: f32,
+) -> Option<ClosestPoint> {
     if !point.is_finite() || !(max_distance >= 0.0) {
         return None;
     }
-    let mut v = Closest {
+    let mut v = Closest::<S, LANES> {
         source,
         point,
         lanes: point.into(),
@@ -135,5 +246,110 @@ pub(crate) fn closest_point<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
         best: None,
     };
     tree.walk(&mut v);
-    v.best
+    let (tri, t) = v.best?;
+    // The lanes computed this triangle's distance with the walk's own arithmetic, so the walk
+    // agrees with the distance it was chosen by.
+    let (q, u, v, feature) = closest_point_regions(point, t.a, t.b, t.c);
+    let d = point - q;
+    Some(ClosestPoint {
+        point: q,
+        tri,
+        u,
+        v,
+        distance_squared: dot(d, d),
+        feature,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::vec;
+    use std::vec::Vec;
+
+    use super::*;
+    use crate::bvh::{BuildConfig, PrimRef, WideNode, node_capacity};
+    use crate::geom::closest_point_triangle;
+    use crate::mesh::MeshRef;
+
+    /// Deterministic xorshift floats in `[-1, 1)`.
+    fn floats(mut state: u64, n: usize) -> Vec<f32> {
+        (0..n)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+            })
+            .collect()
+    }
+
+    /// Both leaf tests, on the binary and the wide tree and on packed and indexed triangles,
+    /// return the brute-force minimum over a soup of small triangles (every fifth one
+    /// degenerate, every seventh a copy of its predecessor, and leaves of up to 7 triangles, so
+    /// lanes run short and full batches).
+    #[test]
+    fn both_leaf_tests_equal_brute_force() {
+        let tris = 600;
+        let mut positions = floats(7, tris * 9);
+        for t in 0..tris {
+            // Shrink each triangle around its first corner; every fifth collapses to a segment.
+            let (head, rest) = positions.split_at_mut(t * 9 + 3);
+            let a = [head[t * 9], head[t * 9 + 1], head[t * 9 + 2]];
+            for (k, x) in rest.iter_mut().take(6).enumerate() {
+                *x = a[k % 3] + (*x - a[k % 3]) * 0.05;
+            }
+            if t % 5 == 0 {
+                for k in 0..3 {
+                    rest[3 + k] = (a[k] + rest[k]) * 0.5;
+                }
+            }
+        }
+        // Every seventh triangle repeats the one before: exact ties, which the lower index wins.
+        for t in (7..tris).step_by(7) {
+            positions.copy_within((t - 1) * 9..t * 9, t * 9);
+        }
+        let indices: Vec<u32> = (0..(tris * 3) as u32).collect();
+        let mesh = MeshRef::from_flat(&positions, &indices)
+            .and_then(MeshRef::validate)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let config = BuildConfig {
+            max_leaf_size: 7,
+            ..BuildConfig::default()
+        };
+        let mut nodes = vec![BvhNode::EMPTY; node_capacity(tris)];
+        let mut order = vec![0u32; tris];
+        let mut scratch = vec![PrimRef::EMPTY; tris];
+        let bvh = Bvh::build(&mesh, &config, &mut nodes, &mut order, &mut scratch)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let mut packed = vec![PackedTriangle::EMPTY; tris];
+        let packed = bvh
+            .pack_triangles(&mesh, &mut packed)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let mut wide = vec![WideNode::EMPTY; bvh.wide_node_count()];
+        let wide = bvh.widen(&mut wide).unwrap_or_else(|e| panic!("{e}"));
+
+        let probes = floats(11, 3 * 2_000);
+        for (i, p) in probes.chunks_exact(3).enumerate() {
+            let p = Vec3::new(p[0], p[1], p[2]) * 1.5;
+            let max = if i % 3 == 0 { 0.05 } else { f32::INFINITY };
+            let want = (0..tris as u32)
+                .filter_map(|t| {
+                    let tri = mesh.triangle(t)?;
+                    let mut c = closest_point_triangle(p, &tri);
+                    c.tri = t;
+                    (!tri.is_degenerate() && c.distance_squared <= max * max).then_some(c)
+                })
+                .reduce(|best, c| if c.beats(&best) { c } else { best });
+            let got = [
+                closest_point_by::<_, _, true>(&bvh, &packed, p, max),
+                closest_point_by::<_, _, true>(&bvh, &mesh, p, max),
+                closest_point_by::<_, _, false>(&bvh, &packed, p, max),
+                closest_point_by::<_, _, true>(&wide, &packed, p, max),
+                closest_point_by::<_, _, false>(&wide, &mesh, p, max),
+            ];
+            for (k, got) in got.into_iter().enumerate() {
+                assert_eq!(got, want, "variant {k}, probe {p}");
+            }
+        }
+    }
 }

@@ -18,6 +18,17 @@ pub struct PackedTriangle {
 }
 
 impl PackedTriangle {
+    /// The corners as a [`Triangle`].
+    #[inline(always)]
+    #[must_use]
+    pub fn triangle(&self) -> Triangle {
+        Triangle::new(
+            Vec3::from_array(self.a),
+            Vec3::from_array(self.b),
+            Vec3::from_array(self.c),
+        )
+    }
+
     /// A placeholder for initializing buffers.
     pub const EMPTY: Self = Self {
         a: [0.0; 3],
@@ -57,6 +68,15 @@ pub trait LeafTriangles {
     /// The corners of the triangle in order slot `slot`, whose mesh index is `tri`; `None`
     /// when the source does not have it (the query then skips it).
     fn corners(&self, slot: usize, tri: u32) -> Option<Triangle>;
+
+    /// The triangles of order slots `first..first + count` as one contiguous run, when the
+    /// source stores them that way (as [`PackedTriangles`] do), so a query can load a leaf
+    /// with wide loads; `None` (the default) makes queries call [`corners`](Self::corners) per
+    /// triangle. A run must hold exactly what `corners` returns for the same slots.
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        let _ = (first, count);
+        None
+    }
 }
 
 impl LeafTriangles for ValidMesh<'_> {
@@ -69,12 +89,12 @@ impl LeafTriangles for ValidMesh<'_> {
 impl LeafTriangles for PackedTriangles<'_> {
     #[inline(always)]
     fn corners(&self, slot: usize, _tri: u32) -> Option<Triangle> {
-        let t = self.tris.get(slot)?;
-        Some(Triangle::new(
-            Vec3::from_array(t.a),
-            Vec3::from_array(t.b),
-            Vec3::from_array(t.c),
-        ))
+        self.tris.get(slot).map(PackedTriangle::triangle)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.tris.get(first..first.checked_add(count)?)
     }
 }
 

@@ -7,6 +7,7 @@
 mod closest_point_plane;
 mod closest_point_segment;
 mod closest_point_triangle;
+mod closest_point_triangle_lanes;
 mod line_line;
 mod point_in_triangle;
 mod point_on_segment;
@@ -33,6 +34,7 @@ pub use triangle_aabb::overlap_triangle_aabb;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
 
 pub(crate) use closest_point_triangle::closest_point_regions;
+pub(crate) use closest_point_triangle_lanes::TriangleLanes;
 pub(crate) use ray_aabb::SlabRay;
 pub(crate) use ray_triangle::moller_trumbore;
 pub(crate) use ray_triangle_watertight::WatertightRay;

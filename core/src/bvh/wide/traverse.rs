@@ -74,12 +74,12 @@ pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V)
                     at = lane_of(mask.trailing_zeros());
                     continue;
                 }
-                let (hits, n) = by_key(mask, lane_of);
+                let (order, n) = by_key(mask, keys);
                 // Farthest deferred first, so the nearer ones come off the stack first.
-                for c in hits.iter().take(n).skip(1).rev() {
-                    let _ = stack.push(*c);
+                for &lane in order.iter().take(n).skip(1).rev() {
+                    let _ = stack.push(lane_of(lane));
                 }
-                at = hits[0];
+                at = lane_of(order[0]);
                 continue;
             }
         }
@@ -95,33 +95,44 @@ pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V)
     }
 }
 
-/// The lanes of `mask` as children sorted by key, ascending (lower lane first on equal keys),
-/// and how many there are.
+/// The lanes of `mask`, sorted by key, ascending (lower lane first on equal keys), and how
+/// many there are.
+///
+/// Branch free: each key becomes an integer with the same order (the usual sign-flip of the
+/// float's bits), widened with its lane number below it so that equal keys order by lane, and
+/// a five-exchange sorting network sorts the four. The order of the traversal is a coin toss
+/// per node, so branches here would mispredict about half the time.
 #[inline(always)]
-fn by_key(mask: u32, lane_of: impl Fn(u32) -> Child) -> ([Child; 4], usize) {
-    let mut sorted = [Child::ROOT; 4];
-    let mut n = 0usize;
-    let mut bits = mask & 0xF;
-    while bits != 0 {
-        let c = lane_of(bits.trailing_zeros());
-        bits &= bits - 1;
-        // Insertion after equal keys keeps lanes in order among ties.
-        let mut i = n;
-        while let Some(&prev) = i.checked_sub(1).and_then(|p| sorted.get(p)) {
-            if prev.key <= c.key {
-                break;
-            }
-            if let Some(slot) = sorted.get_mut(i) {
-                *slot = prev;
-            }
-            i -= 1;
+fn by_key(mask: u32, keys: [f32; 4]) -> ([u32; 4], usize) {
+    let sortable = |lane: u32| -> u64 {
+        // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
+        let key = keys.get(lane as usize).copied().unwrap_or(f32::INFINITY) + 0.0;
+        let bits = key.to_bits();
+        // Negative floats order backwards by their bits: flip them all; positive ones just
+        // need the sign bit set to come after the negatives.
+        let ordered = bits ^ ((((bits as i32) >> 31) as u32) | 0x8000_0000);
+        if mask & (1 << lane) != 0 {
+            (u64::from(ordered) << 2) | u64::from(lane)
+        } else {
+            u64::MAX
         }
-        if let Some(slot) = sorted.get_mut(i) {
-            *slot = c;
-        }
-        n += 1;
-    }
-    (sorted, n)
+    };
+    let [mut a, mut b, mut c, mut d] = [sortable(0), sortable(1), sortable(2), sortable(3)];
+    let exchange = |x: &mut u64, y: &mut u64| {
+        let (lo, hi) = ((*x).min(*y), (*x).max(*y));
+        *x = lo;
+        *y = hi;
+    };
+    exchange(&mut a, &mut b);
+    exchange(&mut c, &mut d);
+    exchange(&mut a, &mut c);
+    exchange(&mut b, &mut d);
+    exchange(&mut b, &mut c);
+    let lane = |v: u64| (v & 3) as u32;
+    (
+        [lane(a), lane(b), lane(c), lane(d)],
+        (mask & 0xF).count_ones() as usize,
+    )
 }
 
 #[inline(always)]

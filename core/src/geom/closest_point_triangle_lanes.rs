@@ -1,0 +1,275 @@
+//! Squared distances from one point to four triangles at once, one triangle per SIMD lane.
+//!
+//! A closest-point query spends most of its time in leaves, walking the Voronoi regions of
+//! triangles that mostly lose. The scalar walk branches on data (which region a point falls
+//! in is close to random), so it mispredicts; here every lane evaluates every region and keeps
+//! the first that applies, without branches. Each lane performs exactly the operations of
+//! [`closest_point_regions`](super::closest_point_regions), in the same order, so its squared
+//! distance has the same bits; the query still re-derives a winner with the scalar walk.
+
+use glam::{BVec4A, Mat4, Vec3, Vec4};
+
+use crate::bvh::PackedTriangle;
+use crate::math::Triangle;
+
+/// One coordinate axis of four points, a lane each.
+#[derive(Clone, Copy)]
+struct Lanes3 {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+}
+
+impl Lanes3 {
+    #[inline(always)]
+    fn splat(p: Vec3) -> Self {
+        Self {
+            x: Vec4::splat(p.x),
+            y: Vec4::splat(p.y),
+            z: Vec4::splat(p.z),
+        }
+    }
+
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+
+    /// `self + d·s`, per component, as the scalar `a + ab * s`.
+    #[inline(always)]
+    fn add_scaled(self, d: Self, s: Vec4) -> Self {
+        Self {
+            x: self.x + d.x * s,
+            y: self.y + d.y * s,
+            z: self.z + d.z * s,
+        }
+    }
+
+    /// `x·x' + y·y' + z·z'`, left to right, as [`dot`](crate::math::dot).
+    #[inline(always)]
+    fn dot(self, o: Self) -> Vec4 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    #[inline(always)]
+    fn select(mask: BVec4A, yes: Self, no: Self) -> Self {
+        Self {
+            x: Vec4::select(mask, yes.x, no.x),
+            y: Vec4::select(mask, yes.y, no.y),
+            z: Vec4::select(mask, yes.z, no.z),
+        }
+    }
+}
+
+/// Four triangles, corner coordinates spread over lanes.
+#[derive(Clone, Copy)]
+pub(crate) struct TriangleLanes {
+    a: Lanes3,
+    b: Lanes3,
+    c: Lanes3,
+}
+
+impl TriangleLanes {
+    /// Lane `i` holds `tris[i]`.
+    #[inline(always)]
+    pub(crate) fn new(tris: &[Triangle; 4]) -> Self {
+        let [t0, t1, t2, t3] = tris;
+        let axis = |f: fn(&Triangle) -> Vec3| {
+            let (p0, p1, p2, p3) = (f(t0), f(t1), f(t2), f(t3));
+            Lanes3 {
+                x: Vec4::new(p0.x, p1.x, p2.x, p3.x),
+                y: Vec4::new(p0.y, p1.y, p2.y, p3.y),
+                z: Vec4::new(p0.z, p1.z, p2.z, p3.z),
+            }
+        };
+        Self {
+            a: axis(|t| t.a),
+            b: axis(|t| t.b),
+            c: axis(|t| t.c),
+        }
+    }
+
+    /// Lane `i` holds `tris[i]`, loaded as rows and transposed; lanes past the end repeat the
+    /// first triangle. `None` for an empty slice; only the first four are read.
+    #[inline(always)]
+    pub(crate) fn from_packed(tris: &[PackedTriangle]) -> Option<Self> {
+        let first = tris.first()?;
+        let t = |i: usize| tris.get(i).unwrap_or(first);
+        // A triangle's nine floats as two rows of four and one left over.
+        let head = |t: &PackedTriangle| Vec4::new(t.a[0], t.a[1], t.a[2], t.b[0]);
+        let mid = |t: &PackedTriangle| Vec4::new(t.b[1], t.b[2], t.c[0], t.c[1]);
+        let (t0, t1, t2, t3) = (t(0), t(1), t(2), t(3));
+        let h = Mat4::from_cols(head(t0), head(t1), head(t2), head(t3)).transpose();
+        let m = Mat4::from_cols(mid(t0), mid(t1), mid(t2), mid(t3)).transpose();
+        Some(Self {
+            a: Lanes3 {
+                x: h.x_axis,
+                y: h.y_axis,
+                z: h.z_axis,
+            },
+            b: Lanes3 {
+                x: h.w_axis,
+                y: m.x_axis,
+                z: m.y_axis,
+            },
+            c: Lanes3 {
+                x: m.z_axis,
+                y: m.w_axis,
+                z: Vec4::new(t0.c[2], t1.c[2], t2.c[2], t3.c[2]),
+            },
+        })
+    }
+
+    /// Per lane, the squared distance from `p` to the closest point of that lane's triangle
+    /// as the scalar region walk computes it (bit for bit, for a non-degenerate triangle; a
+    /// degenerate one gives whatever the walk's arithmetic gives, NaN included, and callers
+    /// discard it as the scalar query does).
+    #[inline(always)]
+    pub(crate) fn closest_distance_squared(&self, p: Vec3) -> Vec4 {
+        let (a, b, c) = (self.a, self.b, self.c);
+        let p = Lanes3::splat(p);
+        let zero = Vec4::ZERO;
+        let ab = b.sub(a);
+        let ac = c.sub(a);
+        let ap = p.sub(a);
+        let d1 = ab.dot(ap);
+        let d2 = ac.dot(ap);
+        let bp = p.sub(b);
+        let d3 = ab.dot(bp);
+        let d4 = ac.dot(bp);
+        let vc = d1 * d4 - d3 * d2;
+        let cp = p.sub(c);
+        let d5 = ab.dot(cp);
+        let d6 = ac.dot(cp);
+        let vb = d5 * d2 - d1 * d6;
+        let va = d3 * d6 - d5 * d4;
+        let e = d4 - d3;
+        let f = d5 - d6;
+
+        // The scalar walk's tests, in its order: the first that holds decides the region.
+        let in_a = d1.cmple(zero) & d2.cmple(zero);
+        let in_b = d3.cmpge(zero) & d4.cmple(d3);
+        let in_ab = vc.cmple(zero) & d1.cmpge(zero) & d3.cmple(zero);
+        let in_c = d6.cmpge(zero) & d5.cmple(d6);
+        let in_ac = vb.cmple(zero) & d2.cmpge(zero) & d6.cmple(zero);
+        let in_bc = va.cmple(zero) & e.cmpge(zero) & f.cmpge(zero);
+
+        // One division serves the three edges: each lane takes the first edge test that holds
+        // (ab, then ac, then bc), which is the edge its region is whenever it is an edge.
+        let edge_ab_or_ac = in_ab | in_ac;
+        let num = Vec4::select(in_ab, d1, Vec4::select(in_ac, d2, e));
+        let den = Vec4::select(in_ab, d1 - d3, Vec4::select(in_ac, d2 - d6, e + f));
+        let s = num / den;
+        let base = Lanes3::select(edge_ab_or_ac, a, b);
+        let along = Lanes3::select(in_ab, ab, Lanes3::select(in_ac, ac, c.sub(b)));
+        let on_edge = base.add_scaled(along, s);
+
+        let inv = Vec4::ONE / (va + vb + vc);
+        let u = vb * inv;
+        let v = vc * inv;
+        let on_face = a.add_scaled(ab, u).add_scaled(ac, v);
+
+        // Squared distances to each candidate, then the region's: a corner's offset is the
+        // walk's `p − corner` already. Later regions first, so each earlier test overrides them,
+        // as the walk's early returns do.
+        let to_edge = p.sub(on_edge);
+        let to_face = p.sub(on_face);
+        let d = Vec4::select(in_ac | in_bc, to_edge.dot(to_edge), to_face.dot(to_face));
+        let d = Vec4::select(in_c, cp.dot(cp), d);
+        let d = Vec4::select(in_ab, to_edge.dot(to_edge), d);
+        let d = Vec4::select(in_b, bp.dot(bp), d);
+        Vec4::select(in_a, ap.dot(ap), d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::closest_point_regions;
+    use crate::math::dot;
+
+    /// A small deterministic generator (xorshift), so the test needs no dependency.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            ((self.0 >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+        }
+
+        fn vec(&mut self, scale: f32) -> Vec3 {
+            Vec3::new(self.next(), self.next(), self.next()) * scale
+        }
+    }
+
+    fn scalar_distance_squared(p: Vec3, t: &Triangle) -> f32 {
+        let (q, ..) = closest_point_regions(p, t.a, t.b, t.c);
+        let d = p - q;
+        dot(d, d)
+    }
+
+    #[test]
+    fn every_lane_matches_the_scalar_walk_bit_for_bit() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut checked = 0;
+        for round in 0..50_000 {
+            let scale = [1e-6, 1.0, 1e6][round % 3];
+            let mut tris = [Triangle::new(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO); 4];
+            for t in &mut tris {
+                let a = rng.vec(scale);
+                // Slivers and near-degenerate shapes now and then, where rounding is touchiest.
+                let b = if round % 7 == 0 {
+                    a + rng.vec(scale * 1e-4)
+                } else {
+                    rng.vec(scale)
+                };
+                let c = if round % 11 == 0 {
+                    a + (b - a) * 0.5 + rng.vec(scale * 1e-5)
+                } else {
+                    rng.vec(scale)
+                };
+                *t = Triangle::new(a, b, c);
+            }
+            let p = rng.vec(scale * 2.0);
+            let lanes = TriangleLanes::new(&tris).closest_distance_squared(p);
+            for (t, got) in tris.iter().zip(lanes.to_array()) {
+                if t.is_degenerate() {
+                    continue;
+                }
+                let want = scalar_distance_squared(p, t);
+                assert_eq!(got.to_bits(), want.to_bits(), "{t:?} from {p}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 190_000, "only {checked} lanes were comparable");
+    }
+
+    #[test]
+    fn each_region_is_chosen_as_the_scalar_walk_chooses_it() {
+        // The same triangle in every lane, probed from each Voronoi region in turn.
+        let t = Triangle::new(
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        );
+        let lanes = TriangleLanes::new(&[t; 4]);
+        for p in [
+            Vec3::new(-1.0, -1.0, 1.0),
+            Vec3::new(3.0, -1.0, 0.0),
+            Vec3::new(-1.0, 3.0, 0.0),
+            Vec3::new(1.0, -3.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(-3.0, 1.0, 5.0),
+            Vec3::new(0.5, 0.5, -3.0),
+        ] {
+            let want = scalar_distance_squared(p, &t);
+            assert_eq!(lanes.closest_distance_squared(p), Vec4::splat(want), "{p}");
+        }
+    }
+}
