@@ -2,11 +2,12 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec3A, Vec4};
 
+use super::leaf_batches::{LANES_PAY, for_each_batch};
 use super::traverse::Walk;
 use super::wide::traverse::LaneVisitor;
 use super::wide::{WideNode, lanes};
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, PackedTriangle};
-use crate::geom::{TriangleLanes, closest_point_regions};
+use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
+use crate::geom::closest_point_regions;
 use crate::math::{ClosestPoint, Triangle, dot};
 
 /// Relative slack on box distances (as in ray traversal): a box is entered when it might hold
@@ -46,74 +47,29 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> BvhVisitor for Closest<'_, S,
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
-        if !LANES {
-            self.leaf_one_by_one(tris);
-        } else if let Some(run) = self.source.run(tris.first_slot(), tris.len()) {
-            self.leaf_run_in_lanes(run, tris);
+        if LANES {
+            let source = self.source;
+            for_each_batch(source, tris, |batch| {
+                let d2 = batch.lanes.closest_distance_squared(self.point);
+                let mut near = d2.cmple(Vec4::splat(self.limit)).bitmask() & batch.used;
+                let d2 = d2.to_array();
+                while near != 0 {
+                    let lane = near.trailing_zeros() as usize;
+                    near &= near - 1;
+                    if let (Some((tri, t)), Some(&d2)) = (batch.triangle(lane), d2.get(lane)) {
+                        self.consider(d2, tri, t);
+                    }
+                }
+                ControlFlow::Continue(())
+            })
         } else {
-            self.leaf_gathered_in_lanes(tris);
+            self.leaf_one_by_one(tris);
+            ControlFlow::Continue(())
         }
-        ControlFlow::Continue(())
     }
 }
 
-/// Whether the target has 128-bit SIMD for glam's `Vec4`, so four triangles cost about what
-/// one does. Without it (a Cortex-M4) the lanes would be four scalar walks with no branches
-/// to skip work, bigger and slower than the walk itself. Either way the answer is the same.
-const LANES_PAY: bool = cfg!(any(
-    target_feature = "sse2",
-    target_feature = "simd128",
-    all(target_arch = "aarch64", target_feature = "neon")
-));
-
 impl<S: LeafTriangles + ?Sized, const LANES: bool> Closest<'_, S, LANES> {
-    /// A leaf whose triangles the source stores as one run: four at a time, loaded by rows.
-    #[inline(always)]
-    fn leaf_run_in_lanes(&mut self, run: &[PackedTriangle], mut tris: LeafTriangleIds<'_>) {
-        for chunk in run.chunks(4) {
-            let mut ids = [0u32; 4];
-            for (id, (_, tri)) in ids.iter_mut().zip(&mut tris) {
-                *id = tri;
-            }
-            if let Some(lanes) = TriangleLanes::from_packed(chunk) {
-                let near = self.near_lanes(&lanes, chunk.len());
-                self.consider_lanes(near, |lane| {
-                    let t = chunk.get(lane)?;
-                    Some((*ids.get(lane)?, t.triangle()))
-                });
-            }
-        }
-    }
-
-    /// A leaf read triangle by triangle through the source, four at a time in lanes; a short
-    /// batch repeats its first triangle in the unused lanes, which are then ignored.
-    #[inline(always)]
-    fn leaf_gathered_in_lanes(&mut self, mut tris: LeafTriangleIds<'_>) {
-        loop {
-            let mut batch = [(0u32, Triangle::new(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO)); 4];
-            let mut n = 0usize;
-            for (slot, tri) in &mut tris {
-                if let (Some(t), Some(entry)) = (self.source.corners(slot, tri), batch.get_mut(n)) {
-                    *entry = (tri, t);
-                    n += 1;
-                    if n == batch.len() {
-                        break;
-                    }
-                }
-            }
-            let Some(&(_, first)) = batch.first().filter(|_| n > 0) else {
-                return;
-            };
-            let corners =
-                core::array::from_fn(|i| batch.get(i).filter(|_| i < n).map_or(first, |e| e.1));
-            let near = self.near_lanes(&TriangleLanes::new(&corners), n);
-            self.consider_lanes(near, |lane| batch.get(lane).copied());
-            if n < batch.len() {
-                return;
-            }
-        }
-    }
-
     /// A leaf on a target without SIMD: the scalar walk per triangle, after a cheap cull by
     /// the triangle's own box.
     #[inline(always)]
@@ -135,32 +91,6 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Closest<'_, S, LANES> {
 }
 
 impl<S: ?Sized, const LANES: bool> Closest<'_, S, LANES> {
-    /// The first `n` lanes whose triangle lies within the best distance so far, as a bit
-    /// mask, and every lane's squared distance.
-    #[inline(always)]
-    fn near_lanes(&self, lanes: &TriangleLanes, n: usize) -> (u32, [f32; 4]) {
-        let d2 = lanes.closest_distance_squared(self.point);
-        let near = d2.cmple(Vec4::splat(self.limit)).bitmask() & ((1u32 << n) - 1);
-        (near, d2.to_array())
-    }
-
-    /// Offers each lane of `near`, lowest first, given each lane's (mesh triangle index,
-    /// corners).
-    #[inline(always)]
-    fn consider_lanes(
-        &mut self,
-        (mut near, d2): (u32, [f32; 4]),
-        lane: impl Fn(usize) -> Option<(u32, Triangle)>,
-    ) {
-        while near != 0 {
-            let i = near.trailing_zeros() as usize;
-            near &= near - 1;
-            if let (Some((tri, t)), Some(&d2)) = (lane(i), d2.get(i)) {
-                self.consider(d2, tri, t);
-            }
-        }
-    }
-
     /// Keeps triangle `tri` if its squared distance `d2` beats the best so far (the smaller
     /// distance, then the lower index) and it is not degenerate.
     #[inline(always)]
@@ -267,7 +197,7 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
-    use crate::bvh::{BuildConfig, PrimRef, WideNode, node_capacity};
+    use crate::bvh::{BuildConfig, PackedTriangle, PrimRef, WideNode, node_capacity};
     use crate::geom::closest_point_triangle;
     use crate::mesh::MeshRef;
 

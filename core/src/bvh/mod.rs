@@ -27,6 +27,7 @@ pub(crate) mod check;
 pub(crate) mod closest;
 mod config;
 mod lanes;
+mod leaf_batches;
 mod median;
 mod node;
 pub(crate) mod overlap;

@@ -2,13 +2,14 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec4};
 
+use super::leaf_batches::{LANES_PAY, for_each_batch};
 use super::traverse::Walk;
 use super::wide::WideNode;
 use super::wide::lanes::LaneRay;
 use super::wide::traverse::LaneVisitor;
 use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
-use crate::geom::{CullMode, SlabRay, TriangleHit, WatertightRay, moller_trumbore};
-use crate::math::{Ray, RayHit};
+use crate::geom::{CullMode, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore};
+use crate::math::{Ray, RayHit, Triangle};
 
 /// Which ray–triangle test a query uses. Both give bit-identical answers on every target; they
 /// differ only at edges shared by two triangles.
@@ -39,8 +40,15 @@ const MARGIN: f32 = 1.0 / 65_536.0;
 
 /// A ray–triangle test with an adjustable upper bound.
 trait Kernel {
+    /// Whether leaves are first filtered four triangles at a time with [`Self::may_hit`].
+    const LANES: bool = false;
     fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit>;
     fn shrink(&mut self, t_max: f32);
+    /// The lanes [`Self::test`] might accept (a superset of those it does).
+    fn may_hit(&self, tris: &TriangleLanes) -> u32 {
+        let _ = tris;
+        0xF
+    }
 }
 
 struct Mt {
@@ -65,6 +73,11 @@ struct Wt {
 }
 
 impl Kernel for Wt {
+    const LANES: bool = LANES_PAY;
+    #[inline(always)]
+    fn may_hit(&self, tris: &TriangleLanes) -> u32 {
+        self.ray.may_hit(tris, self.cull)
+    }
     #[inline(always)]
     fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit> {
         self.ray.intersect(a, b, c, self.cull)
@@ -106,27 +119,48 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for ClosestHit<'_, S, K> {
 
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        if K::LANES {
+            let source = self.source;
+            return for_each_batch(source, tris, |batch| {
+                let mut maybe = self.kernel.may_hit(&batch.lanes) & batch.used;
+                while maybe != 0 {
+                    let lane = maybe.trailing_zeros() as usize;
+                    maybe &= maybe - 1;
+                    if let Some((tri, corners)) = batch.triangle(lane) {
+                        self.offer(tri, &corners);
+                    }
+                }
+                ControlFlow::Continue(())
+            });
+        }
         for (slot, tri) in tris {
-            let Some(corners) = self.source.corners(slot, tri) else {
-                continue;
-            };
-            let Some(h) = self.kernel.test(corners.a, corners.b, corners.c) else {
-                continue;
-            };
-            let candidate = RayHit {
-                t: h.t,
-                tri,
-                u: h.u,
-                v: h.v,
-            };
-            // The degeneracy check is only paid for a hit that would win.
-            if self.best.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
-                self.best = Some(candidate);
-                self.kernel.shrink(h.t);
-                self.slab.t_max = h.t;
+            if let Some(corners) = self.source.corners(slot, tri) {
+                self.offer(tri, &corners);
             }
         }
         ControlFlow::Continue(())
+    }
+}
+
+impl<S: ?Sized, K: Kernel> ClosestHit<'_, S, K> {
+    /// Tests triangle `tri` and keeps its hit if it beats the best so far.
+    #[inline(always)]
+    fn offer(&mut self, tri: u32, corners: &Triangle) {
+        let Some(h) = self.kernel.test(corners.a, corners.b, corners.c) else {
+            return;
+        };
+        let candidate = RayHit {
+            t: h.t,
+            tri,
+            u: h.u,
+            v: h.v,
+        };
+        // The degeneracy check is only paid for a hit that would win.
+        if self.best.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
+            self.best = Some(candidate);
+            self.kernel.shrink(h.t);
+            self.slab.t_max = h.t;
+        }
     }
 }
 
@@ -155,18 +189,40 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for AnyHit<'_, S, K> {
 
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        if K::LANES {
+            let source = self.source;
+            return for_each_batch(source, tris, |batch| {
+                let mut maybe = self.kernel.may_hit(&batch.lanes) & batch.used;
+                while maybe != 0 {
+                    let lane = maybe.trailing_zeros() as usize;
+                    maybe &= maybe - 1;
+                    if let Some((_, corners)) = batch.triangle(lane)
+                        && self.hits(&corners)
+                    {
+                        return ControlFlow::Break(());
+                    }
+                }
+                ControlFlow::Continue(())
+            });
+        }
         for (slot, tri) in tris {
-            let Some(corners) = self.source.corners(slot, tri) else {
-                continue;
-            };
-            if self.kernel.test(corners.a, corners.b, corners.c).is_some()
-                && !corners.is_degenerate()
+            if let Some(corners) = self.source.corners(slot, tri)
+                && self.hits(&corners)
             {
-                self.found = true;
                 return ControlFlow::Break(());
             }
         }
         ControlFlow::Continue(())
+    }
+}
+
+impl<S: ?Sized, K: Kernel> AnyHit<'_, S, K> {
+    /// Whether the ray hits the (non-degenerate) triangle; records it.
+    #[inline(always)]
+    fn hits(&mut self, corners: &Triangle) -> bool {
+        self.found =
+            self.kernel.test(corners.a, corners.b, corners.c).is_some() && !corners.is_degenerate();
+        self.found
     }
 }
 

@@ -7,123 +7,11 @@
 //! [`closest_point_regions`](super::closest_point_regions), in the same order, so its squared
 //! distance has the same bits; the query still re-derives a winner with the scalar walk.
 
-use glam::{BVec4A, Mat4, Vec3, Vec4};
+use glam::{Vec3, Vec4};
 
-use crate::bvh::PackedTriangle;
-use crate::math::Triangle;
-
-/// One coordinate axis of four points, a lane each.
-#[derive(Clone, Copy)]
-struct Lanes3 {
-    x: Vec4,
-    y: Vec4,
-    z: Vec4,
-}
-
-impl Lanes3 {
-    #[inline(always)]
-    fn splat(p: Vec3) -> Self {
-        Self {
-            x: Vec4::splat(p.x),
-            y: Vec4::splat(p.y),
-            z: Vec4::splat(p.z),
-        }
-    }
-
-    #[inline(always)]
-    fn sub(self, o: Self) -> Self {
-        Self {
-            x: self.x - o.x,
-            y: self.y - o.y,
-            z: self.z - o.z,
-        }
-    }
-
-    /// `self + d·s`, per component, as the scalar `a + ab * s`.
-    #[inline(always)]
-    fn add_scaled(self, d: Self, s: Vec4) -> Self {
-        Self {
-            x: self.x + d.x * s,
-            y: self.y + d.y * s,
-            z: self.z + d.z * s,
-        }
-    }
-
-    /// `x·x' + y·y' + z·z'`, left to right, as [`dot`](crate::math::dot).
-    #[inline(always)]
-    fn dot(self, o: Self) -> Vec4 {
-        self.x * o.x + self.y * o.y + self.z * o.z
-    }
-
-    #[inline(always)]
-    fn select(mask: BVec4A, yes: Self, no: Self) -> Self {
-        Self {
-            x: Vec4::select(mask, yes.x, no.x),
-            y: Vec4::select(mask, yes.y, no.y),
-            z: Vec4::select(mask, yes.z, no.z),
-        }
-    }
-}
-
-/// Four triangles, corner coordinates spread over lanes.
-#[derive(Clone, Copy)]
-pub(crate) struct TriangleLanes {
-    a: Lanes3,
-    b: Lanes3,
-    c: Lanes3,
-}
+use super::triangle_lanes::{Lanes3, TriangleLanes};
 
 impl TriangleLanes {
-    /// Lane `i` holds `tris[i]`.
-    #[inline(always)]
-    pub(crate) fn new(tris: &[Triangle; 4]) -> Self {
-        let [t0, t1, t2, t3] = tris;
-        let axis = |f: fn(&Triangle) -> Vec3| {
-            let (p0, p1, p2, p3) = (f(t0), f(t1), f(t2), f(t3));
-            Lanes3 {
-                x: Vec4::new(p0.x, p1.x, p2.x, p3.x),
-                y: Vec4::new(p0.y, p1.y, p2.y, p3.y),
-                z: Vec4::new(p0.z, p1.z, p2.z, p3.z),
-            }
-        };
-        Self {
-            a: axis(|t| t.a),
-            b: axis(|t| t.b),
-            c: axis(|t| t.c),
-        }
-    }
-
-    /// Lane `i` holds `tris[i]`, loaded as rows and transposed; lanes past the end repeat the
-    /// first triangle. `None` for an empty slice; only the first four are read.
-    #[inline(always)]
-    pub(crate) fn from_packed(tris: &[PackedTriangle]) -> Option<Self> {
-        let first = tris.first()?;
-        let t = |i: usize| tris.get(i).unwrap_or(first);
-        // A triangle's nine floats as two rows of four and one left over.
-        let head = |t: &PackedTriangle| Vec4::new(t.a[0], t.a[1], t.a[2], t.b[0]);
-        let mid = |t: &PackedTriangle| Vec4::new(t.b[1], t.b[2], t.c[0], t.c[1]);
-        let (t0, t1, t2, t3) = (t(0), t(1), t(2), t(3));
-        let h = Mat4::from_cols(head(t0), head(t1), head(t2), head(t3)).transpose();
-        let m = Mat4::from_cols(mid(t0), mid(t1), mid(t2), mid(t3)).transpose();
-        Some(Self {
-            a: Lanes3 {
-                x: h.x_axis,
-                y: h.y_axis,
-                z: h.z_axis,
-            },
-            b: Lanes3 {
-                x: h.w_axis,
-                y: m.x_axis,
-                z: m.y_axis,
-            },
-            c: Lanes3 {
-                x: m.z_axis,
-                y: m.w_axis,
-                z: Vec4::new(t0.c[2], t1.c[2], t2.c[2], t3.c[2]),
-            },
-        })
-    }
-
     /// Per lane, the squared distance from `p` to the closest point of that lane's triangle
     /// as the scalar region walk computes it (bit for bit, for a non-degenerate triangle; a
     /// degenerate one gives whatever the walk's arithmetic gives, NaN included, and callers
@@ -190,7 +78,7 @@ impl TriangleLanes {
 mod tests {
     use super::*;
     use crate::geom::closest_point_regions;
-    use crate::math::dot;
+    use crate::math::{Triangle, dot};
 
     /// A small deterministic generator (xorshift), so the test needs no dependency.
     struct Rng(u64);

@@ -15,8 +15,10 @@ mod ray_aabb;
 mod ray_plane;
 mod ray_triangle;
 mod ray_triangle_watertight;
+mod ray_triangle_watertight_lanes;
 mod segment_segment;
 mod triangle_aabb;
+mod triangle_lanes;
 mod triangle_triangle;
 
 pub use closest_point_plane::closest_point_plane;
@@ -34,7 +36,7 @@ pub use triangle_aabb::overlap_triangle_aabb;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
 
 pub(crate) use closest_point_triangle::closest_point_regions;
-pub(crate) use closest_point_triangle_lanes::TriangleLanes;
 pub(crate) use ray_aabb::SlabRay;
 pub(crate) use ray_triangle::moller_trumbore;
 pub(crate) use ray_triangle_watertight::WatertightRay;
+pub(crate) use triangle_lanes::TriangleLanes;

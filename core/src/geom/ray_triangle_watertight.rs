@@ -7,17 +7,17 @@ use crate::math::{Ray, Triangle};
 /// `+z` (Woop, Benthin & Wald 2013, "Watertight Ray/Triangle Intersection", JCGT 2(1)).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct WatertightRay {
-    origin: Vec3,
+    pub(super) origin: Vec3,
     /// Axis of the largest |direction| component, and the two others in an order that keeps
     /// the sheared frame right-handed.
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
-    t_min: f32,
-    t_max: f32,
+    pub(super) kx: usize,
+    pub(super) ky: usize,
+    pub(super) kz: usize,
+    pub(super) sx: f32,
+    pub(super) sy: f32,
+    pub(super) sz: f32,
+    pub(super) t_min: f32,
+    pub(super) t_max: f32,
 }
 
 #[inline(always)]
