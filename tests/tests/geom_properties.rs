@@ -123,6 +123,11 @@ proptest! {
         // Half the rays aim at a point in the triangle's plane (inside or outside it).
         let dir = if aim { tri.point_at(u * 1.5 - 0.25, v * 1.5 - 0.25) - o } else { dir };
         prop_assume!(dir.length() > 0.1);
+        // At grazing incidence the hit moves by about (rounding / cosine) across the plane, so
+        // no f32 test can stay within a fixed distance of f64 there (a ray at cos 2.7e-4 moved
+        // u by more than 1e-3); the watertightness suites cover grazing rays.
+        let cos = tri.unit_normal().map_or(0.0, |n| n.dot(dir.normalize_or_zero()).abs());
+        prop_assume!(cos > 1e-2);
         let reference = ray_triangle_f64(d(o), d(dir), dtri(&tri));
         let expected = reference.filter(|&(t, ..)| t >= 0.0);
         if let Some((t, _, _, margin)) = reference {
