@@ -9,6 +9,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use meshq::bvh::{BuildConfig, PackedTriangle, WideNode};
+use meshq::query::MeshQuery;
 use meshq_tests::{OwnedBvh, load_mesh, workload};
 
 const ROUNDS: usize = 11;
@@ -17,7 +18,7 @@ fn main() {
     let loaded = load_mesh("stanford-bunny");
     let mesh = loaded.valid();
     let rays = workload::random_rays(&loaded.positions, 200_000, 1);
-    let points = workload::closest_points(&loaded.positions, 20_000, 2);
+    let points = workload::closest_points(&loaded.positions, 100_000, 2);
     let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).expect("build");
     let bvh = owned.view(&mesh).expect("view");
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
@@ -55,6 +56,18 @@ fn main() {
             }),
         ),
         (
+            "rays wide batch",
+            rays.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; rays.len()];
+                let mut out = vec![None; rays.len()];
+                let options = meshq::bvh::RayOptions::default();
+                wide.raycast_batch(&packed, &rays, &options, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
             "any binary packed",
             rays.len(),
             Box::new(|| rays.iter().filter(|r| bvh.raycast_any(&packed, r)).count()),
@@ -82,6 +95,17 @@ fn main() {
                     .iter()
                     .filter(|&&p| wide.closest_point(&packed, p, f32::INFINITY).is_some())
                     .count()
+            }),
+        ),
+        (
+            "closest wide batch",
+            points.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; points.len()];
+                let mut out = vec![None; points.len()];
+                wide.closest_points(&packed, &points, f32::INFINITY, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|c| c.is_some()).count()
             }),
         ),
         (

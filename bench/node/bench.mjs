@@ -3,28 +3,16 @@
 // ratios (meshq / three-mesh-bvh); --json prints them as JSON. Build the package first:
 // scripts/wasm.sh. Environment: MESHQ_BENCH_RAYS (default 1,000,000), MESHQ_BENCH_SINGLE
 // (rays for the one-call-per-ray runs, default 200,000), MESHQ_BENCH_POINTS (default 100,000).
-import { readFileSync } from 'node:fs';
-import { fileURLToPath } from 'node:url';
 import * as THREE from 'three';
-import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
-import { mergeVertices } from 'three/examples/jsm/utils/BufferGeometryUtils.js';
 import { MeshBVH, SAH } from 'three-mesh-bvh';
 import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+import { geometry, index, positions } from './bunny.mjs';
 
-const root = fileURLToPath(new URL('../..', import.meta.url));
 const RAYS = Number(process.env.MESHQ_BENCH_RAYS ?? 1_000_000);
 const SINGLE = Number(process.env.MESHQ_BENCH_SINGLE ?? 200_000);
 const POINTS = Number(process.env.MESHQ_BENCH_POINTS ?? 100_000);
 const json = process.argv.includes('--json');
 const log = (...a) => { if (!json) console.log(...a); };
-
-const group = new OBJLoader().parse(readFileSync(`${root}/assets/stanford-bunny.obj`, 'utf8'));
-const loaded = group.children[0].geometry;
-loaded.deleteAttribute('normal');
-loaded.deleteAttribute('uv');
-const geometry = mergeVertices(loaded);
-const positions = geometry.getAttribute('position').array;
-const index = geometry.index.array;
 
 /** Median wall time in ms of `runs` calls of `f`, after one warm-up call. */
 function time(f, runs) {
@@ -127,6 +115,17 @@ report('random rays, batched vs raycastFirst', time(batch(random), 3),
   report('random rays, batched on the fast tree vs raycastFirst',
     time(() => fastBvh.raycastBatch(random, 0, Infinity, distances, triangles), 3),
     time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+}
+{
+  // A mesh loaded from a blob decodes its tree for the same fast queries as a built one.
+  const n = nRandom;
+  const distances = new Float32Array(n);
+  const triangles = new Uint32Array(n);
+  const fromBlob = meshq.MeshBvh.fromBlob(blob);
+  report('random rays, batched on the blob-loaded tree vs raycastFirst',
+    time(() => fromBlob.raycastBatch(random, 0, Infinity, distances, triangles), 3),
+    time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+  fromBlob.free();
 }
 report('camera rays 1024², batched vs raycastFirst', time(batch(camera), 3),
   time(() => peerFirstHits(camera, camera.length / 6), 3), camera.length / 6, 'rays');

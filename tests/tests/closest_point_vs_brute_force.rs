@@ -1,8 +1,11 @@
 //! Closest-point queries on every bundled mesh equal a brute-force scan (same bits, same
 //! triangle under the tie rule), with and without a maximum distance, on the binary tree and
-//! on the four-wide tree collapsed from it.
+//! on the four-wide tree collapsed from it, one query at a time and in batches.
 
 use meshq::bvh::{BuildConfig, PackedTriangle, WideNode};
+use meshq::error::{BatchBuffer, BatchError};
+use meshq::math::{ClosestPoint, Vec3};
+use meshq::query::MeshQuery;
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
 
@@ -25,17 +28,10 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let points = workload::closest_points(&loaded.positions, QUERIES, 0xC105E);
         let mut limited_hits = 0;
+        let (mut unlimited, mut limited) = (Vec::new(), Vec::new());
         for (i, &p) in points.iter().enumerate() {
-            let key = |c: Option<meshq::math::ClosestPoint>| {
-                c.map(|c| {
-                    (
-                        c.distance_squared.to_bits(),
-                        c.tri,
-                        c.point.to_array().map(f32::to_bits),
-                    )
-                })
-            };
             let expected = brute.closest_point(p, f32::INFINITY);
+            unlimited.push(expected);
             assert!(expected.is_some());
             let got = bvh.closest_point(&mesh, p, f32::INFINITY);
             assert_eq!(key(got), key(expected), "{name}: point {i} {p}");
@@ -55,6 +51,7 @@ fn closest_point_matches_brute_force_on_every_mesh() {
             // A maximum distance of 5 % of the radius: some queries find nothing.
             let max = 0.05 * r;
             let expected = brute.closest_point(p, max);
+            limited.push(expected);
             let got = bvh.closest_point(&mesh, p, max);
             assert_eq!(
                 key(got),
@@ -69,5 +66,92 @@ fn closest_point_matches_brute_force_on_every_mesh() {
             limited_hits > 0 && limited_hits < LIMITED_QUERIES,
             "{name}: {limited_hits}"
         );
+
+        // Batches, on both trees and sources: each answer as if alone.
+        let mut keys = vec![0u64; QUERIES];
+        let batch = |query: &BatchCall<'_>, max: f32, n: usize| {
+            let mut out = vec![None; n];
+            let mut keys = vec![0u64; n];
+            query(&points[..n], max, &mut keys, &mut out).unwrap();
+            out
+        };
+        let max = 0.05 * r;
+        let runs: [(&str, &BatchCall<'_>); 3] = [
+            ("binary", &|p, m, k, o| {
+                bvh.closest_points(&mesh, p, m, k, o)
+            }),
+            ("wide packed", &|p, m, k, o| {
+                wide.closest_points(&packed, p, m, k, o)
+            }),
+            ("wide", &|p, m, k, o| wide.closest_points(&mesh, p, m, k, o)),
+        ];
+        for (what, query) in runs {
+            let got = batch(query, f32::INFINITY, QUERIES);
+            assert!(
+                got.iter()
+                    .map(|&c| key(c))
+                    .eq(unlimited.iter().map(|&c| key(c))),
+                "{name}: {what} batch"
+            );
+            let got = batch(query, max, LIMITED_QUERIES);
+            assert!(
+                got.iter()
+                    .map(|&c| key(c))
+                    .eq(limited.iter().map(|&c| key(c))),
+                "{name}: {what} batch within {max}"
+            );
+        }
+
+        // Short buffers are errors that write nothing; non-finite points find nothing.
+        let mut out = vec![None; QUERIES - 1];
+        let err = wide.closest_points(&packed, &points, f32::INFINITY, &mut keys, &mut out);
+        assert_eq!(
+            err,
+            Err(BatchError::BufferTooSmall {
+                buffer: BatchBuffer::Results,
+                needed: QUERIES,
+                got: QUERIES - 1
+            })
+        );
+        assert!(out.iter().all(Option::is_none));
+        let mut out = vec![None; QUERIES];
+        let err = wide.closest_points(&packed, &points, f32::INFINITY, &mut keys[1..], &mut out);
+        assert!(matches!(
+            err,
+            Err(BatchError::BufferTooSmall {
+                buffer: BatchBuffer::SortKeys,
+                ..
+            })
+        ));
+        assert!(out.iter().all(Option::is_none));
+        let odd = [points[0], Vec3::NAN, points[1], Vec3::INFINITY, points[2]];
+        wide.closest_points(&packed, &odd, f32::INFINITY, &mut keys, &mut out)
+            .unwrap();
+        let want = [unlimited[0], None, unlimited[1], None, unlimited[2]];
+        assert!(
+            out[..5]
+                .iter()
+                .map(|&c| key(c))
+                .eq(want.iter().map(|&c| key(c)))
+        );
+        assert!(
+            out[5..].iter().all(Option::is_none),
+            "{name}: past the batch"
+        );
     }
+}
+
+/// A batched closest-point call over some structure and source.
+type BatchCall<'a> =
+    dyn Fn(&[Vec3], f32, &mut [u64], &mut [Option<ClosestPoint>]) -> Result<(), BatchError> + 'a;
+
+/// What a test compares: distance and point bits, and the triangle.
+fn key(c: Option<ClosestPoint>) -> Option<(u32, u32, [u32; 3])> {
+    c.map(|c| {
+        (
+            c.distance_squared.to_bits(),
+            c.tri,
+            c.point.to_array().map(f32::to_bits),
+        )
+    })
 }

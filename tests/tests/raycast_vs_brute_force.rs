@@ -1,7 +1,7 @@
 //! Closest-hit and any-hit on every bundled mesh equal a brute-force scan over all triangles
 //! with the same primitive: identical `t` bits, the same triangle (lower index on ties), the
 //! same barycentrics. Checked on the binary tree and on the four-wide tree collapsed from it,
-//! reading triangles from the mesh and from packed copies.
+//! reading triangles from the mesh and from packed copies, one ray at a time and in batches.
 
 use meshq::bvh::{
     BuildConfig, Bvh, PackedTriangle, PackedTriangles, RayOptions, TriangleTest, WideBvh, WideNode,
@@ -9,6 +9,7 @@ use meshq::bvh::{
 use meshq::geom::CullMode;
 use meshq::math::Ray;
 use meshq::mesh::ValidMesh;
+use meshq::query::MeshQuery;
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
 
@@ -29,12 +30,14 @@ fn assert_same(
     what: &str,
 ) -> usize {
     let mut hits = 0;
+    let bits = |h: Option<meshq::math::RayHit>| {
+        h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
+    };
+    let mut all_expected = Vec::with_capacity(rays.len());
     for (i, ray) in rays.iter().enumerate() {
         let expected = brute.raycast(ray, options);
+        all_expected.push(expected);
         let got = bvh.raycast_with(mesh, ray, options);
-        let bits = |h: Option<meshq::math::RayHit>| {
-            h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
-        };
         assert_eq!(bits(got), bits(expected), "{what}: ray {i} {ray:?}");
         let from_packed = bvh.raycast_with(packed, ray, options);
         assert_eq!(bits(from_packed), bits(expected), "{what}: packed, ray {i}");
@@ -62,6 +65,33 @@ fn assert_same(
         );
         hits += usize::from(expected.is_some());
     }
+
+    // Batches (cast in Morton order of the origins) give each ray's answer as if alone.
+    let mut keys = vec![0u64; rays.len()];
+    let want: Vec<_> = all_expected.iter().map(|&h| bits(h)).collect();
+    let want_any: Vec<bool> = all_expected.iter().map(Option::is_some).collect();
+    let mut out = vec![None; rays.len()];
+    let mut any = vec![false; rays.len()];
+    wide.raycast_batch(packed, rays, options, &mut keys, &mut out)
+        .unwrap();
+    assert!(
+        out.iter().map(|&h| bits(h)).eq(want.iter().copied()),
+        "{what}: wide batch"
+    );
+    wide.raycast_any_batch(packed, rays, options, &mut keys, &mut any)
+        .unwrap();
+    assert_eq!(any, want_any, "{what}: wide any-hit batch");
+    out.fill(None);
+    any.fill(false);
+    bvh.raycast_batch(mesh, rays, options, &mut keys, &mut out)
+        .unwrap();
+    assert!(
+        out.iter().map(|&h| bits(h)).eq(want.iter().copied()),
+        "{what}: binary batch"
+    );
+    bvh.raycast_any_batch(mesh, rays, options, &mut keys, &mut any)
+        .unwrap();
+    assert_eq!(any, want_any, "{what}: binary any-hit batch");
     hits
 }
 

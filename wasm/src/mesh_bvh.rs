@@ -8,7 +8,7 @@ use wasm_bindgen::prelude::*;
 
 use crate::js_objects::meshq_result;
 use crate::options::{build_config, ray_options};
-use crate::storage::{Owner, Storage, Views};
+use crate::storage::{Storage, Views};
 
 /// A triangle mesh and its BVH, ready for ray and closest-point queries.
 ///
@@ -104,16 +104,13 @@ impl MeshBvh {
     }
 
     /// Loads a blob baked by `meshq bake` (or `toBlob`), e.g. the bytes of a fetched file. The
-    /// blob is validated once (checksum, every count, index and range) and copied into this
-    /// module's memory. Throws on a damaged blob, another format version, or a blob baked
+    /// blob is validated once (checksum, every count, index and range), then decoded into the
+    /// buffers a build makes, so queries run as fast as on a built mesh; the bytes are kept for
+    /// `toBlob`. Throws on a damaged blob, another format version, or a blob baked
     /// without its mesh.
     #[wasm_bindgen(js_name = fromBlob)]
     pub fn from_blob(bytes: &[u8]) -> Result<MeshBvh, JsError> {
-        let storage = crate::build::from_blob(bytes.to_vec())?;
-        let config = match storage.borrow_dependent() {
-            Views::Blob(view) => view.header().config,
-            Views::Built { .. } => BuildConfig::default(),
-        };
+        let (storage, config) = crate::build::from_blob(bytes.to_vec())?;
         Ok(Self { storage, config })
     }
 
@@ -133,9 +130,14 @@ impl MeshBvh {
                 )));
             }
         };
-        match (self.storage.borrow_owner(), self.storage.borrow_dependent()) {
-            (Owner::Blob(bytes), _) if layout.is_none() => Ok(bytes.clone()),
-            (_, Views::Built { mesh, bvh, .. }) => {
+        match (&self.storage.borrow_owner().blob, layout) {
+            (Some(bytes), None) => Ok(bytes.clone()),
+            // A packed blob's mesh was unshared on load: re-encoding would not give its mesh.
+            (Some(_), Some(_)) => Err(JsError::new(
+                "a loaded blob is returned as loaded: call toBlob() without a layout",
+            )),
+            (None, _) => {
+                let Views { mesh, bvh, .. } = self.storage.borrow_dependent();
                 let options = EncodeOptions {
                     mesh: mesh_layout,
                     config: self.config,
@@ -146,9 +148,6 @@ impl MeshBvh {
                 out.truncate(n);
                 Ok(out)
             }
-            (_, Views::Blob(_)) => Err(JsError::new(
-                "a loaded blob is returned as loaded: call toBlob() without a layout",
-            )),
         }
     }
 
@@ -173,7 +172,7 @@ impl MeshBvh {
     /// Whether this came from a blob (`fromBlob`) rather than a build.
     #[wasm_bindgen(getter, js_name = fromBlobBytes)]
     pub fn from_blob_bytes(&self) -> bool {
-        matches!(self.storage.borrow_owner(), Owner::Blob(_))
+        self.storage.borrow_owner().blob.is_some()
     }
 
     /// The root box, padded: `[minX, minY, minZ, maxX, maxY, maxZ]`.

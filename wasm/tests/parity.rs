@@ -121,6 +121,40 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let report = run_parity(&golden.spec, loaded.root_bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
         assert_eq!(loaded.to_blob(None).map_err(JsValue::from).unwrap(), blob);
+
+        // A packed blob (corners in leaf order, no indexed mesh) answers the same.
+        let packed = built
+            .to_blob(Some("packed".into()))
+            .map_err(JsValue::from)
+            .unwrap();
+        let loaded_packed = MeshBvh::from_blob(&packed).map_err(JsValue::from).unwrap();
+        let report = run_parity(
+            &golden.spec,
+            loaded_packed.root_bounds(),
+            &mut Wasm(&loaded_packed),
+        );
+        assert_eq!(report, golden.report, "{name}: loaded from the packed blob");
+        // Both loads give back the built mesh's triangles and tree, for display.
+        for (layout, other) in [("indexed", &loaded), ("packed", &loaded_packed)] {
+            assert_eq!(
+                other.triangle_positions(),
+                built.triangle_positions(),
+                "{name} {layout}: triangles"
+            );
+            assert_eq!(other.depth(), built.depth(), "{name} {layout}: depth");
+            for level in [0, built.depth() / 2, built.depth() - 1] {
+                assert_eq!(
+                    other.level_boxes(level),
+                    built.level_boxes(level),
+                    "{name} {layout}: level {level}"
+                );
+            }
+        }
+        let omitted = built
+            .to_blob(Some("omitted".into()))
+            .map_err(JsValue::from)
+            .unwrap();
+        assert!(MeshBvh::from_blob(&omitted).is_err(), "{name}: no mesh");
     }
 }
 
@@ -200,6 +234,47 @@ fn javascript_results_carry_the_core_answers() {
                 (h.t.to_bits(), h.tri)
             ),
             None => assert_eq!((distances[i], triangles[i]), (f32::INFINITY, u32::MAX)),
+        }
+    }
+
+    // So does the closest-point batch (answered in Morton order inside), with and without a
+    // maximum distance, a non-finite point included.
+    let mut points: Vec<Vec3> = spec.points(bounds).take(2_000).collect();
+    points[7] = Vec3::NAN;
+    let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
+    let radius = (bounds.max - bounds.min).length() * 0.5;
+    for max in [f32::INFINITY, 0.05 * radius] {
+        let mut closest = vec![0.0f32; flat.len()];
+        let mut triangles = vec![0u32; points.len()];
+        let mut distances = vec![0.0f32; points.len()];
+        let found = bvh
+            .closest_point_batch(&flat, max, &mut closest, &mut triangles, &mut distances)
+            .map_err(JsValue::from)
+            .unwrap();
+        let expected: Vec<_> = points
+            .iter()
+            .map(|&p| bvh.closest_point_at(p, max))
+            .collect();
+        assert_eq!(found as usize, expected.iter().flatten().count());
+        assert!(found > 0 && (max.is_infinite() || (found as usize) < points.len()));
+        for (i, e) in expected.iter().enumerate() {
+            let got = (
+                triangles[i],
+                distances[i].to_bits(),
+                [closest[3 * i], closest[3 * i + 1], closest[3 * i + 2]].map(f32::to_bits),
+            );
+            match e {
+                Some(c) => assert_eq!(
+                    got,
+                    (
+                        c.tri,
+                        c.distance_squared.sqrt().to_bits(),
+                        c.point.to_array().map(f32::to_bits)
+                    ),
+                    "point {i}, max {max}"
+                ),
+                None => assert_eq!((got.0, distances[i]), (u32::MAX, f32::INFINITY)),
+            }
         }
     }
 }

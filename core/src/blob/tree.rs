@@ -1,11 +1,7 @@
 //! The tree of a blob, read in place from its bytes.
 
-use glam::Vec3;
-
 use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
-use crate::bvh::{BvhNode, LeafTriangleIds, LeafTriangles, RayOptions, TreeArrays};
-use crate::math::{ClosestPoint, Ray, RayHit};
-use crate::query::MeshQuery;
+use crate::bvh::{BvhNode, LeafTriangleIds, TreeArrays};
 
 /// A BVH whose nodes and order are read straight out of a validated blob's bytes (in RAM or in
 /// flash): no copy, 32 bytes decoded per node visited.
@@ -55,34 +51,5 @@ impl TreeArrays for BlobTree<'_> {
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
         let ids = self.order.get(first..first.checked_add(count)?)?;
         Some(LeafTriangleIds::from_le_bytes(first, ids))
-    }
-}
-
-impl MeshQuery for BlobTree<'_> {
-    fn raycast_with<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        ray: &Ray,
-        options: &RayOptions,
-    ) -> Option<RayHit> {
-        crate::bvh::raycast::raycast_with(self, source, ray, options)
-    }
-
-    fn raycast_any_with<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        ray: &Ray,
-        options: &RayOptions,
-    ) -> bool {
-        crate::bvh::raycast::raycast_any_with(self, source, ray, options)
-    }
-
-    fn closest_point<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        point: Vec3,
-        max_distance: f32,
-    ) -> Option<ClosestPoint> {
-        crate::bvh::closest::closest_point(self, source, point, max_distance)
     }
 }

@@ -165,6 +165,21 @@ fn closest_point_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bo
     point: Vec3,
     max_distance: f32,
 ) -> Option<ClosestPoint> {
+    search::<A, S, LANES>(tree, source, point, max_distance, None).map(|best| answer(point, best))
+}
+
+/// The nearest non-degenerate triangle (index and corners) within `max_distance` of `point`,
+/// with `seed` offered first as a candidate: a triangle near the point (the previous answer of
+/// a batch, say) bounds the search from the start. The answer does not depend on the seed —
+/// it is the minimum under the same total order, and the seed is just one more triangle
+/// considered — only the work done does.
+pub(super) fn search<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
+    tree: &A,
+    source: &S,
+    point: Vec3,
+    max_distance: f32,
+    seed: Option<(u32, Triangle)>,
+) -> Option<(u32, Triangle)> {
     if !point.is_finite() || !(max_distance >= 0.0) {
         return None;
     }
@@ -175,20 +190,31 @@ fn closest_point_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bo
         limit: max_distance * max_distance,
         best: None,
     };
+    if let Some((tri, t)) = seed {
+        // The scalar walk gives the lanes' bits, so the seed ties with itself when its leaf
+        // comes up, and the tie rule sees one distance per triangle.
+        let (q, ..) = closest_point_regions(point, t.a, t.b, t.c);
+        let d = point - q;
+        v.consider(dot(d, d), tri, t);
+    }
     tree.walk(&mut v);
-    let (tri, t) = v.best?;
+    v.best
+}
+
+/// The answer for the nearest triangle `tri` with corners `t`.
+pub(super) fn answer(point: Vec3, (tri, t): (u32, Triangle)) -> ClosestPoint {
     // The lanes computed this triangle's distance with the walk's own arithmetic, so the walk
     // agrees with the distance it was chosen by.
     let (q, u, v, feature) = closest_point_regions(point, t.a, t.b, t.c);
     let d = point - q;
-    Some(ClosestPoint {
+    ClosestPoint {
         point: q,
         tri,
         u,
         v,
         distance_squared: dot(d, d),
         feature,
-    })
+    }
 }
 
 #[cfg(test)]
@@ -197,6 +223,7 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
+    use crate::bvh::closest_batch::closest_points_by;
     use crate::bvh::{BuildConfig, PackedTriangle, PrimRef, WideNode, node_capacity};
     use crate::geom::closest_point_triangle;
     use crate::mesh::MeshRef;
@@ -259,17 +286,23 @@ mod tests {
         let wide = bvh.widen(&mut wide).unwrap_or_else(|e| panic!("{e}"));
 
         let probes = floats(11, 3 * 2_000);
-        for (i, p) in probes.chunks_exact(3).enumerate() {
-            let p = Vec3::new(p[0], p[1], p[2]) * 1.5;
-            let max = if i % 3 == 0 { 0.05 } else { f32::INFINITY };
-            let want = (0..tris as u32)
+        let points: Vec<Vec3> = probes
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]) * 1.5)
+            .collect();
+        let brute = |p: Vec3, max: f32| {
+            (0..tris as u32)
                 .filter_map(|t| {
                     let tri = mesh.triangle(t)?;
                     let mut c = closest_point_triangle(p, &tri);
                     c.tri = t;
                     (!tri.is_degenerate() && c.distance_squared <= max * max).then_some(c)
                 })
-                .reduce(|best, c| if c.beats(&best) { c } else { best });
+                .reduce(|best, c| if c.beats(&best) { c } else { best })
+        };
+        for (i, &p) in points.iter().enumerate() {
+            let max = if i % 3 == 0 { 0.05 } else { f32::INFINITY };
+            let want = brute(p, max);
             let got = [
                 closest_point_by::<_, _, true>(&bvh, &packed, p, max),
                 closest_point_by::<_, _, true>(&bvh, &mesh, p, max),
@@ -279,6 +312,29 @@ mod tests {
             ];
             for (k, got) in got.into_iter().enumerate() {
                 assert_eq!(got, want, "variant {k}, probe {p}");
+            }
+        }
+
+        // Batches (seeded searches in Morton order) answer each point as alone, with both leaf
+        // tests, on both trees, within a limit and without.
+        let mut keys = vec![0u64; points.len()];
+        for max in [0.05, f32::INFINITY] {
+            let want: Vec<_> = points.iter().map(|&p| brute(p, max)).collect();
+            for k in 0..3 {
+                let mut out = vec![None; points.len()];
+                let done = match k {
+                    0 => closest_points_by::<_, _, true>(
+                        &bvh, &packed, &points, max, &mut keys, &mut out,
+                    ),
+                    1 => closest_points_by::<_, _, false>(
+                        &wide, &mesh, &points, max, &mut keys, &mut out,
+                    ),
+                    _ => closest_points_by::<_, _, true>(
+                        &wide, &packed, &points, max, &mut keys, &mut out,
+                    ),
+                };
+                assert_eq!(done, Ok(()));
+                assert_eq!(out, want, "batch variant {k}, max {max}");
             }
         }
     }

@@ -19,12 +19,14 @@
 //! maps back to the mesh's own triangle indices (the mesh itself is never reordered).
 
 mod arrays;
+mod batch_order;
 mod binning;
 mod build;
 mod build_box;
 mod centre;
 pub(crate) mod check;
 pub(crate) mod closest;
+pub(crate) mod closest_batch;
 mod config;
 mod lanes;
 mod leaf_batches;
@@ -35,6 +37,7 @@ mod packed;
 mod partition;
 mod prim_ref;
 pub(crate) mod raycast;
+pub(crate) mod raycast_batch;
 mod refit;
 mod stats;
 pub(crate) mod traverse;

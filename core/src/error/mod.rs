@@ -299,3 +299,6 @@ impl core::error::Error for StructureError {}
 mod blob;
 #[cfg(feature = "blob")]
 pub use blob::{BlobError, BlobSection};
+
+mod batch;
+pub use batch::{BatchBuffer, BatchError};

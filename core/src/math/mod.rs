@@ -6,6 +6,7 @@
 
 mod aabb;
 mod hit;
+mod morton;
 mod plane;
 mod ray;
 mod scalar;
@@ -13,6 +14,7 @@ mod triangle;
 
 pub use aabb::Aabb;
 pub use hit::{ClosestPoint, RayHit, TriangleFeature};
+pub use morton::morton_code;
 pub use plane::Plane;
 pub use ray::Ray;
 pub use scalar::{cross, dot, max_f32, min_f32};

@@ -1,0 +1,46 @@
+//! Many closest-point queries in one call (see
+//! [`MeshQuery::closest_points`](crate::query::MeshQuery::closest_points)): answered in
+//! Morton order of the points, each search seeded with the previous answer, so neighbouring
+//! queries read the same nodes and triangles while they are still in cache and start with a
+//! tight bound.
+
+use glam::Vec3;
+
+use super::LeafTriangles;
+use super::batch_order::{answer_in_order, morton_order};
+use super::closest::{answer, search};
+use super::leaf_batches::LANES_PAY;
+use super::traverse::Walk;
+use crate::error::BatchError;
+use crate::math::ClosestPoint;
+
+/// [`MeshQuery::closest_points`](crate::query::MeshQuery::closest_points) over any storage.
+pub(crate) fn closest_points<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    source: &S,
+    points: &[Vec3],
+    max_distance: f32,
+    keys: &mut [u64],
+    out: &mut [Option<ClosestPoint>],
+) -> Result<(), BatchError> {
+    closest_points_by::<A, S, LANES_PAY>(tree, source, points, max_distance, keys, out)
+}
+
+/// [`closest_points`] with the leaf test chosen by `LANES`.
+pub(super) fn closest_points_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
+    tree: &A,
+    source: &S,
+    points: &[Vec3],
+    max_distance: f32,
+    keys: &mut [u64],
+    out: &mut [Option<ClosestPoint>],
+) -> Result<(), BatchError> {
+    let order = morton_order(points.iter().copied(), keys, out.len())?;
+    let mut seed = None;
+    answer_in_order(points, order, out, |&p| {
+        let best = search::<A, S, LANES>(tree, source, p, max_distance, seed);
+        seed = best.or(seed);
+        best.map(|b| answer(p, b))
+    });
+    Ok(())
+}
