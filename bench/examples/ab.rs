@@ -78,6 +78,18 @@ fn main() {
             Box::new(|| rays.iter().filter(|r| wide.raycast_any(&packed, r)).count()),
         ),
         (
+            "any wide batch",
+            rays.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; rays.len()];
+                let mut out = vec![false; rays.len()];
+                let options = meshq::bvh::RayOptions::default();
+                wide.raycast_any_batch(&packed, &rays, &options, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|&&h| h).count()
+            }),
+        ),
+        (
             "closest binary packed",
             points.len(),
             Box::new(|| {

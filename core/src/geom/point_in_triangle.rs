@@ -59,7 +59,7 @@ pub fn barycentric_triangle(p: Vec3, tri: &Triangle) -> Option<(f32, f32)> {
 /// or on its boundary (`u ≥ 0`, `v ≥ 0`, `u + v ≤ 1` in [`barycentric_triangle`]).
 ///
 /// The distance from `p` to the plane is ignored; check it separately (for example with
-/// [`closest_point_triangle`](super::closest_point_triangle)) when `p` must lie on the
+/// [`closest_point_triangle`](super::closest_point_triangle())) when `p` must lie on the
 /// triangle. A degenerate triangle contains no point.
 #[must_use]
 pub fn point_in_triangle(p: Vec3, tri: &Triangle) -> bool {
