@@ -13,13 +13,12 @@ use criterion::{
     BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main, measurement::WallTime,
 };
 use glam::{Vec3, Vec3A};
-use meshq::bvh::{
-    BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, RayOptions, TriangleTest, WideNode,
-    node_capacity,
-};
+use meshq::MeshBvh;
+use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
 use meshq::math::Ray;
-use meshq::query::MeshQuery;
-use meshq_tests::{LoadedMesh, OwnedBvh, load_mesh, workload};
+use meshq::query::{RayOptions, TriangleTest};
+use meshq::{MeshQuery, Traverse};
+use meshq_tests::{LoadedMesh, checked_bvh, load_mesh, workload};
 
 /// Rays per random-ray iteration (the DESIGN.md set is 1,000,000; a prefix keeps criterion's
 /// sampling affordable while staying far above timer resolution).
@@ -262,18 +261,13 @@ fn build(c: &mut Criterion) {
 fn raycast(c: &mut Criterion) {
     let s = scene();
     let mesh = s.mesh.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
-    let bvh = owned.view(&mesh).unwrap_or_else(|e| panic!("{e}"));
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
+    let bvh = checked_bvh(&owned, &mesh).unwrap_or_else(|e| panic!("{e}"));
     let mt = RayOptions {
         test: TriangleTest::MollerTrumbore,
         ..RayOptions::default()
     };
-    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
-    let packed = bvh
-        .pack_triangles(&mesh, &mut storage)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-    let wide = bvh.widen(&mut wide_nodes).unwrap_or_else(|e| panic!("{e}"));
+    let (packed, wide) = (owned.packed(), owned.wide());
     let obvhs_medium = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
     let obvhs_fast = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::fast_build());
     let parry = parry_peer::build(&s.mesh);
@@ -282,7 +276,7 @@ fn raycast(c: &mut Criterion) {
     // The peers must answer the same question: same hits, same distances (to rounding).
     let mut disagreements = 0;
     for r in &s.random {
-        let ours = bvh.raycast(&mesh, r).map(|h| h.t);
+        let ours = bvh.with(&mesh).raycast(r).map(|h| h.t);
         let theirs = [
             obvhs_peer::closest_hit(&obvhs_medium, r).map(|h| h.0),
             parry_peer::closest_hit(&parry, r),
@@ -305,42 +299,42 @@ fn raycast(c: &mut Criterion) {
         group.bench_function("meshq_watertight", |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| bvh.raycast(&mesh, r).is_some())
+                    .filter(|r| bvh.with(&mesh).raycast(r).is_some())
                     .count()
             })
         });
         group.bench_function("meshq_moller_trumbore", |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| bvh.raycast_with(&mesh, r, &mt).is_some())
+                    .filter(|r| bvh.with(&mesh).raycast_with(r, &mt).is_some())
                     .count()
             })
         });
         group.bench_function("meshq_packed_watertight", |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| bvh.raycast(&packed, r).is_some())
+                    .filter(|r| bvh.with(&packed).raycast(r).is_some())
                     .count()
             })
         });
         group.bench_function("meshq_packed_moller_trumbore", |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| bvh.raycast_with(&packed, r, &mt).is_some())
+                    .filter(|r| bvh.with(&packed).raycast_with(r, &mt).is_some())
                     .count()
             })
         });
         group.bench_function("meshq_wide_watertight", |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| wide.raycast(&mesh, r).is_some())
+                    .filter(|r| wide.with(&mesh).raycast(r).is_some())
                     .count()
             })
         });
         group.bench_function("meshq_wide_packed_watertight", |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| wide.raycast(&packed, r).is_some())
+                    .filter(|r| wide.with(&packed).raycast(r).is_some())
                     .count()
             })
         });
@@ -380,7 +374,7 @@ fn raycast(c: &mut Criterion) {
         b.iter(|| {
             s.random
                 .iter()
-                .filter(|r| bvh.raycast_any(&mesh, r))
+                .filter(|r| bvh.with(&mesh).raycast_any(r))
                 .count()
         })
     });
@@ -388,7 +382,7 @@ fn raycast(c: &mut Criterion) {
         b.iter(|| {
             s.random
                 .iter()
-                .filter(|r| bvh.raycast_any(&packed, r))
+                .filter(|r| bvh.with(&packed).raycast_any(r))
                 .count()
         })
     });
@@ -396,7 +390,7 @@ fn raycast(c: &mut Criterion) {
         b.iter(|| {
             s.random
                 .iter()
-                .filter(|r| wide.raycast_any(&mesh, r))
+                .filter(|r| wide.with(&mesh).raycast_any(r))
                 .count()
         })
     });
@@ -404,7 +398,7 @@ fn raycast(c: &mut Criterion) {
         b.iter(|| {
             s.random
                 .iter()
-                .filter(|r| wide.raycast_any(&packed, r))
+                .filter(|r| wide.with(&packed).raycast_any(r))
                 .count()
         })
     });
@@ -422,15 +416,10 @@ fn raycast(c: &mut Criterion) {
 fn closest_point(c: &mut Criterion) {
     let s = scene();
     let mesh = s.mesh.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
-    let bvh = owned.view(&mesh).unwrap_or_else(|e| panic!("{e}"));
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
+    let bvh = checked_bvh(&owned, &mesh).unwrap_or_else(|e| panic!("{e}"));
     let parry = parry_peer::build(&s.mesh);
-    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
-    let packed = bvh
-        .pack_triangles(&mesh, &mut storage)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-    let wide = bvh.widen(&mut wide_nodes).unwrap_or_else(|e| panic!("{e}"));
+    let (packed, wide) = (owned.packed(), owned.wide());
     let mut group = c.benchmark_group("closest_point");
     configure(&mut group, s.points.len());
     group.bench_function("meshq", |b| {
@@ -438,7 +427,8 @@ fn closest_point(c: &mut Criterion) {
             s.points
                 .iter()
                 .map(|&p| {
-                    bvh.closest_point(&mesh, p, f32::INFINITY)
+                    bvh.with(&mesh)
+                        .closest_point(p, f32::INFINITY)
                         .map_or(0.0, |c| c.distance_squared)
                 })
                 .sum::<f32>()
@@ -449,7 +439,8 @@ fn closest_point(c: &mut Criterion) {
             s.points
                 .iter()
                 .map(|&p| {
-                    bvh.closest_point(&packed, p, f32::INFINITY)
+                    bvh.with(&packed)
+                        .closest_point(p, f32::INFINITY)
                         .map_or(0.0, |c| c.distance_squared)
                 })
                 .sum::<f32>()
@@ -460,7 +451,8 @@ fn closest_point(c: &mut Criterion) {
             s.points
                 .iter()
                 .map(|&p| {
-                    wide.closest_point(&packed, p, f32::INFINITY)
+                    wide.with(&packed)
+                        .closest_point(p, f32::INFINITY)
                         .map_or(0.0, |c| c.distance_squared)
                 })
                 .sum::<f32>()
@@ -471,7 +463,8 @@ fn closest_point(c: &mut Criterion) {
         b.iter(|| {
             let mut keys = vec![0u64; s.points.len()];
             let mut out = vec![None; s.points.len()];
-            wide.closest_points(&packed, &s.points, f32::INFINITY, &mut keys, &mut out)
+            wide.with(&packed)
+                .closest_points(&s.points, f32::INFINITY, &mut keys, &mut out)
                 .unwrap_or_else(|e| panic!("{e}"));
             out.iter()
                 .map(|c| c.map_or(0.0, |c| c.distance_squared))

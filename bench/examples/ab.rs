@@ -8,9 +8,10 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use meshq::bvh::{BuildConfig, PackedTriangle, WideNode};
-use meshq::query::MeshQuery;
-use meshq_tests::{OwnedBvh, load_mesh, workload};
+use meshq::MeshBvh;
+use meshq::bvh::BuildConfig;
+use meshq::{MeshQuery, Traverse};
+use meshq_tests::{checked_bvh, load_mesh, workload};
 
 const ROUNDS: usize = 11;
 
@@ -18,21 +19,15 @@ fn main() {
     let loaded = load_mesh("stanford-bunny");
     let mesh = loaded.valid();
     let rays = workload::random_rays(&loaded.positions, 200_000, 1);
+    let camera = workload::camera_rays(&loaded.positions, 512, 512);
     let points = workload::closest_points(&loaded.positions, 100_000, 2);
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).expect("build");
-    let bvh = owned.view(&mesh).expect("view");
-    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
-    let packed = bvh.pack_triangles(&mesh, &mut storage).expect("pack");
-    let start = Instant::now();
-    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-    let counted = start.elapsed();
-    let wide = bvh.widen(&mut wide_nodes).expect("widen");
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).expect("build");
+    let bvh = checked_bvh(&owned, &mesh).expect("view");
+    let (packed, wide) = (owned.packed(), owned.wide());
     println!(
-        "{} binary nodes -> {} wide nodes; counted in {:.2} ms, counted and collapsed in {:.2} ms",
+        "{} binary nodes -> {} wide nodes",
         bvh.nodes().len(),
-        wide.nodes().len(),
-        counted.as_secs_f64() * 1e3,
-        (start.elapsed() - counted).as_secs_f64() * 1e3
+        wide.nodes().len()
     );
 
     type Run<'a> = Box<dyn Fn() -> usize + 'a>;
@@ -42,7 +37,7 @@ fn main() {
             rays.len(),
             Box::new(|| {
                 rays.iter()
-                    .filter(|r| bvh.raycast(&packed, r).is_some())
+                    .filter(|r| bvh.with(&packed).raycast(r).is_some())
                     .count()
             }),
         ),
@@ -51,7 +46,7 @@ fn main() {
             rays.len(),
             Box::new(|| {
                 rays.iter()
-                    .filter(|r| wide.raycast(&packed, r).is_some())
+                    .filter(|r| wide.with(&packed).raycast(r).is_some())
                     .count()
             }),
         ),
@@ -61,21 +56,50 @@ fn main() {
             Box::new(|| {
                 let mut keys = vec![0u64; rays.len()];
                 let mut out = vec![None; rays.len()];
-                let options = meshq::bvh::RayOptions::default();
-                wide.raycast_batch(&packed, &rays, &options, &mut keys, &mut out)
+                let options = meshq::query::RayOptions::default();
+                wide.with(&packed)
+                    .raycast_batch(&rays, &options, &mut keys, &mut out)
                     .expect("batch");
                 out.iter().filter(|h| h.is_some()).count()
             }),
         ),
         (
+            "camera binary packed",
+            camera.len(),
+            Box::new(|| {
+                camera
+                    .iter()
+                    .filter(|r| bvh.with(&packed).raycast(r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "camera wide packed",
+            camera.len(),
+            Box::new(|| {
+                camera
+                    .iter()
+                    .filter(|r| wide.with(&packed).raycast(r).is_some())
+                    .count()
+            }),
+        ),
+        (
             "any binary packed",
             rays.len(),
-            Box::new(|| rays.iter().filter(|r| bvh.raycast_any(&packed, r)).count()),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| bvh.with(&packed).raycast_any(r))
+                    .count()
+            }),
         ),
         (
             "any wide packed",
             rays.len(),
-            Box::new(|| rays.iter().filter(|r| wide.raycast_any(&packed, r)).count()),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| wide.with(&packed).raycast_any(r))
+                    .count()
+            }),
         ),
         (
             "any wide batch",
@@ -83,8 +107,9 @@ fn main() {
             Box::new(|| {
                 let mut keys = vec![0u64; rays.len()];
                 let mut out = vec![false; rays.len()];
-                let options = meshq::bvh::RayOptions::default();
-                wide.raycast_any_batch(&packed, &rays, &options, &mut keys, &mut out)
+                let options = meshq::query::RayOptions::default();
+                wide.with(&packed)
+                    .raycast_any_batch(&rays, &options, &mut keys, &mut out)
                     .expect("batch");
                 out.iter().filter(|&&h| h).count()
             }),
@@ -95,7 +120,7 @@ fn main() {
             Box::new(|| {
                 points
                     .iter()
-                    .filter(|&&p| bvh.closest_point(&packed, p, f32::INFINITY).is_some())
+                    .filter(|&&p| bvh.with(&packed).closest_point(p, f32::INFINITY).is_some())
                     .count()
             }),
         ),
@@ -105,7 +130,7 @@ fn main() {
             Box::new(|| {
                 points
                     .iter()
-                    .filter(|&&p| wide.closest_point(&packed, p, f32::INFINITY).is_some())
+                    .filter(|&&p| wide.with(&packed).closest_point(p, f32::INFINITY).is_some())
                     .count()
             }),
         ),
@@ -115,7 +140,8 @@ fn main() {
             Box::new(|| {
                 let mut keys = vec![0u64; points.len()];
                 let mut out = vec![None; points.len()];
-                wide.closest_points(&packed, &points, f32::INFINITY, &mut keys, &mut out)
+                wide.with(&packed)
+                    .closest_points(&points, f32::INFINITY, &mut keys, &mut out)
                     .expect("batch");
                 out.iter().filter(|c| c.is_some()).count()
             }),
@@ -131,7 +157,7 @@ fn main() {
                     // cache, so this is the query's cost without memory stalls.
                     .filter(|&(i, _)| {
                         let p = points[i % 64];
-                        wide.closest_point(&packed, p, f32::INFINITY).is_some()
+                        wide.with(&packed).closest_point(p, f32::INFINITY).is_some()
                     })
                     .count()
             }),

@@ -6,9 +6,11 @@
 
 use std::time::Instant;
 
+use meshq::MeshBvh;
 use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
-use meshq_tests::{OwnedBvh, encode, load_mesh, workload};
+use meshq::{MeshQuery, Traverse};
+use meshq_tests::{checked_bvh, load_mesh, workload};
 
 fn main() {
     let loaded = load_mesh("stanford-bunny");
@@ -24,9 +26,9 @@ fn main() {
         ("high_quality", BuildConfig::high_quality()),
     ] {
         let start = Instant::now();
-        let owned = OwnedBvh::build(&mesh, &config).unwrap_or_else(|e| panic!("build: {e}"));
+        let owned = MeshBvh::build(&mesh, &config).unwrap_or_else(|e| panic!("build: {e}"));
         let seconds = start.elapsed().as_secs_f64();
-        let bvh = owned.view(&mesh).unwrap_or_else(|e| panic!("check: {e}"));
+        let bvh = checked_bvh(&owned, &mesh).unwrap_or_else(|e| panic!("check: {e}"));
         println!(
             "build {name:>12}: {:7.2} ms, {} nodes ({} KiB), depth {}",
             seconds * 1e3,
@@ -35,15 +37,15 @@ fn main() {
             bvh.depth()
         );
     }
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
-    let bvh = owned.view(&mesh).unwrap_or_else(|e| panic!("{e}"));
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
+    let bvh = checked_bvh(&owned, &mesh).unwrap_or_else(|e| panic!("{e}"));
     let rays = workload::random_rays(&loaded.positions, 1_000_000, 1);
     let camera = workload::camera_rays(&loaded.positions, 1024, 1024);
     for (name, rays) in [("random rays", &rays), ("camera rays", &camera)] {
         let start = Instant::now();
         let hits = rays
             .iter()
-            .filter(|r| bvh.raycast(&mesh, r).is_some())
+            .filter(|r| bvh.with(&mesh).raycast(r).is_some())
             .count();
         let seconds = start.elapsed().as_secs_f64();
         println!(
@@ -53,7 +55,10 @@ fn main() {
         );
     }
     let start = Instant::now();
-    let hits = rays.iter().filter(|r| bvh.raycast_any(&mesh, r)).count();
+    let hits = rays
+        .iter()
+        .filter(|r| bvh.with(&mesh).raycast_any(r))
+        .count();
     println!(
         "random rays, any hit: {hits} hits, {:.2} M rays/s",
         rays.len() as f64 / start.elapsed().as_secs_f64() / 1e6
@@ -62,14 +67,15 @@ fn main() {
     let start = Instant::now();
     let found = points
         .iter()
-        .filter(|&&p| bvh.closest_point(&mesh, p, f32::INFINITY).is_some())
+        .filter(|&&p| bvh.with(&mesh).closest_point(p, f32::INFINITY).is_some())
         .count();
     println!(
         "closest point: {found} queries, {:.2} M queries/s",
         points.len() as f64 / start.elapsed().as_secs_f64() / 1e6
     );
     for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
-        let bytes = encode(&bvh, &mesh, &BuildConfig::default(), layout)
+        let bytes = owned
+            .to_blob(layout)
             .unwrap_or_else(|e| panic!("encode: {e}"));
         let start = Instant::now();
         let view = BlobView::parse(&bytes).unwrap_or_else(|e| panic!("parse: {e}"));

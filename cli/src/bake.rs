@@ -5,8 +5,8 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use meshq::blob::{self, EncodeOptions, MeshLayout};
-use meshq::bvh::{self, Bvh, BvhNode, PrimRef};
+use meshq::MeshBvh;
+use meshq::blob::MeshLayout;
 use meshq::mesh::MeshRef;
 use serde::Serialize;
 
@@ -67,30 +67,21 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
     let config = args.quality.config();
     let n = mesh.triangle_count();
-    let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
-    let mut order = vec![0u32; n];
-    let mut scratch = vec![PrimRef::EMPTY; n];
     spinner.set_message(format!("building a BVH over {n} triangles"));
     let start = Instant::now();
-    let tree = Bvh::build(&mesh, &config, &mut nodes, &mut order, &mut scratch)?;
+    let scene = MeshBvh::build(&mesh, &config)?;
     let build_seconds = start.elapsed().as_secs_f64();
-    drop(scratch);
 
     spinner.set_message("encoding");
-    let (layout, layout_name) = match (args.no_mesh, args.packed) {
-        (true, _) => (MeshLayout::Omitted, "omitted"),
-        (false, true) => (MeshLayout::Packed, "packed"),
-        (false, false) => (MeshLayout::Indexed, "indexed"),
-    };
-    let options = EncodeOptions {
-        mesh: layout,
-        config,
+    let layout = match (args.no_mesh, args.packed) {
+        (true, _) => MeshLayout::Omitted,
+        (false, true) => MeshLayout::Packed,
+        (false, false) => MeshLayout::Indexed,
     };
     let start = Instant::now();
-    let mut bytes = vec![0u8; blob::encoded_len(&tree, &mesh, &options)?];
-    let len = blob::encode_into(&tree, &mesh, &options, &mut bytes)?;
+    let bytes = scene.to_blob(layout)?;
+    let len = bytes.len();
     let encode_seconds = start.elapsed().as_secs_f64();
-    bytes.truncate(len);
     spinner.set_message("writing");
     std::fs::write(&args.output, &bytes)
         .with_context(|| format!("cannot write {}", args.output.display()))?;
@@ -99,9 +90,9 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     let summary = Summary {
         triangles: n,
         vertices: mesh.vertex_count(),
-        nodes: tree.nodes().len(),
-        depth: tree.depth(),
-        mesh_layout: layout_name,
+        nodes: scene.bvh().nodes().len(),
+        depth: scene.bvh().depth(),
+        mesh_layout: layout.name(),
         build_seconds,
         encode_seconds,
         bytes: len,

@@ -5,8 +5,8 @@ use std::time::Instant;
 
 use anyhow::Result;
 use clap::Args;
+use meshq::MeshQuery;
 use meshq::math::Vec3;
-use meshq::query::MeshQuery;
 use serde::Serialize;
 
 use crate::raycast::per_second;
@@ -58,13 +58,8 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
             let start = Instant::now();
             // One batch per chunk: answered in Morton order with seeded searches, about 1.5
             // times as fast as one call per point, with the same answers.
-            s.tree.closest_points(
-                &s.triangles,
-                &points,
-                f32::INFINITY,
-                &mut keys,
-                &mut results,
-            )?;
+            s.scene
+                .closest_points(&points, f32::INFINITY, &mut keys, &mut results)?;
             query_seconds += start.elapsed().as_secs_f64();
             for found in &results[..points.len()] {
                 let (d, tri) = found.map_or((f32::INFINITY, u32::MAX), |c| {

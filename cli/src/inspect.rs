@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use meshq::blob::{BlobHeader, BlobTree, MeshLayout};
-use meshq::bvh::{LEAF_HISTOGRAM_LEN, SplitStrategy, TreeStats};
+use meshq::blob::{BlobHeader, BlobTree};
+use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
 use serde::Serialize;
 
 use crate::output;
@@ -87,12 +87,7 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
     Report {
         format_version: h.version,
         structure: format!("{:?}", h.kind).to_lowercase(),
-        mesh_layout: match h.mesh {
-            MeshLayout::Indexed => "indexed",
-            MeshLayout::Packed => "packed",
-            MeshLayout::Omitted => "omitted",
-        }
-        .to_owned(),
+        mesh_layout: h.mesh.name().to_owned(),
         triangles: h.triangle_count,
         vertices: h.vertex_count,
         nodes: h.node_count,
@@ -101,10 +96,7 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
         bounds_min: h.bounds.min.to_array(),
         bounds_max: h.bounds.max.to_array(),
         config: Config {
-            split: match h.config.split {
-                SplitStrategy::Sah => "sah",
-                SplitStrategy::Centre => "centre",
-            },
+            split: h.config.split.name(),
             bins: h.config.bins,
             max_leaf_size: h.config.max_leaf_size,
             max_depth: h.config.max_depth,

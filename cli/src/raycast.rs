@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use anyhow::Result;
 use clap::Args;
+use meshq::MeshQuery;
 use meshq::math::{Ray, Vec3};
 use serde::Serialize;
 
@@ -61,7 +62,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             let start = Instant::now();
             if args.any {
                 results.extend(rays.iter().map(|r| {
-                    if s.tree.raycast_any(&s.triangles, r) {
+                    if s.scene.raycast_any(r) {
                         (0.0, 0)
                     } else {
                         (f32::INFINITY, u32::MAX)
@@ -69,8 +70,8 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
                 }));
             } else {
                 results.extend(rays.iter().map(|r| {
-                    s.tree
-                        .raycast(&s.triangles, r)
+                    s.scene
+                        .raycast(r)
                         .map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.tri))
                 }));
             }

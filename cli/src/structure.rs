@@ -1,27 +1,27 @@
 //! The structure a query command runs on: built from a mesh file, or loaded from a blob. Either
-//! way queries run on an in-memory BVH with packed triangles, the fastest path.
+//! way queries run on the owned [`MeshBvh`] (the wide tree over packed triangles, the fastest
+//! path).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use meshq::blob::{BlobView, MAGIC};
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PackedTriangles, PrimRef};
+use meshq::MeshBvh;
+use meshq::blob::MAGIC;
+use meshq::bvh::BuildConfig;
 use meshq::error::BlobError;
 use meshq::mesh::MeshRef;
 
 use crate::mesh_file::{MeshData, read_mesh};
 use crate::quality::Quality;
 
-/// What a query command gets: the tree, its triangles in leaf order, and how long preparing
-/// them took (building from a mesh, or validating and decoding a blob; file reading excluded).
-pub struct Prepared<'a> {
-    pub tree: Bvh<'a>,
-    pub triangles: PackedTriangles<'a>,
+/// What a query command gets: the mesh with its trees, and how long preparing them took
+/// (building from a mesh, or validating and decoding a blob; file reading excluded).
+pub struct Prepared {
+    pub scene: MeshBvh,
     pub prepare_seconds: f64,
 }
-
 /// The input of a query command: what to query and how to prepare it.
 #[derive(Args, Debug)]
 pub struct QueryInput {
@@ -39,7 +39,7 @@ pub struct QueryInput {
 /// built with the chosen quality — and runs `query` on it.
 pub fn with_structure<R>(
     args: &QueryInput,
-    query: impl FnOnce(Prepared<'_>) -> Result<R>,
+    query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
     let (input, mesh, config) = (
         args.input.as_path(),
@@ -64,25 +64,18 @@ pub fn with_structure<R>(
     }
 }
 
-/// Builds a BVH of `data`, packs its triangles and runs `query`.
+/// Builds a BVH of `data` and runs `query`.
 pub fn with_built<R>(
     data: &MeshData,
     config: &BuildConfig,
-    query: impl FnOnce(Prepared<'_>) -> Result<R>,
+    query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
     let mesh = MeshRef::new(&data.positions, &data.triangles).validate()?;
-    let n = mesh.triangle_count();
-    let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
-    let mut order = vec![0u32; n];
-    let mut scratch = vec![PrimRef::EMPTY; n];
-    let mut packed = vec![PackedTriangle::EMPTY; n];
     let start = Instant::now();
-    let tree = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch)?;
-    let triangles = tree.pack_triangles(&mesh, &mut packed)?;
+    let scene = MeshBvh::build(&mesh, config)?;
     let prepare_seconds = start.elapsed().as_secs_f64();
     query(Prepared {
-        tree,
-        triangles,
+        scene,
         prepare_seconds,
     })
 }
@@ -91,29 +84,22 @@ pub fn with_built<R>(
 fn with_blob<R>(
     bytes: &[u8],
     external: Option<&MeshData>,
-    query: impl FnOnce(Prepared<'_>) -> Result<R>,
+    query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
     let start = Instant::now();
-    let view = match external {
+    let scene = match external {
         Some(data) => {
             let mesh = MeshRef::new(&data.positions, &data.triangles).validate()?;
-            BlobView::parse_with_mesh(bytes, mesh)?
+            MeshBvh::from_blob_with_mesh(bytes, &mesh)?
         }
-        None => BlobView::parse(bytes).map_err(|e| match e {
+        None => MeshBvh::from_blob(bytes).map_err(|e| match e {
             BlobError::MeshNotIncluded => anyhow!("{e} (pass it with --mesh)"),
             e => e.into(),
         })?,
     };
-    let h = view.header();
-    let mut nodes = vec![BvhNode::EMPTY; h.node_count as usize];
-    let mut order = vec![0u32; h.triangle_count as usize];
-    let mut packed = vec![PackedTriangle::EMPTY; h.triangle_count as usize];
-    let tree = view.decode_tree(&mut nodes, &mut order)?;
-    let triangles = view.decode_packed(&mut packed)?;
     let prepare_seconds = start.elapsed().as_secs_f64();
     query(Prepared {
-        tree,
-        triangles,
+        scene,
         prepare_seconds,
     })
 }

@@ -4,11 +4,14 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use meshq::bvh::{BuildConfig, RayOptions};
+use meshq::MeshBvh;
+use meshq::bvh::BuildConfig;
 use meshq::geom::{CullMode, closest_point_triangle, intersect_ray_triangle_watertight};
 use meshq::math::{Ray, Vec3};
 use meshq::mesh::MeshRef;
-use meshq_tests::{OwnedBvh, load_mesh, workload};
+use meshq::query::RayOptions;
+use meshq::{MeshQuery, Traverse};
+use meshq_tests::{checked_bvh, load_mesh, workload};
 
 fn meshq(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_meshq"))
@@ -102,12 +105,13 @@ fn bake_inspect_raycast_and_closest_agree_with_the_library_and_brute_force() {
     let rays = workload::random_rays(&loaded.positions, 5_000, 77);
     let ray_file = dir.path().join("rays.bin");
     write_f32s(&ray_file, ray_floats(&rays));
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::high_quality()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::high_quality()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let expected: Vec<(f32, u32)> = rays
         .iter()
         .map(|r| {
-            bvh.raycast(&mesh, r)
+            bvh.with(&mesh)
+                .raycast(r)
                 .map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.tri))
         })
         .collect();

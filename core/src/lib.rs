@@ -5,14 +5,13 @@
 //! any input, and bit-identical answers on every target (x86_64, wasm32, Cortex-M).
 //!
 //! ```
-//! use meshq::{bvh::{self, Bvh, BuildConfig, BvhNode, PrimRef}, math::{Ray, Vec3}, mesh::MeshRef};
+//! use meshq::prelude::*;
 //! # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! # let triangles = [[0u32, 1, 2]];
 //! let mesh = MeshRef::new(&positions, &triangles).validate()?;
-//! let (mut nodes, mut order, mut scratch) =
-//!     ([BvhNode::EMPTY; bvh::node_capacity(1)], [0u32; 1], [PrimRef::EMPTY; 1]);
-//! let bvh = Bvh::build(&mesh, &BuildConfig::default(), &mut nodes, &mut order, &mut scratch)?;
-//! let hit = bvh.raycast(&mesh, &Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z));
+//! let mut buffers = BvhBuffers::<1>::new();
+//! let bvh = buffers.build(&mesh, &BuildConfig::default())?;
+//! let hit = bvh.with(&mesh).raycast(&Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z));
 //! assert_eq!(hit.map(|h| h.tri), Some(0));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -20,24 +19,29 @@
 //! ## Data flow
 //!
 //! ```text
-//! positions + indices ──validate──▶ ValidMesh ──build──▶ Bvh (a view over your buffers)
-//!                                                          │
-//!                                                          ▼
-//!                                   raycast · raycast_any · closest_point · overlap_aabb/sphere
+//! positions + indices ──validate──▶ ValidMesh ──build──▶ Bvh ──widen──▶ WideBvh  (views over your buffers)
+//!                                                         │
+//!                              structure.with(&triangles) ▼            blob ──parse──▶ BlobView
+//!                                                     MeshQuery ◀────────────────────────┘
+//!              raycast · raycast_any · closest_point · batches · overlap_aabb/sphere · traverse
 //! ```
 //!
 //! ## Modules
-//! - [`math`]: [`Aabb`](math::Aabb), [`Ray`](math::Ray), [`Triangle`](math::Triangle),
-//!   [`RayHit`](math::RayHit), [`ClosestPoint`](math::ClosestPoint).
+//! - [`math`]: [`Aabb`], [`Aabb4`](math::Aabb4), [`Ray`],
+//!   [`Triangle`](math::Triangle), [`PackedTriangle`](math::PackedTriangle),
+//!   [`RayHit`], [`ClosestPoint`].
 //! - [`geom`]: exact pairwise tests, `<op>_<a>_<b>` (ray–plane, ray–box, ray–triangle in
 //!   Möller–Trumbore and watertight forms, closest points on plane/segment/triangle,
 //!   point-in-triangle, segment–segment, line–line, triangle–triangle, triangle–box).
-//! - [`mesh`]: [`MeshRef`](mesh::MeshRef) and its validation into [`ValidMesh`](mesh::ValidMesh).
-//! - [`bvh`]: the binned-SAH BVH, its builder, traversal, queries, refit and validator, and
-//!   [`WideBvh`](bvh::WideBvh), the same tree collapsed four-wide for faster queries.
-//! - [`query`]: the [`MeshQuery`](query::MeshQuery) trait every structure implements.
+//! - [`mesh`]: [`MeshRef`] and its validation into [`ValidMesh`].
+//! - [`query`]: the query layer every structure shares: [`Traverse`] (what a
+//!   structure implements), [`Visitor`](query::Visitor) (what a query is),
+//!   [`MeshQuery`] (every query), leaf access and batches.
+//! - [`bvh`]: the binned-SAH BVH, its builder, traversal, refit and validator.
+//! - [`wide`]: [`WideBvh`], the same tree collapsed four-wide.
 //! - [`error`]: [`MeshError`](error::MeshError), [`BuildError`](error::BuildError),
-//!   [`StructureError`](error::StructureError).
+//!   [`StructureError`](error::StructureError), [`BatchError`](error::BatchError).
+//! - [`prelude`]: the names most code needs, in one `use`.
 //!
 //! ## Conventions
 //! - `f32` everywhere, no fused multiply-add, transcendental functions only through `libm`.
@@ -50,6 +54,10 @@
 //! ## Features
 //! - `blob`: prebuilt blobs (module `blob`): encode a BVH and its mesh with postcard and query them
 //!   in place from bytes. Adds `postcard` and `crc` (both `no_std`, no allocation).
+//! - `alloc`: `MeshBvh` (module `owned`), one value that sizes, owns and builds every buffer
+//!   (mesh, tree, packed triangles, wide nodes) and answers every query; with `blob`, it
+//!   round-trips blobs too. Links the `alloc` crate; without this feature the crate links no
+//!   allocator.
 //!
 //! Features add API only; none changes a layout, a wire format or a result.
 #![cfg_attr(not(test), no_std)]
@@ -66,6 +74,9 @@
     )
 )]
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 #[cfg(feature = "blob")]
 pub mod blob;
 pub mod bvh;
@@ -73,4 +84,18 @@ pub mod error;
 pub mod geom;
 pub mod math;
 pub mod mesh;
+#[cfg(feature = "alloc")]
+pub mod owned;
+pub mod prelude;
 pub mod query;
+pub mod wide;
+
+#[cfg(feature = "blob")]
+pub use blob::BlobView;
+pub use bvh::{BuildConfig, Bvh, BvhBuffers};
+pub use math::{Aabb, ClosestPoint, Ray, RayHit, Vec3};
+pub use mesh::{MeshRef, ValidMesh};
+#[cfg(feature = "alloc")]
+pub use owned::MeshBvh;
+pub use query::{MeshQuery, RayOptions, Traverse};
+pub use wide::WideBvh;

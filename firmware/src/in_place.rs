@@ -1,6 +1,7 @@
 //! The parity queries answered straight from the blob bytes in flash.
 
 use glam::Vec3;
+use meshq::MeshQuery;
 use meshq::blob::BlobView;
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq_workload::ParityTarget;

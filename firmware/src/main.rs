@@ -16,6 +16,7 @@ mod report;
 mod stack;
 
 use cortex_m_rt::entry;
+use meshq::MeshQuery;
 use meshq::blob::BlobView;
 use meshq_workload::{find_golden, run_parity};
 

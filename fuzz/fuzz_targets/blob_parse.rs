@@ -6,8 +6,10 @@
 use core::ops::ControlFlow;
 
 use libfuzzer_sys::fuzz_target;
+use meshq::{MeshQuery, Traverse};
 use meshq::blob::{self, BlobHeader, BlobView};
-use meshq::bvh::{BvhNode, PackedTriangle};
+use meshq::bvh::BvhNode;
+use meshq::math::PackedTriangle;
 use meshq::math::{Aabb, Ray, Vec3};
 
 fuzz_target!(|data: &[u8]| {
@@ -44,7 +46,7 @@ fuzz_target!(|data: &[u8]| {
         view.decode_packed(&mut packed),
     ) {
         let ray = Ray::new(c + Vec3::new(0.3, 0.2, 5.0), -Vec3::Z);
-        let a = tree.raycast(&tris, &ray).map(|h| (h.t.to_bits(), h.tri));
+        let a = tree.with(&tris).raycast(&ray).map(|h| (h.t.to_bits(), h.tri));
         let b = view.raycast(&ray).map(|h| (h.t.to_bits(), h.tri));
         assert_eq!(a, b);
     }

@@ -2,13 +2,13 @@
 //! share no code with the acceleration structures beyond those primitives.
 
 use glam::Vec3;
-use meshq::bvh::{RayOptions, TriangleTest};
 use meshq::geom::{
     closest_point_triangle, intersect_ray_aabb, intersect_ray_triangle,
     intersect_ray_triangle_watertight, overlap_triangle_aabb,
 };
 use meshq::math::{Aabb, ClosestPoint, Ray, RayHit, Triangle};
 use meshq::mesh::ValidMesh;
+use meshq::query::{RayOptions, TriangleTest};
 
 /// A mesh's triangles by value, gathered once so the scans below spend their time in the
 /// primitive tests.

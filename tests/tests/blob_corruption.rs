@@ -8,6 +8,7 @@ use meshq::bvh::BuildConfig;
 use meshq::error::{BlobError, BlobSection};
 use meshq::math::{Aabb, Ray, Vec3};
 use meshq::mesh::MeshRef;
+use meshq::{MeshBvh, MeshQuery};
 use meshq_tests::{bake, load_mesh};
 
 /// A small real blob: the triangles of spot within a radius of one of its vertices, re-indexed.
@@ -177,8 +178,8 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
 fn encode_into_a_short_buffer_writes_nothing() {
     let loaded = load_mesh("teapot");
     let mesh = loaded.valid();
-    let owned = meshq_tests::OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = meshq_tests::checked_bvh(&owned, &mesh).unwrap();
     let options = blob::EncodeOptions::default();
     let n = blob::encoded_len(&bvh, &mesh, &options).unwrap();
     let mut short = vec![0xAAu8; n - 1];

@@ -5,12 +5,15 @@
 
 use std::ops::ControlFlow;
 
+use meshq::MeshBvh;
 use meshq::blob::{BlobView, FORMAT_VERSION, MeshLayout, StructureKind, mesh_checksum};
-use meshq::bvh::{BuildConfig, BvhNode, PackedTriangle, RayOptions};
+use meshq::bvh::{BuildConfig, BvhNode};
+use meshq::math::PackedTriangle;
 use meshq::math::{Aabb, ClosestPoint, RayHit, Vec3};
-use meshq::query::MeshQuery;
+use meshq::query::RayOptions;
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, OwnedBvh, encode, load_mesh, workload};
+use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
 use serde::Deserialize;
 
 const RAYS: usize = 20_000;
@@ -37,14 +40,14 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
         let config = BuildConfig::default();
-        let owned = OwnedBvh::build(&mesh, &config).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &config).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let brute = BruteForce::new(&mesh);
         let rays = workload::random_rays(&loaded.positions, RAYS, 0xB10B);
         let points = workload::closest_points(&loaded.positions, POINTS, 0xB10C);
         let (c, r, _) = workload::centre_radius(&loaded.positions);
         for layout in LAYOUTS {
-            let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
+            let bytes = owned.to_blob(layout).unwrap();
             let view = match layout {
                 MeshLayout::Omitted => BlobView::parse_with_mesh(&bytes, mesh).unwrap(),
                 _ => BlobView::parse(&bytes).unwrap(),
@@ -66,7 +69,7 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
                 let got = view.raycast(ray);
                 assert_eq!(
                     hit_key(got),
-                    hit_key(bvh.raycast(&mesh, ray)),
+                    hit_key(bvh.with(&mesh).raycast(ray)),
                     "{name} {layout:?} ray {i}"
                 );
                 assert_eq!(
@@ -87,7 +90,7 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
                 let got = view.closest_point(p, f32::INFINITY);
                 assert_eq!(
                     point_key(got),
-                    point_key(bvh.closest_point(&mesh, p, f32::INFINITY)),
+                    point_key(bvh.with(&mesh).closest_point(p, f32::INFINITY)),
                     "{name} {layout:?} point {i}"
                 );
                 if i % 10 == 0 {
@@ -119,9 +122,10 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
             assert_eq!(
                 hit_key(
                     view.tree()
-                        .raycast_with(&mesh, &ray, &RayOptions::default())
+                        .with(&mesh)
+                        .raycast_with(&ray, &RayOptions::default())
                 ),
-                hit_key(bvh.raycast(&mesh, &ray))
+                hit_key(bvh.with(&mesh).raycast(&ray))
             );
         }
     }
@@ -133,24 +137,24 @@ fn decoding_into_caller_slices_restores_the_arrays() {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
         let config = BuildConfig::fast();
-        let owned = OwnedBvh::build(&mesh, &config).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &config).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let mut expected_packed = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         bvh.pack_triangles(&mesh, &mut expected_packed).unwrap();
         for layout in LAYOUTS {
-            let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
+            let bytes = owned.to_blob(layout).unwrap();
             let view = match layout {
                 MeshLayout::Omitted => BlobView::parse_with_mesh(&bytes, mesh).unwrap(),
                 _ => BlobView::parse(&bytes).unwrap(),
             };
-            let mut nodes = vec![BvhNode::EMPTY; owned.nodes.len()];
-            let mut order = vec![0u32; owned.order.len()];
+            let mut nodes = vec![BvhNode::EMPTY; owned.bvh().nodes().len()];
+            let mut order = vec![0u32; owned.bvh().order().len()];
             // One element short is an error, never a partial copy.
             assert!(view.decode_tree(&mut nodes[1..], &mut order).is_err());
             let tree = view.decode_tree(&mut nodes, &mut order).unwrap();
             assert_eq!(tree.depth(), bvh.depth());
-            assert_eq!(tree.nodes(), &owned.nodes[..]);
-            assert_eq!(tree.order(), &owned.order[..]);
+            assert_eq!(tree.nodes(), owned.bvh().nodes());
+            assert_eq!(tree.order(), owned.bvh().order());
 
             let mut packed = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
             let p = view.decode_packed(&mut packed).unwrap();
@@ -190,22 +194,16 @@ fn blobs_are_deterministic_and_sized_exactly() {
     // Sizes follow the record widths: 32 bytes per node, 4 per order entry, and 12 per vertex
     // plus 12 per triangle (indexed) or 36 per triangle (packed), plus small varint lengths.
     let config = BuildConfig::default();
-    let owned = OwnedBvh::build(&mesh, &config).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &config).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let (n, t, v) = (
         bvh.nodes().len(),
         mesh.triangle_count(),
         mesh.vertex_count(),
     );
-    let omitted = encode(&bvh, &mesh, &config, MeshLayout::Omitted)
-        .unwrap()
-        .len();
-    let indexed = encode(&bvh, &mesh, &config, MeshLayout::Indexed)
-        .unwrap()
-        .len();
-    let packed = encode(&bvh, &mesh, &config, MeshLayout::Packed)
-        .unwrap()
-        .len();
+    let omitted = owned.to_blob(MeshLayout::Omitted).unwrap().len();
+    let indexed = owned.to_blob(MeshLayout::Indexed).unwrap().len();
+    let packed = owned.to_blob(MeshLayout::Packed).unwrap().len();
     let arrays = 32 * n + 4 * t;
     assert!(
         omitted > arrays && omitted < arrays + 128,
@@ -281,9 +279,9 @@ fn a_blob_is_one_postcard_message() {
         (BuildConfig::default(), 0, MeshLayout::Omitted),
         (BuildConfig::fast(), 1, MeshLayout::Indexed),
     ] {
-        let owned = OwnedBvh::build(&mesh, &config).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
-        let bytes = encode(&bvh, &mesh, &config, layout).unwrap();
+        let owned = MeshBvh::build(&mesh, &config).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
+        let bytes = owned.to_blob(layout).unwrap();
         let whole: WholeBlob = postcard::from_bytes(&bytes).unwrap();
         // from_bytes ignores trailing bytes; the message must use every byte.
         let (_, rest) = postcard::take_from_bytes::<WholeBlob>(&bytes).unwrap();
@@ -293,7 +291,7 @@ fn a_blob_is_one_postcard_message() {
         assert_eq!((whole.kind, whole.mesh), (0, layout.tag()));
         assert_eq!(whole.triangle_count as usize, mesh.triangle_count());
         assert_eq!(whole.vertex_count as usize, mesh.vertex_count());
-        assert_eq!(whole.node_count as usize, owned.nodes.len());
+        assert_eq!(whole.node_count as usize, owned.bvh().nodes().len());
         assert_eq!(whole.depth, bvh.depth());
         assert_eq!(whole.bounds_min, bvh.bounds().min.to_array());
         assert_eq!(whole.bounds_max, bvh.bounds().max.to_array());
@@ -315,7 +313,8 @@ fn a_blob_is_one_postcard_message() {
         assert!(whole.payload_len > 0);
         assert_ne!(whole.checksum, 0);
         let nodes: Vec<NodeMirror> = owned
-            .nodes
+            .bvh()
+            .nodes()
             .iter()
             .map(|n| NodeMirror {
                 min: n.min,
@@ -327,7 +326,12 @@ fn a_blob_is_one_postcard_message() {
         assert_eq!(whole.nodes, nodes);
         assert_eq!(
             whole.order,
-            owned.order.iter().map(|&i| Fixed(i)).collect::<Vec<_>>()
+            owned
+                .bvh()
+                .order()
+                .iter()
+                .map(|&i| Fixed(i))
+                .collect::<Vec<_>>()
         );
         match (layout, whole.section) {
             (MeshLayout::Indexed, SectionMirror::Indexed(p, t)) => {
@@ -337,7 +341,7 @@ fn a_blob_is_one_postcard_message() {
             }
             (MeshLayout::Packed, SectionMirror::Packed(p)) => {
                 for (slot, corners) in p.iter().enumerate() {
-                    let t = mesh.triangle(owned.order[slot]).unwrap();
+                    let t = mesh.triangle(owned.bvh().order()[slot]).unwrap();
                     assert_eq!(*corners, [t.a.to_array(), t.b.to_array(), t.c.to_array()]);
                 }
             }

@@ -2,12 +2,15 @@
 //! triangle under the tie rule), with and without a maximum distance, on the binary tree and
 //! on the four-wide tree collapsed from it, one query at a time and in batches.
 
-use meshq::bvh::{BuildConfig, PackedTriangle, WideNode};
+use meshq::MeshBvh;
+use meshq::bvh::BuildConfig;
 use meshq::error::{BatchBuffer, BatchError};
+use meshq::math::PackedTriangle;
 use meshq::math::{ClosestPoint, Vec3};
-use meshq::query::MeshQuery;
+use meshq::wide::WideNode;
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
+use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
 
 const QUERIES: usize = 10_000;
 /// Queries that also run with a maximum distance.
@@ -18,8 +21,8 @@ fn closest_point_matches_brute_force_on_every_mesh() {
     for name in MESHES {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
-        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
         let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
@@ -33,13 +36,13 @@ fn closest_point_matches_brute_force_on_every_mesh() {
             let expected = brute.closest_point(p, f32::INFINITY);
             unlimited.push(expected);
             assert!(expected.is_some());
-            let got = bvh.closest_point(&mesh, p, f32::INFINITY);
+            let got = bvh.with(&mesh).closest_point(p, f32::INFINITY);
             assert_eq!(key(got), key(expected), "{name}: point {i} {p}");
-            let from_packed = bvh.closest_point(&packed, p, f32::INFINITY);
+            let from_packed = bvh.with(&packed).closest_point(p, f32::INFINITY);
             assert_eq!(key(from_packed), key(expected), "{name}: packed, point {i}");
-            let from_wide = wide.closest_point(&mesh, p, f32::INFINITY);
+            let from_wide = wide.with(&mesh).closest_point(p, f32::INFINITY);
             assert_eq!(key(from_wide), key(expected), "{name}: wide, point {i}");
-            let wide_packed = wide.closest_point(&packed, p, f32::INFINITY);
+            let wide_packed = wide.with(&packed).closest_point(p, f32::INFINITY);
             assert_eq!(
                 key(wide_packed),
                 key(expected),
@@ -52,13 +55,13 @@ fn closest_point_matches_brute_force_on_every_mesh() {
             let max = 0.05 * r;
             let expected = brute.closest_point(p, max);
             limited.push(expected);
-            let got = bvh.closest_point(&mesh, p, max);
+            let got = bvh.with(&mesh).closest_point(p, max);
             assert_eq!(
                 key(got),
                 key(expected),
                 "{name}: point {i} {p} within {max}"
             );
-            let from_wide = wide.closest_point(&packed, p, max);
+            let from_wide = wide.with(&packed).closest_point(p, max);
             assert_eq!(key(from_wide), key(expected), "{name}: wide, point {i}");
             limited_hits += usize::from(got.is_some());
         }
@@ -78,12 +81,14 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         let max = 0.05 * r;
         let runs: [(&str, &BatchCall<'_>); 3] = [
             ("binary", &|p, m, k, o| {
-                bvh.closest_points(&mesh, p, m, k, o)
+                bvh.with(&mesh).closest_points(p, m, k, o)
             }),
             ("wide packed", &|p, m, k, o| {
-                wide.closest_points(&packed, p, m, k, o)
+                wide.with(&packed).closest_points(p, m, k, o)
             }),
-            ("wide", &|p, m, k, o| wide.closest_points(&mesh, p, m, k, o)),
+            ("wide", &|p, m, k, o| {
+                wide.with(&mesh).closest_points(p, m, k, o)
+            }),
         ];
         for (what, query) in runs {
             let got = batch(query, f32::INFINITY, QUERIES);
@@ -104,7 +109,9 @@ fn closest_point_matches_brute_force_on_every_mesh() {
 
         // Short buffers are errors that write nothing; non-finite points find nothing.
         let mut out = vec![None; QUERIES - 1];
-        let err = wide.closest_points(&packed, &points, f32::INFINITY, &mut keys, &mut out);
+        let err = wide
+            .with(&packed)
+            .closest_points(&points, f32::INFINITY, &mut keys, &mut out);
         assert_eq!(
             err,
             Err(BatchError::BufferTooSmall {
@@ -115,7 +122,9 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         );
         assert!(out.iter().all(Option::is_none));
         let mut out = vec![None; QUERIES];
-        let err = wide.closest_points(&packed, &points, f32::INFINITY, &mut keys[1..], &mut out);
+        let err =
+            wide.with(&packed)
+                .closest_points(&points, f32::INFINITY, &mut keys[1..], &mut out);
         assert!(matches!(
             err,
             Err(BatchError::BufferTooSmall {
@@ -125,7 +134,8 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         ));
         assert!(out.iter().all(Option::is_none));
         let odd = [points[0], Vec3::NAN, points[1], Vec3::INFINITY, points[2]];
-        wide.closest_points(&packed, &odd, f32::INFINITY, &mut keys, &mut out)
+        wide.with(&packed)
+            .closest_points(&odd, f32::INFINITY, &mut keys, &mut out)
             .unwrap();
         let want = [unlimited[0], None, unlimited[1], None, unlimited[2]];
         assert!(

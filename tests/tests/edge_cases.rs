@@ -2,12 +2,16 @@
 //! triangles, and extreme coordinate scales.
 
 use glam::Vec3;
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, RayOptions};
+use meshq::MeshBvh;
+use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef};
 use meshq::error::{BufferKind, BuildError, FlatSlice, MeshError};
+use meshq::math::PackedTriangle;
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
+use meshq::query::RayOptions;
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{OwnedBvh, load_mesh, workload};
+use meshq_tests::{checked_bvh, load_mesh, workload};
 
 const SENTINEL: BvhNode = BvhNode {
     min: [42.0; 3],
@@ -93,7 +97,7 @@ fn invalid_configs_are_rejected_before_building() {
         ),
     ] {
         assert_eq!(
-            OwnedBvh::build(&mesh, &config).unwrap_err(),
+            MeshBvh::build(&mesh, &config).unwrap_err(),
             BuildError::InvalidConfig { field }
         );
     }
@@ -101,7 +105,7 @@ fn invalid_configs_are_rejected_before_building() {
     let many: Vec<[u32; 3]> = vec![[0, 1, 2]; 100];
     let mesh = MeshRef::new(&positions, &many).validate().unwrap();
     assert_eq!(
-        OwnedBvh::build(&mesh, &deep).unwrap_err(),
+        MeshBvh::build(&mesh, &deep).unwrap_err(),
         BuildError::TooDeep {
             max_depth: 3,
             triangles: 100
@@ -171,11 +175,14 @@ fn empty_mesh_gives_an_empty_tree_that_answers_nothing() {
     assert_eq!(bvh.depth(), 0);
     bvh.check(&mesh).unwrap();
     let ray = Ray::new(Vec3::ZERO, Vec3::X);
-    assert_eq!(bvh.raycast(&mesh, &ray), None);
-    assert!(!bvh.raycast_any(&mesh, &ray));
-    assert_eq!(bvh.closest_point(&mesh, Vec3::ZERO, f32::INFINITY), None);
+    assert_eq!(bvh.with(&mesh).raycast(&ray), None);
+    assert!(!bvh.with(&mesh).raycast_any(&ray));
+    assert_eq!(
+        bvh.with(&mesh).closest_point(Vec3::ZERO, f32::INFINITY),
+        None
+    );
     let all = Aabb::new(Vec3::splat(-1e9), Vec3::splat(1e9));
-    assert_eq!(bvh.overlap_aabb_into(&mesh, &all, &mut []).total, 0);
+    assert_eq!(bvh.with(&mesh).overlap_aabb_into(&all, &mut []).total, 0);
     assert_eq!(bvh.bounds(), Aabb::EMPTY);
 }
 
@@ -194,25 +201,29 @@ fn one_triangle_and_invalid_queries() {
     .unwrap();
     assert_eq!((bvh.nodes().len(), bvh.depth()), (1, 1));
     let hit = bvh
-        .raycast(
-            &mesh,
-            &Ray::new(Vec3::new(0.5, 0.5, 3.0), Vec3::new(0.0, 0.0, -2.0)),
-        )
+        .with(&mesh)
+        .raycast(&Ray::new(
+            Vec3::new(0.5, 0.5, 3.0),
+            Vec3::new(0.0, 0.0, -2.0),
+        ))
         .unwrap();
     assert_eq!((hit.tri, hit.t, hit.u, hit.v), (0, 1.5, 0.25, 0.25));
     let c = bvh
-        .closest_point(&mesh, Vec3::new(3.0, 0.0, 0.0), f32::INFINITY)
+        .with(&mesh)
+        .closest_point(Vec3::new(3.0, 0.0, 0.0), f32::INFINITY)
         .unwrap();
     assert_eq!(
         (c.point, c.distance_squared),
         (Vec3::new(2.0, 0.0, 0.0), 1.0)
     );
     assert_eq!(
-        bvh.closest_point(&mesh, Vec3::new(3.0, 0.0, 0.0), 0.999),
+        bvh.with(&mesh)
+            .closest_point(Vec3::new(3.0, 0.0, 0.0), 0.999),
         None
     );
     assert!(
-        bvh.closest_point(&mesh, Vec3::new(3.0, 0.0, 0.0), 1.0)
+        bvh.with(&mesh)
+            .closest_point(Vec3::new(3.0, 0.0, 0.0), 1.0)
             .is_some()
     );
     for bad in [
@@ -225,12 +236,15 @@ fn one_triangle_and_invalid_queries() {
         Ray::new(Vec3::new(0.5, 0.5, 3.0), -Vec3::Z).with_range(2.0, 1.0),
         Ray::new(Vec3::new(0.5, 0.5, 3.0), -Vec3::Z).with_range(f32::NAN, 9.0),
     ] {
-        assert_eq!(bvh.raycast(&mesh, &bad), None, "{bad:?}");
-        assert!(!bvh.raycast_any(&mesh, &bad), "{bad:?}");
+        assert_eq!(bvh.with(&mesh).raycast(&bad), None, "{bad:?}");
+        assert!(!bvh.with(&mesh).raycast_any(&bad), "{bad:?}");
     }
-    assert_eq!(bvh.closest_point(&mesh, Vec3::NAN, f32::INFINITY), None);
-    assert_eq!(bvh.closest_point(&mesh, Vec3::ZERO, -1.0), None);
-    assert_eq!(bvh.closest_point(&mesh, Vec3::ZERO, f32::NAN), None);
+    assert_eq!(
+        bvh.with(&mesh).closest_point(Vec3::NAN, f32::INFINITY),
+        None
+    );
+    assert_eq!(bvh.with(&mesh).closest_point(Vec3::ZERO, -1.0), None);
+    assert_eq!(bvh.with(&mesh).closest_point(Vec3::ZERO, f32::NAN), None);
 }
 
 /// `count` triangles whose bounding boxes all have their centre exactly at the origin: each
@@ -255,8 +269,8 @@ fn all_triangles_on_one_centroid_fall_back_to_index_splits() {
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     let centre = |i: u32| mesh.triangle(i).unwrap().bounds().center();
     assert!((0..1_000).all(|i| centre(i) == Vec3::ZERO));
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     assert!(
         bvh.depth() <= 10,
         "median splits give a balanced tree, depth {}",
@@ -266,7 +280,7 @@ fn all_triangles_on_one_centroid_fall_back_to_index_splits() {
     for ray in workload::random_rays(&positions, 2_000, 5) {
         let key = |h: Option<meshq::math::RayHit>| h.map(|h| (h.t.to_bits(), h.tri));
         assert_eq!(
-            key(bvh.raycast(&mesh, &ray)),
+            key(bvh.with(&mesh).raycast(&ray)),
             key(brute.raycast(&ray, &RayOptions::default()))
         );
     }
@@ -274,7 +288,7 @@ fn all_triangles_on_one_centroid_fall_back_to_index_splits() {
         let key =
             |c: Option<meshq::math::ClosestPoint>| c.map(|c| (c.distance_squared.to_bits(), c.tri));
         assert_eq!(
-            key(bvh.closest_point(&mesh, p, f32::INFINITY)),
+            key(bvh.with(&mesh).closest_point(p, f32::INFINITY)),
             key(brute.closest_point(p, f32::INFINITY))
         );
     }
@@ -300,17 +314,17 @@ fn degenerate_triangles_are_kept_but_never_returned() {
         .map(|i| mesh.triangle(i).unwrap().is_degenerate())
         .collect();
     assert!(degenerate.iter().filter(|&&d| d).count() > 3_000);
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let brute = BruteForce::new(&mesh);
     for ray in workload::random_rays(&positions, 3_000, 11) {
-        let got = bvh.raycast(&mesh, &ray);
+        let got = bvh.with(&mesh).raycast(&ray);
         assert!(got.is_none_or(|h| !degenerate[h.tri as usize]));
         let key = |h: Option<meshq::math::RayHit>| h.map(|h| (h.t.to_bits(), h.tri));
         assert_eq!(key(got), key(brute.raycast(&ray, &RayOptions::default())));
     }
     for p in workload::closest_points(&positions, 500, 12) {
-        let got = bvh.closest_point(&mesh, p, f32::INFINITY).unwrap();
+        let got = bvh.with(&mesh).closest_point(p, f32::INFINITY).unwrap();
         assert!(!degenerate[got.tri as usize]);
         assert_eq!(got.tri, brute.closest_point(p, f32::INFINITY).unwrap().tri);
     }
@@ -328,15 +342,15 @@ fn tiny_and_huge_coordinate_scales_stay_exact() {
         let mesh = MeshRef::new(&positions, &loaded.triangles)
             .validate()
             .unwrap();
-        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let brute = BruteForce::new(&mesh);
         let mut hits = 0;
         for ray in workload::random_rays(&positions, 3_000, 21) {
             let key = |h: Option<meshq::math::RayHit>| h.map(|h| (h.t.to_bits(), h.tri));
             let expected = brute.raycast(&ray, &RayOptions::default());
             assert_eq!(
-                key(bvh.raycast(&mesh, &ray)),
+                key(bvh.with(&mesh).raycast(&ray)),
                 key(expected),
                 "scale {scale}"
             );
@@ -348,7 +362,7 @@ fn tiny_and_huge_coordinate_scales_stay_exact() {
                 c.map(|c| (c.distance_squared.to_bits(), c.tri))
             };
             assert_eq!(
-                key(bvh.closest_point(&mesh, p, f32::INFINITY)),
+                key(bvh.with(&mesh).closest_point(p, f32::INFINITY)),
                 key(brute.closest_point(p, f32::INFINITY))
             );
         }
@@ -359,8 +373,8 @@ fn tiny_and_huge_coordinate_scales_stay_exact() {
 fn packing_needs_one_slot_per_triangle() {
     let loaded = load_mesh("cow");
     let mesh = loaded.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let n = mesh.triangle_count();
     let mut short = vec![PackedTriangle::EMPTY; n - 1];
     assert_eq!(

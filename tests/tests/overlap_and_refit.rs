@@ -4,19 +4,22 @@
 use std::ops::ControlFlow;
 
 use glam::Vec3;
-use meshq::bvh::{BuildConfig, Bvh, RayOptions};
+use meshq::MeshBvh;
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::math::Aabb;
 use meshq::mesh::MeshRef;
+use meshq::query::RayOptions;
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{OwnedBvh, SplitMix64, load_mesh, workload};
+use meshq_tests::{SplitMix64, TreeParts, checked_bvh, load_mesh, workload};
 
 #[test]
 fn box_and_sphere_overlap_match_brute_force() {
     for name in ["stanford-bunny", "teapot"] {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
-        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, bounds) = workload::centre_radius(&loaded.positions);
         let mut rng = SplitMix64::new(404);
@@ -31,7 +34,7 @@ fn box_and_sphere_overlap_match_brute_force() {
             ) * size;
             let query = Aabb::new(c - half, c + half);
             let mut got = Vec::new();
-            bvh.overlap_aabb(&mesh, &query, |t| {
+            bvh.with(&mesh).overlap_aabb(&query, |t| {
                 got.push(t);
                 ControlFlow::Continue(())
             });
@@ -40,7 +43,7 @@ fn box_and_sphere_overlap_match_brute_force() {
             assert_eq!(got, expected, "{name} box {i}");
             let radius = size;
             let mut got = Vec::new();
-            bvh.overlap_sphere(&mesh, c, radius, |t| {
+            bvh.with(&mesh).overlap_sphere(c, radius, |t| {
                 got.push(t);
                 ControlFlow::Continue(())
             });
@@ -59,23 +62,24 @@ fn box_and_sphere_overlap_match_brute_force() {
 fn into_buffers_report_the_full_count_and_break_stops_early() {
     let loaded = load_mesh("spot");
     let mesh = loaded.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let (c, r, _) = workload::centre_radius(&loaded.positions);
     let total = BruteForce::new(&mesh).overlap_sphere(c, 0.6 * r).len();
     assert!(total > 100);
     let mut small = [u32::MAX; 10];
-    let count = bvh.overlap_sphere_into(&mesh, c, 0.6 * r, &mut small);
+    let count = bvh.with(&mesh).overlap_sphere_into(c, 0.6 * r, &mut small);
     assert_eq!((count.written, count.total), (10, total));
     assert!(!count.is_complete());
     assert!(small.iter().all(|&t| (t as usize) < mesh.triangle_count()));
     let mut big = vec![0; total];
     assert!(
-        bvh.overlap_sphere_into(&mesh, c, 0.6 * r, &mut big)
+        bvh.with(&mesh)
+            .overlap_sphere_into(c, 0.6 * r, &mut big)
             .is_complete()
     );
     let mut seen = 0;
-    bvh.overlap_sphere(&mesh, c, 0.6 * r, |_| {
+    bvh.with(&mesh).overlap_sphere(c, 0.6 * r, |_| {
         seen += 1;
         if seen == 3 {
             ControlFlow::Break(())
@@ -90,7 +94,7 @@ fn into_buffers_report_the_full_count_and_break_stops_early() {
 fn refit_after_deformation_is_valid_and_exact() {
     let loaded = load_mesh("stanford-bunny");
     let mesh = loaded.valid();
-    let mut owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let (c, r, _) = workload::centre_radius(&loaded.positions);
     // Twist around the vertical axis and swell: every box changes.
     let moved: Vec<[f32; 3]> = loaded
@@ -105,14 +109,15 @@ fn refit_after_deformation_is_valid_and_exact() {
         .collect();
     let moved_mesh = MeshRef::new(&moved, &loaded.triangles).validate().unwrap();
     // The old boxes no longer hold the moved triangles.
-    assert!(owned.view(&moved_mesh).is_err());
-    let bvh = Bvh::refit(&mut owned.nodes, &owned.order, &moved_mesh).unwrap();
+    assert!(checked_bvh(&owned, &moved_mesh).is_err());
+    let mut parts = TreeParts::of(&owned);
+    let bvh = Bvh::refit(&mut parts.nodes, &parts.order, &moved_mesh).unwrap();
     bvh.check(&moved_mesh).unwrap();
     let brute = BruteForce::new(&moved_mesh);
     for ray in workload::random_rays(&moved, 3_000, 31) {
         let key = |h: Option<meshq::math::RayHit>| h.map(|h| (h.t.to_bits(), h.tri));
         assert_eq!(
-            key(bvh.raycast(&moved_mesh, &ray)),
+            key(bvh.with(&moved_mesh).raycast(&ray)),
             key(brute.raycast(&ray, &RayOptions::default()))
         );
     }
@@ -120,7 +125,7 @@ fn refit_after_deformation_is_valid_and_exact() {
         let key =
             |c: Option<meshq::math::ClosestPoint>| c.map(|c| (c.distance_squared.to_bits(), c.tri));
         assert_eq!(
-            key(bvh.closest_point(&moved_mesh, p, f32::INFINITY)),
+            key(bvh.with(&moved_mesh).closest_point(p, f32::INFINITY)),
             key(brute.closest_point(p, f32::INFINITY))
         );
     }
@@ -130,14 +135,14 @@ fn refit_after_deformation_is_valid_and_exact() {
 fn refit_of_a_broken_tree_fails_and_changes_nothing() {
     let loaded = load_mesh("cow");
     let mesh = loaded.valid();
-    let mut owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let mut owned = TreeParts::of(&MeshBvh::build(&mesh, &BuildConfig::default()).unwrap());
     let inner = owned.nodes.iter().position(|n| !n.is_leaf()).unwrap();
     owned.nodes[inner].first = 0;
     let before = owned.nodes.clone();
     assert!(Bvh::refit(&mut owned.nodes, &owned.order, &mesh).is_err());
     assert_eq!(owned.nodes, before);
     // A mesh with fewer triangles than the tree names.
-    let fixed = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let fixed = TreeParts::of(&MeshBvh::build(&mesh, &BuildConfig::default()).unwrap());
     let mut nodes = fixed.nodes.clone();
     let fewer = MeshRef::new(&loaded.positions, &loaded.triangles[..100])
         .validate()

@@ -11,12 +11,16 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use glam::Vec3;
+use meshq::MeshBvh;
 use meshq::blob::{BlobView, MeshLayout};
-use meshq::bvh::{BuildConfig, Bvh, RayOptions, WideBvh, WideNode};
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq::mesh::ValidMesh;
+use meshq::query::RayOptions;
+use meshq::wide::{WideBvh, WideNode};
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, OwnedBvh, bake, load_mesh};
+use meshq_tests::{MESHES, bake, checked_bvh, load_mesh};
 use meshq_workload::{GoldenEntry, ParitySpec, ParityTarget, find_golden, run_parity};
 
 struct Brute(BruteForce);
@@ -40,13 +44,15 @@ struct InMemory<'a> {
 
 impl ParityTarget for InMemory<'_> {
     fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
-        self.bvh.raycast(&self.mesh, ray)
+        self.bvh.with(&self.mesh).raycast(ray)
     }
     fn raycast_any(&mut self, ray: &Ray) -> bool {
-        self.bvh.raycast_any(&self.mesh, ray)
+        self.bvh.with(&self.mesh).raycast_any(ray)
     }
     fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
-        self.bvh.closest_point(&self.mesh, point, f32::INFINITY)
+        self.bvh
+            .with(&self.mesh)
+            .closest_point(point, f32::INFINITY)
     }
 }
 
@@ -57,13 +63,15 @@ struct Wide<'a> {
 
 impl ParityTarget for Wide<'_> {
     fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
-        self.wide.raycast(&self.mesh, ray)
+        self.wide.with(&self.mesh).raycast(ray)
     }
     fn raycast_any(&mut self, ray: &Ray) -> bool {
-        self.wide.raycast_any(&self.mesh, ray)
+        self.wide.with(&self.mesh).raycast_any(ray)
     }
     fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
-        self.wide.closest_point(&self.mesh, point, f32::INFINITY)
+        self.wide
+            .with(&self.mesh)
+            .closest_point(point, f32::INFINITY)
     }
 }
 
@@ -91,8 +99,8 @@ fn computed_line(name: &str) -> String {
     let mesh = loaded.valid();
     let spec = ParitySpec::DEFAULT;
     let config = BuildConfig::default();
-    let owned = OwnedBvh::build(&mesh, &config).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &config).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     // The queries are placed around the root box a blob header records.
     let bounds = bvh.bounds();
 

@@ -3,15 +3,17 @@
 //! same barycentrics. Checked on the binary tree and on the four-wide tree collapsed from it,
 //! reading triangles from the mesh and from packed copies, one ray at a time and in batches.
 
-use meshq::bvh::{
-    BuildConfig, Bvh, PackedTriangle, PackedTriangles, RayOptions, TriangleTest, WideBvh, WideNode,
-};
+use meshq::MeshBvh;
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::geom::CullMode;
+use meshq::math::PackedTriangle;
 use meshq::math::Ray;
 use meshq::mesh::ValidMesh;
-use meshq::query::MeshQuery;
+use meshq::query::{PackedTriangles, RayOptions, TriangleTest};
+use meshq::wide::{WideBvh, WideNode};
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
+use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
 
 /// Random rays per mesh with the default (watertight) test, as the issue asks.
 const WATERTIGHT_RAYS: usize = 100_000;
@@ -37,29 +39,29 @@ fn assert_same(
     for (i, ray) in rays.iter().enumerate() {
         let expected = brute.raycast(ray, options);
         all_expected.push(expected);
-        let got = bvh.raycast_with(mesh, ray, options);
+        let got = bvh.with(mesh).raycast_with(ray, options);
         assert_eq!(bits(got), bits(expected), "{what}: ray {i} {ray:?}");
-        let from_packed = bvh.raycast_with(packed, ray, options);
+        let from_packed = bvh.with(packed).raycast_with(ray, options);
         assert_eq!(bits(from_packed), bits(expected), "{what}: packed, ray {i}");
         assert_eq!(
-            bvh.raycast_any_with(mesh, ray, options),
+            bvh.with(mesh).raycast_any_with(ray, options),
             expected.is_some(),
             "{what}: any-hit disagrees on ray {i}"
         );
         assert_eq!(
-            bvh.raycast_any_with(packed, ray, options),
+            bvh.with(packed).raycast_any_with(ray, options),
             expected.is_some()
         );
-        let from_wide = wide.raycast_with(mesh, ray, options);
+        let from_wide = wide.with(mesh).raycast_with(ray, options);
         assert_eq!(bits(from_wide), bits(expected), "{what}: wide, ray {i}");
-        let wide_packed = wide.raycast_with(packed, ray, options);
+        let wide_packed = wide.with(packed).raycast_with(ray, options);
         assert_eq!(
             bits(wide_packed),
             bits(expected),
             "{what}: wide packed, ray {i}"
         );
         assert_eq!(
-            wide.raycast_any_with(packed, ray, options),
+            wide.with(packed).raycast_any_with(ray, options),
             expected.is_some(),
             "{what}: wide any-hit disagrees on ray {i}"
         );
@@ -72,24 +74,28 @@ fn assert_same(
     let want_any: Vec<bool> = all_expected.iter().map(Option::is_some).collect();
     let mut out = vec![None; rays.len()];
     let mut any = vec![false; rays.len()];
-    wide.raycast_batch(packed, rays, options, &mut keys, &mut out)
+    wide.with(packed)
+        .raycast_batch(rays, options, &mut keys, &mut out)
         .unwrap();
     assert!(
         out.iter().map(|&h| bits(h)).eq(want.iter().copied()),
         "{what}: wide batch"
     );
-    wide.raycast_any_batch(packed, rays, options, &mut keys, &mut any)
+    wide.with(packed)
+        .raycast_any_batch(rays, options, &mut keys, &mut any)
         .unwrap();
     assert_eq!(any, want_any, "{what}: wide any-hit batch");
     out.fill(None);
     any.fill(false);
-    bvh.raycast_batch(mesh, rays, options, &mut keys, &mut out)
+    bvh.with(mesh)
+        .raycast_batch(rays, options, &mut keys, &mut out)
         .unwrap();
     assert!(
         out.iter().map(|&h| bits(h)).eq(want.iter().copied()),
         "{what}: binary batch"
     );
-    bvh.raycast_any_batch(mesh, rays, options, &mut keys, &mut any)
+    bvh.with(mesh)
+        .raycast_any_batch(rays, options, &mut keys, &mut any)
         .unwrap();
     assert_eq!(any, want_any, "{what}: binary any-hit batch");
     hits
@@ -98,8 +104,8 @@ fn assert_same(
 fn run(name: &str, test: TriangleTest) {
     let loaded = load_mesh(name);
     let mesh = loaded.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
     let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
     let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
@@ -151,8 +157,8 @@ fn culling_and_ray_ranges_match_brute_force() {
     for name in ["spot", "teapot"] {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
-        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
         let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];

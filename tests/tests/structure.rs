@@ -2,11 +2,14 @@
 //! permutation, builds are deterministic, answers stay exact for every config, and the
 //! validator rejects corrupted structures.
 
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, RayOptions, SplitStrategy};
+use meshq::MeshBvh;
+use meshq::bvh::{BuildConfig, Bvh, BvhNode, SplitStrategy};
 use meshq::error::StructureError;
 use meshq::mesh::ValidMesh;
+use meshq::query::RayOptions;
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
+use meshq_tests::{MESHES, TreeParts, checked_bvh, load_mesh, workload};
 
 fn configs() -> Vec<(String, BuildConfig)> {
     let mut out = vec![
@@ -100,12 +103,13 @@ impl Expected {
 
     fn assert_matches(&self, bvh: &Bvh<'_>, mesh: &ValidMesh<'_>, what: &str) {
         for (ray, expected) in &self.rays {
-            let got = bvh.raycast(mesh, ray).map(|h| (h.t.to_bits(), h.tri));
+            let got = bvh.with(mesh).raycast(ray).map(|h| (h.t.to_bits(), h.tri));
             assert_eq!(got, *expected, "{what}: {ray:?}");
         }
         for (p, expected) in &self.points {
             let got = bvh
-                .closest_point(mesh, *p, f32::INFINITY)
+                .with(mesh)
+                .closest_point(*p, f32::INFINITY)
                 .map(|c| (c.distance_squared.to_bits(), c.tri));
             assert_eq!(got, *expected, "{what}: {p}");
         }
@@ -119,8 +123,8 @@ fn every_config_on_every_mesh_builds_a_valid_exact_tree() {
         let mesh = loaded.valid();
         let expected = Expected::new(&mesh, &loaded.positions);
         for (label, config) in configs() {
-            let owned = OwnedBvh::build(&mesh, &config).unwrap();
-            let bvh = owned.view(&mesh).unwrap();
+            let owned = MeshBvh::build(&mesh, &config).unwrap();
+            let bvh = checked_bvh(&owned, &mesh).unwrap();
             bvh.check(&mesh).unwrap();
             assert_permutation(bvh.order(), mesh.triangle_count());
             assert!(bvh.nodes().len() <= meshq::bvh::node_capacity(mesh.triangle_count()));
@@ -149,8 +153,8 @@ fn a_tight_depth_limit_is_met_with_median_splits() {
             max_depth: min_depth,
             ..base
         };
-        let owned = OwnedBvh::build(&mesh, &config).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &config).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         assert!(
             bvh.depth() <= min_depth,
             "{:?}: depth {} > {min_depth}",
@@ -163,7 +167,7 @@ fn a_tight_depth_limit_is_met_with_median_splits() {
             ..base
         };
         assert!(matches!(
-            OwnedBvh::build(&mesh, &too_shallow),
+            MeshBvh::build(&mesh, &too_shallow),
             Err(meshq::error::BuildError::TooDeep { .. })
         ));
     }
@@ -212,8 +216,8 @@ fn centre_splits_follow_the_centre_rule() {
         let mesh = loaded.valid();
         let config = BuildConfig::fast();
         assert_eq!(config.split, SplitStrategy::Centre);
-        let owned = OwnedBvh::build(&mesh, &config).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &config).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let (nodes, order) = (bvh.nodes(), bvh.order());
         let mut inner = 0;
         for (i, node) in nodes.iter().enumerate() {
@@ -263,7 +267,7 @@ fn builds_are_deterministic_whatever_the_buffers_held() {
     let loaded = load_mesh("fandisk");
     let mesh = loaded.valid();
     let n = mesh.triangle_count();
-    let a = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let a = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let garbage = BvhNode {
         min: [1.0; 3],
         first: 7,
@@ -291,20 +295,20 @@ fn builds_are_deterministic_whatever_the_buffers_held() {
             })
             .collect()
     };
-    assert_eq!(bits(&a.nodes), bits(b.nodes()));
-    assert_eq!(a.order, b.order());
+    assert_eq!(bits(a.bvh().nodes()), bits(b.nodes()));
+    assert_eq!(a.bvh().order(), b.order());
 }
 
 #[test]
 fn validator_rejects_corruption() {
     let loaded = load_mesh("cow");
     let mesh = loaded.valid();
-    let good = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    good.view(&mesh).unwrap();
+    let good = TreeParts::of(&MeshBvh::build(&mesh, &BuildConfig::default()).unwrap());
+    Bvh::from_parts(&good.nodes, &good.order, &mesh).unwrap();
     let inner = good.nodes.iter().position(|n| !n.is_leaf()).unwrap();
     let leaf = good.nodes.iter().position(BvhNode::is_leaf).unwrap();
 
-    let corrupt = |f: &dyn Fn(&mut OwnedBvh)| {
+    let corrupt = |f: &dyn Fn(&mut TreeParts)| {
         let mut bad = good.clone();
         f(&mut bad);
         Bvh::from_parts(&bad.nodes, &bad.order, &mesh)
@@ -337,12 +341,30 @@ fn validator_rejects_corruption() {
         corrupt(&|b| b.order[0] = 1_000_000),
         StructureError::TriangleOutOfRange { .. }
     ));
+    // Nodes no longer reached in the middle of the array: the last sibling pair moved past
+    // the end.
     assert!(matches!(
         corrupt(&|b| {
-            b.nodes.push(BvhNode::EMPTY);
+            let n = b.nodes.len();
+            let parent = b
+                .nodes
+                .iter()
+                .position(|p| !p.is_leaf() && p.first as usize == n - 2)
+                .unwrap();
+            b.nodes.extend_from_within(n - 2..);
+            b.nodes[parent].first = n as u32;
         }),
         StructureError::UnreachableNodes { .. }
     ));
+    // The untrimmed buffers a build was given are fine: what follows the tree is ignored.
+    let mut roomy = good.clone();
+    roomy.nodes.extend([BvhNode::EMPTY, good.nodes[leaf]]);
+    roomy.order.push(0);
+    let trimmed = Bvh::from_parts(&roomy.nodes, &roomy.order, &mesh).unwrap();
+    assert_eq!(
+        (trimmed.nodes(), trimmed.order()),
+        (&good.nodes[..], &good.order[..])
+    );
     assert!(matches!(
         corrupt(&|b| {
             b.order.pop();
@@ -360,12 +382,17 @@ fn validator_rejects_corruption() {
 fn built_parts_are_checked_for_safety_but_not_for_boxes() {
     let loaded = load_mesh("cow");
     let mesh = loaded.valid();
-    let good = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let good = TreeParts::of(&MeshBvh::build(&mesh, &BuildConfig::default()).unwrap());
     let view = Bvh::from_built_parts(&good.nodes, &good.order, &mesh).unwrap();
-    assert_eq!(view.depth(), good.view(&mesh).unwrap().depth());
+    assert_eq!(
+        view.depth(),
+        Bvh::from_parts(&good.nodes, &good.order, &mesh)
+            .unwrap()
+            .depth()
+    );
     let inner = good.nodes.iter().position(|n| !n.is_leaf()).unwrap();
     let leaf = good.nodes.iter().position(BvhNode::is_leaf).unwrap();
-    let corrupt = |f: &dyn Fn(&mut OwnedBvh)| {
+    let corrupt = |f: &dyn Fn(&mut TreeParts)| {
         let mut bad = good.clone();
         f(&mut bad);
         Bvh::from_built_parts(&bad.nodes, &bad.order, &mesh).map(|_| ())

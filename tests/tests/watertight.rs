@@ -4,10 +4,13 @@
 use std::collections::HashMap;
 
 use glam::Vec3;
-use meshq::bvh::{BuildConfig, RayOptions, TriangleTest};
+use meshq::MeshBvh;
+use meshq::bvh::BuildConfig;
 use meshq::geom::{CullMode, intersect_ray_triangle_watertight};
 use meshq::math::{Ray, Triangle};
-use meshq_tests::{LoadedMesh, OwnedBvh, SplitMix64, load_mesh, workload};
+use meshq::query::{RayOptions, TriangleTest};
+use meshq::{MeshQuery, Traverse};
+use meshq_tests::{LoadedMesh, SplitMix64, checked_bvh, load_mesh, workload};
 
 const INSIDE_POINTS: usize = 50;
 const RAYS_PER_POINT: usize = 20_000;
@@ -48,8 +51,8 @@ fn run(name: &str) -> (usize, usize) {
     let tris: Vec<Triangle> = (0..mesh.triangle_count() as u32)
         .map(|i| mesh.triangle(i).unwrap())
         .collect();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let (_, _, bounds) = workload::centre_radius(&loaded.positions);
     let mut rng = SplitMix64::new(0x1A51DE);
     let mut inside = Vec::new();
@@ -77,14 +80,14 @@ fn run(name: &str) -> (usize, usize) {
             };
             let ray = Ray::new(p, dir);
             assert!(
-                bvh.raycast(&mesh, &ray).is_some(),
+                bvh.with(&mesh).raycast(&ray).is_some(),
                 "{name}: watertight leak for {ray:?}"
             );
             assert!(
-                bvh.raycast_any(&mesh, &ray),
+                bvh.with(&mesh).raycast_any(&ray),
                 "{name}: watertight any-hit leak for {ray:?}"
             );
-            mt_misses += usize::from(bvh.raycast_with(&mesh, &ray, &mt).is_none());
+            mt_misses += usize::from(bvh.with(&mesh).raycast_with(&ray, &mt).is_none());
             rays += 1;
         }
     }

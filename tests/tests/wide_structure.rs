@@ -6,12 +6,15 @@
 use std::collections::BTreeMap;
 
 use glam::Vec3;
-use meshq::bvh::{BuildConfig, Bvh, WideBvh, WideNode};
+use meshq::MeshBvh;
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError, StructureError};
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
+use meshq::wide::{WideBvh, WideNode, wide_node_capacity};
+use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, OwnedBvh, load_mesh, workload};
+use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
 
 fn boxes_bits(b: &Aabb) -> [u32; 6] {
     [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits)
@@ -41,12 +44,12 @@ fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize 
             "{what}: node {index} has {lanes} lanes"
         );
         for lane in lanes..4 {
-            let unused = node.lane_box(lane);
+            let unused = node.bounds.lane(lane);
             assert!(unused.min.x == f32::INFINITY && unused.max.x == f32::NEG_INFINITY);
             assert_eq!((node.child[lane], node.count[lane]), (0, 0), "{what}");
         }
         for lane in 0..lanes {
-            let b = node.lane_box(lane);
+            let b = node.bounds.lane(lane);
             // Every lane box is one of the binary tree's boxes, bit for bit.
             assert!(
                 binary_boxes.contains(&boxes_bits(&b)),
@@ -70,7 +73,7 @@ fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize 
                 depth[c] = depth[index] + 1;
                 let inner = &nodes[c];
                 for l in 0..inner.lanes() {
-                    let cb = inner.lane_box(l);
+                    let cb = inner.bounds.lane(l);
                     assert!(
                         b.contains_aabb(&cb),
                         "{what}: node {c} lane {l} is outside its parent lane"
@@ -111,10 +114,10 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
         for (label, config) in &configs {
-            let owned = OwnedBvh::build(&mesh, config).unwrap();
-            let bvh = owned.view(&mesh).unwrap();
+            let owned = MeshBvh::build(&mesh, config).unwrap();
+            let bvh = checked_bvh(&owned, &mesh).unwrap();
             let count = bvh.wide_node_count();
-            assert!(count <= Bvh::wide_node_bound(bvh.nodes().len()));
+            assert!(count <= wide_node_capacity(mesh.triangle_count()));
             // Exactly sized and bound-sized buffers give the same nodes.
             let mut exact = vec![WideNode::EMPTY; count];
             let wide = bvh.widen(&mut exact).unwrap();
@@ -128,7 +131,7 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
                 "{what}: {count} of {inner}"
             );
             assert!(depth < bvh.depth() as usize, "{what}: depth {depth}");
-            let mut roomy = vec![WideNode::EMPTY; Bvh::wide_node_bound(bvh.nodes().len())];
+            let mut roomy = vec![WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
             let again = bvh.widen(&mut roomy).unwrap();
             assert!(
                 again
@@ -145,8 +148,8 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
 fn a_short_buffer_is_an_error_and_nothing_is_written() {
     let loaded = load_mesh("spot");
     let mesh = loaded.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let needed = bvh.wide_node_count();
     let mut short = vec![WideNode::EMPTY; needed - 1];
     assert_eq!(
@@ -164,18 +167,21 @@ fn a_short_buffer_is_an_error_and_nothing_is_written() {
 fn wide_view_accepts_exactly_the_widened_nodes() {
     let loaded = load_mesh("cow");
     let mesh = loaded.valid();
-    let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&mesh).unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
     let mut nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
     bvh.widen(&mut nodes).unwrap();
     let kept = nodes.clone();
     let view = bvh.wide_view(&kept).unwrap();
     let ray = workload::random_rays(&loaded.positions, 1, 3)[0];
-    assert_eq!(view.raycast(&mesh, &ray), bvh.raycast(&mesh, &ray));
+    assert_eq!(
+        view.with(&mesh).raycast(&ray),
+        bvh.with(&mesh).raycast(&ray)
+    );
 
     let mismatch = |node| Err(StructureError::WideNodeMismatch { node });
     let mut shrunk = kept.clone();
-    shrunk[7].max_y[1] = f32::from_bits(shrunk[7].max_y[1].to_bits() - 1);
+    shrunk[7].bounds.max_y[1] = f32::from_bits(shrunk[7].bounds.max_y[1].to_bits() - 1);
     assert_eq!(bvh.wide_view(&shrunk).map(|_| ()), mismatch(7));
     // A lane pointing back at the root would loop forever: refused.
     let mut cycle = kept.clone();
@@ -194,49 +200,61 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
         bvh.wide_view(&kept[..last]).map(|_| ()),
         mismatch(last as u32)
     );
+    // The untrimmed buffer a widening was given is accepted: the view covers the nodes
+    // widening wrote, whatever follows them.
     let mut longer = kept.clone();
     longer.push(WideNode::EMPTY);
+    longer.push(kept[0]);
+    let roomy = bvh.wide_view(&longer).unwrap();
+    assert_eq!(roomy.nodes().len(), kept.len());
     assert_eq!(
-        bvh.wide_view(&longer).map(|_| ()),
-        mismatch(kept.len() as u32)
+        roomy.with(&mesh).raycast(&ray),
+        bvh.with(&mesh).raycast(&ray)
     );
 }
 
 #[test]
 fn empty_and_single_triangle_trees() {
     let empty = MeshRef::new(&[], &[]).validate().unwrap();
-    let owned = OwnedBvh::build(&empty, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&empty).unwrap();
+    let owned = MeshBvh::build(&empty, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &empty).unwrap();
     assert_eq!(bvh.wide_node_count(), 0);
     let mut none: [WideNode; 0] = [];
     let wide = bvh.widen(&mut none).unwrap();
     assert!(wide.is_empty() && wide.bounds() == Aabb::EMPTY);
     let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
-    assert_eq!(wide.raycast(&empty, &ray), None);
-    assert!(!wide.raycast_any(&empty, &ray));
-    assert_eq!(wide.closest_point(&empty, Vec3::ZERO, f32::INFINITY), None);
+    assert_eq!(wide.with(&empty).raycast(&ray), None);
+    assert!(!wide.with(&empty).raycast_any(&ray));
+    assert_eq!(
+        wide.with(&empty).closest_point(Vec3::ZERO, f32::INFINITY),
+        None
+    );
 
     let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     let one = MeshRef::new(&positions, &[[0, 1, 2]]).validate().unwrap();
-    let owned = OwnedBvh::build(&one, &BuildConfig::default()).unwrap();
-    let bvh = owned.view(&one).unwrap();
+    let owned = MeshBvh::build(&one, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &one).unwrap();
     let mut nodes = [WideNode::EMPTY; 1];
     let wide = bvh.widen(&mut nodes).unwrap();
     assert_eq!(wide.nodes()[0].lanes(), 1);
     assert_eq!(wide.bounds(), bvh.bounds());
-    let hit = wide.raycast(&one, &ray).unwrap();
+    let hit = wide.with(&one).raycast(&ray).unwrap();
     assert_eq!((hit.tri, hit.t), (0, 1.0));
-    assert!(wide.raycast_any(&one, &ray));
-    assert!(!wide.raycast_any(&one, &ray.with_range(0.0, 0.5)));
+    assert!(wide.with(&one).raycast_any(&ray));
+    assert!(!wide.with(&one).raycast_any(&ray.with_range(0.0, 0.5)));
     let c = wide
-        .closest_point(&one, Vec3::new(2.0, 0.0, 0.0), f32::INFINITY)
+        .with(&one)
+        .closest_point(Vec3::new(2.0, 0.0, 0.0), f32::INFINITY)
         .unwrap();
     assert_eq!((c.tri, c.distance_squared), (0, 1.0));
     assert_eq!(
-        wide.closest_point(&one, Vec3::new(2.0, 0.0, 0.0), 0.5),
+        wide.with(&one).closest_point(Vec3::new(2.0, 0.0, 0.0), 0.5),
         None
     );
-    assert_eq!(wide.closest_point(&one, Vec3::splat(f32::NAN), 1.0), None);
+    assert_eq!(
+        wide.with(&one).closest_point(Vec3::splat(f32::NAN), 1.0),
+        None
+    );
 }
 
 /// A named mesh: positions and triangles.
@@ -270,8 +288,8 @@ fn awkward_meshes_match_brute_force() {
     cases.push(("coincident centroids".into(), positions, triangles));
     for (what, positions, triangles) in &cases {
         let mesh = MeshRef::new(positions, triangles).validate().unwrap();
-        let owned = OwnedBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = owned.view(&mesh).unwrap();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
         let mut nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
         let wide = bvh.widen(&mut nodes).unwrap();
         check_against_binary(&bvh, &wide, what);
@@ -280,8 +298,12 @@ fn awkward_meshes_match_brute_force() {
         for ray in workload::random_rays(positions, 3_000, 31) {
             let key = |h: Option<meshq::math::RayHit>| h.map(|h| (h.t.to_bits(), h.tri));
             let expected = brute.raycast(&ray, &Default::default());
-            assert_eq!(key(wide.raycast(&mesh, &ray)), key(expected), "{what}");
-            assert_eq!(wide.raycast_any(&mesh, &ray), expected.is_some(), "{what}");
+            assert_eq!(key(wide.with(&mesh).raycast(&ray)), key(expected), "{what}");
+            assert_eq!(
+                wide.with(&mesh).raycast_any(&ray),
+                expected.is_some(),
+                "{what}"
+            );
             hits += usize::from(expected.is_some());
         }
         assert!(hits > 300, "{what}: {hits} hits");
@@ -290,7 +312,7 @@ fn awkward_meshes_match_brute_force() {
                 c.map(|c| (c.distance_squared.to_bits(), c.tri))
             };
             assert_eq!(
-                key(wide.closest_point(&mesh, p, f32::INFINITY)),
+                key(wide.with(&mesh).closest_point(p, f32::INFINITY)),
                 key(brute.closest_point(p, f32::INFINITY)),
                 "{what}"
             );

@@ -1,27 +1,27 @@
 //! Every hit along a ray (three.js reports all intersections unless `firstHitOnly` is set).
 
-use meshq::bvh::{BvhNode, BvhVisitor, LeafTriangleIds, RayOptions};
 use meshq::geom::{intersect_ray_aabb, intersect_ray_triangle_watertight};
-use meshq::math::Ray;
+use meshq::math::{Aabb, Ray};
+use meshq::query::{LeafTriangleIds, RayOptions, Visitor};
 use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
 use crate::mesh_bvh::xyz_ray;
 use crate::options::ray_options;
-use crate::storage::Views;
+use crate::storage::Storage;
 
 /// Collects every hit in the ray's range: boxes the ray misses are skipped, nothing else.
-struct AllHits<'v, 'a> {
-    views: &'v Views<'a>,
+struct AllHits<'v> {
+    views: &'v Storage,
     ray: Ray,
     options: RayOptions,
     hits: Vec<[f64; 4]>,
 }
 
-impl BvhVisitor for AllHits<'_, '_> {
-    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
-        intersect_ray_aabb(&self.ray, &node.aabb()).map(|(entry, _)| entry)
+impl Visitor for AllHits<'_> {
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
+        intersect_ray_aabb(&self.ray, aabb).map(|(entry, _)| entry)
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
@@ -64,7 +64,7 @@ impl MeshBvh {
         side: Option<u8>,
     ) -> Result<Vec<f64>, JsError> {
         let ray = xyz_ray(ox, oy, oz, dx, dy, dz, near, far);
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         let mut visitor = AllHits {
             views,
             ray,

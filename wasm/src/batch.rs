@@ -91,7 +91,7 @@ impl MeshBvh {
     ) -> Result<u32, JsError> {
         let options = ray_options(side)?;
         check_len("hits", hits.len(), rays_in.len() / 6)?;
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         let rays: Vec<Ray> = rays(rays_in, near, far)?.collect();
         let mut answers = vec![false; rays.len()];
         views.raycast_any_batch(&rays, &options, &mut answers)?;
@@ -123,7 +123,7 @@ impl MeshBvh {
         check_len("closest", closest.len(), 3 * n)?;
         check_len("triangles", triangles.len(), n)?;
         check_len("distances", distances.len(), n)?;
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         let queries: Vec<Vec3> = points
             .chunks_exact(3)
             .map(|p| Vec3::new(p[0], p[1], p[2]))
@@ -175,7 +175,7 @@ impl MeshBvh {
         if let Some(uv) = &barycentrics {
             check_len("barycentrics", uv.len(), 2 * n)?;
         }
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         let rays: Vec<Ray> = rays(rays_in, near, far)?.collect();
         let mut answers = vec![None; rays.len()];
         views.raycast_batch(&rays, &options, &mut answers)?;

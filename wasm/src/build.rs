@@ -1,13 +1,14 @@
 //! Building a [`Storage`] from JavaScript arrays or from a blob.
 
 use js_sys::{Array, Uint16Array, Uint32Array};
-use meshq::blob::{BlobView, MeshLayout};
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PackedTriangle, PrimRef, WideNode};
+use meshq::bvh::BuildConfig;
 use meshq::mesh::MeshRef;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
-use crate::storage::{LeafOrder, Owner, Storage, Views};
+use crate::storage::Storage;
+
+type OwnedMesh = meshq::MeshBvh;
 
 fn error(e: impl core::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
@@ -42,9 +43,7 @@ pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsError> {
     ))
 }
 
-/// Validates the mesh, builds its BVH into exactly sized buffers and keeps both. The flat
-/// arrays are kept as they came from JavaScript (copied once, by wasm-bindgen) and viewed as
-/// triples in place.
+/// Validates the mesh and builds its BVH (and the copies queries read) into owned buffers.
 pub fn build(
     positions: Vec<f32>,
     indices: Option<Vec<u32>>,
@@ -70,118 +69,22 @@ pub fn build(
             indices.len()
         )));
     }
-    let n = indices.len() / 3;
-    let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(n)];
-    let mut order = vec![0u32; n];
-    let mut packed = vec![PackedTriangle::EMPTY; n];
-    let wide = {
-        let mesh = MeshRef::from_flat(&positions, &indices)
-            .and_then(MeshRef::validate)
-            .map_err(error)?;
-        let mut scratch = vec![PrimRef::EMPTY; n];
-        let bvh = Bvh::build(&mesh, config, &mut nodes, &mut order, &mut scratch).map_err(error)?;
-        bvh.pack_triangles(&mesh, &mut packed).map_err(error)?;
-        let wide = widen(&bvh)?;
-        let used = bvh.nodes().len();
-        nodes.truncate(used);
-        wide
-    };
-    let owner = Owner {
-        positions,
-        indices,
-        nodes,
-        order,
-        packed,
-        wide,
+    let mesh = MeshRef::from_flat(&positions, &indices)
+        .and_then(MeshRef::validate)
+        .map_err(error)?;
+    Ok(Storage {
+        scene: OwnedMesh::build(&mesh, config).map_err(error)?,
         blob: None,
-    };
-    Storage::try_new(owner, views)
-}
-
-/// The tree collapsed four-wide, in a buffer sized by the bound and then trimmed: one collapse
-/// instead of a count and a collapse.
-fn widen(bvh: &Bvh<'_>) -> Result<Vec<WideNode>, JsError> {
-    let mut wide = vec![WideNode::EMPTY; Bvh::wide_node_bound(bvh.nodes().len())];
-    let used = bvh.widen(&mut wide).map_err(error)?.nodes().len();
-    wide.truncate(used);
-    wide.shrink_to_fit();
-    Ok(wide)
+    })
 }
 
 /// Validates a blob once and decodes it into the buffers a build makes, so a loaded mesh is
 /// queried exactly as fast as a built one (and answers the same, bit for bit); keeps the bytes
-/// for `toBlob`. A packed blob stores corners rather than an indexed mesh: its mesh becomes
-/// three unshared vertices per triangle. Returns the build config the blob records too.
-pub fn from_blob(bytes: Vec<u8>) -> Result<(Storage, BuildConfig), JsError> {
-    let view = BlobView::parse(&bytes).map_err(error)?;
-    let header = *view.header();
-    let (n, v) = (header.triangle_count as usize, header.vertex_count as usize);
-    let mut nodes = vec![BvhNode::EMPTY; header.node_count as usize];
-    let mut order = vec![0u32; n];
-    let mut packed = vec![PackedTriangle::EMPTY; n];
-    let bvh = view.decode_tree(&mut nodes, &mut order).map_err(error)?;
-    view.decode_packed(&mut packed).map_err(error)?;
-    let wide = widen(&bvh)?;
-    let (positions, indices) = if header.mesh == MeshLayout::Packed {
-        unshared_mesh(&order, &packed)
-    } else {
-        let mut positions = vec![[0.0f32; 3]; v];
-        let mut triangles = vec![[0u32; 3]; n];
-        view.decode_mesh(&mut positions, &mut triangles)
-            .map_err(error)?;
-        (
-            positions.into_iter().flatten().collect(),
-            triangles.into_iter().flatten().collect(),
-        )
-    };
-    let owner = Owner {
-        positions,
-        indices,
-        nodes,
-        order,
-        packed,
-        wide,
+/// for `toBlob`.
+pub fn from_blob(bytes: Vec<u8>) -> Result<Storage, JsError> {
+    let scene = OwnedMesh::from_blob(&bytes).map_err(error)?;
+    Ok(Storage {
+        scene,
         blob: Some(bytes),
-    };
-    Ok((Storage::try_new(owner, views)?, header.config))
-}
-
-/// Flat positions and indices of triangles given in leaf order (`packed[slot]` is triangle
-/// `order[slot]`): three vertices of their own per triangle, in triangle order.
-fn unshared_mesh(order: &[u32], packed: &[PackedTriangle]) -> (Vec<f32>, Vec<u32>) {
-    let mut positions = vec![0.0f32; 9 * packed.len()];
-    for (&tri, corners) in order.iter().zip(packed) {
-        let at = 9 * tri as usize;
-        if let Some(out) = positions.get_mut(at..at + 9) {
-            for (dst, src) in out
-                .iter_mut()
-                .zip(corners.a.iter().chain(&corners.b).chain(&corners.c))
-            {
-                *dst = *src;
-            }
-        }
-    }
-    let indices = (0..).take(3 * packed.len()).collect();
-    (positions, indices)
-}
-
-fn views(owner: &Owner) -> Result<Views<'_>, JsError> {
-    // The views must borrow from the owner, so the mesh is validated again (one vectorised
-    // pass) and the tree re-borrowed with the topology check only: it was built from this very
-    // mesh (or decoded from a blob validated against it) a moment ago.
-    let mesh = MeshRef::from_flat(&owner.positions, &owner.indices)
-        .and_then(MeshRef::validate)
-        .map_err(error)?;
-    let bvh = Bvh::from_built_parts(&owner.nodes, &owner.order, &mesh).map_err(error)?;
-    if owner.packed.len() != owner.order.len() {
-        return Err(JsError::new("packed triangles do not match the tree"));
-    }
-    // Checked against a fresh collapse of the tree (cheap next to the build).
-    let wide = bvh.wide_view(&owner.wide).map_err(error)?;
-    Ok(Views {
-        mesh,
-        bvh,
-        wide,
-        packed: LeafOrder(&owner.packed),
     })
 }

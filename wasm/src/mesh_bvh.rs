@@ -1,14 +1,13 @@
 //! The `MeshBvh` class: one mesh with its BVH, built here or loaded from a blob.
 
 use glam::Vec3;
-use meshq::blob::{self, EncodeOptions, MeshLayout};
-use meshq::bvh::BuildConfig;
+use meshq::blob::MeshLayout;
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use wasm_bindgen::prelude::*;
 
 use crate::js_objects::meshq_result;
 use crate::options::{build_config, ray_options};
-use crate::storage::{Storage, Views};
+use crate::storage::Storage;
 
 /// A triangle mesh and its BVH, ready for ray and closest-point queries.
 ///
@@ -21,7 +20,6 @@ use crate::storage::{Storage, Views};
 #[wasm_bindgen]
 pub struct MeshBvh {
     pub(crate) storage: Storage,
-    config: BuildConfig,
 }
 
 pub(crate) fn vec3(values: &[f32], what: &str) -> Result<Vec3, JsError> {
@@ -54,7 +52,7 @@ pub(crate) fn xyz_ray(
     Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz)).with_range(near, far)
 }
 
-fn hit_object(views: &Views<'_>, ray: &Ray, hit: RayHit) -> JsValue {
+fn hit_object(views: &Storage, ray: &Ray, hit: RayHit) -> JsValue {
     let p = ray.origin + ray.dir * hit.t;
     let n = views
         .triangle(hit.tri)
@@ -63,7 +61,7 @@ fn hit_object(views: &Views<'_>, ray: &Ray, hit: RayHit) -> JsValue {
     meshq_result(hit.t, p.x, p.y, p.z, hit.tri, hit.u, hit.v, n.x, n.y, n.z)
 }
 
-fn closest_object(views: &Views<'_>, c: ClosestPoint) -> JsValue {
+fn closest_object(views: &Storage, c: ClosestPoint) -> JsValue {
     let n = views
         .triangle(c.tri)
         .and_then(|t| t.unit_normal())
@@ -100,7 +98,7 @@ impl MeshBvh {
         let config = build_config(&options)?;
         let indices = crate::build::read_indices(&indices)?;
         let storage = crate::build::build(positions, indices, &config)?;
-        Ok(Self { storage, config })
+        Ok(Self { storage })
     }
 
     /// Loads a blob baked by `meshq bake` (or `toBlob`), e.g. the bytes of a fetched file. The
@@ -110,8 +108,8 @@ impl MeshBvh {
     /// without its mesh.
     #[wasm_bindgen(js_name = fromBlob)]
     pub fn from_blob(bytes: &[u8]) -> Result<MeshBvh, JsError> {
-        let (storage, config) = crate::build::from_blob(bytes.to_vec())?;
-        Ok(Self { storage, config })
+        let storage = crate::build::from_blob(bytes.to_vec())?;
+        Ok(Self { storage })
     }
 
     /// The blob of this mesh and BVH, to save and load later with `fromBlob`. `layout`:
@@ -130,23 +128,15 @@ impl MeshBvh {
                 )));
             }
         };
-        match (&self.storage.borrow_owner().blob, layout) {
+        match (&self.storage.blob, layout) {
             (Some(bytes), None) => Ok(bytes.clone()),
             // A packed blob's mesh was unshared on load: re-encoding would not give its mesh.
             (Some(_), Some(_)) => Err(JsError::new(
                 "a loaded blob is returned as loaded: call toBlob() without a layout",
             )),
             (None, _) => {
-                let Views { mesh, bvh, .. } = self.storage.borrow_dependent();
-                let options = EncodeOptions {
-                    mesh: mesh_layout,
-                    config: self.config,
-                };
                 let err = |e: meshq::error::BlobError| JsError::new(&e.to_string());
-                let mut out = vec![0u8; blob::encoded_len(bvh, mesh, &options).map_err(err)?];
-                let n = blob::encode_into(bvh, mesh, &options, &mut out).map_err(err)?;
-                out.truncate(n);
-                Ok(out)
+                self.storage.scene.to_blob(mesh_layout).map_err(err)
             }
         }
     }
@@ -154,30 +144,30 @@ impl MeshBvh {
     /// Number of triangles.
     #[wasm_bindgen(getter, js_name = triangleCount)]
     pub fn triangle_count(&self) -> u32 {
-        self.storage.borrow_dependent().triangle_count()
+        self.storage.triangle_count()
     }
 
     /// Number of BVH nodes.
     #[wasm_bindgen(getter, js_name = nodeCount)]
     pub fn node_count(&self) -> u32 {
-        u32::try_from(self.storage.borrow_dependent().node_count()).unwrap_or(u32::MAX)
+        u32::try_from(self.storage.node_count()).unwrap_or(u32::MAX)
     }
 
     /// Levels in the BVH (the root is level 0 in `levelBoxes`, so levels `0..depth`).
     #[wasm_bindgen(getter)]
     pub fn depth(&self) -> u32 {
-        self.storage.borrow_dependent().depth()
+        self.storage.depth()
     }
 
     /// Whether this came from a blob (`fromBlob`) rather than a build.
     #[wasm_bindgen(getter, js_name = fromBlobBytes)]
     pub fn from_blob_bytes(&self) -> bool {
-        self.storage.borrow_owner().blob.is_some()
+        self.storage.blob.is_some()
     }
 
     /// The root box, padded: `[minX, minY, minZ, maxX, maxY, maxZ]`.
     pub fn bounds(&self) -> Vec<f32> {
-        let b = self.storage.borrow_dependent().bounds();
+        let b = self.storage.bounds();
         vec![b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]
     }
 
@@ -228,10 +218,7 @@ impl MeshBvh {
         side: Option<u8>,
     ) -> Result<bool, JsError> {
         let ray = array_ray(origin, direction, near, far)?;
-        Ok(self
-            .storage
-            .borrow_dependent()
-            .raycast_any(&ray, &ray_options(side)?))
+        Ok(self.storage.raycast_any(&ray, &ray_options(side)?))
     }
 
     /// The closest surface point to `point` within `maxDistance` (omitted: any distance), or
@@ -245,7 +232,7 @@ impl MeshBvh {
         max_distance: Option<f32>,
     ) -> Result<JsValue, JsError> {
         let p = vec3(point, "point")?;
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         Ok(views
             .closest_point(p, max_distance.unwrap_or(f32::INFINITY))
             .map_or(JsValue::NULL, |c| closest_object(views, c)))
@@ -255,7 +242,7 @@ impl MeshBvh {
     /// to display a mesh loaded from a blob.
     #[wasm_bindgen(js_name = trianglePositions)]
     pub fn triangle_positions(&self) -> Vec<f32> {
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         let n = views.triangle_count();
         let mut out = Vec::with_capacity(n as usize * 9);
         for t in (0..n).filter_map(|i| views.triangle(i)) {
@@ -270,7 +257,7 @@ impl MeshBvh {
     /// `minX, minY, minZ, maxX, maxY, maxZ`.
     #[wasm_bindgen(js_name = levelBoxes)]
     pub fn level_boxes(&self, level: u32) -> Vec<f32> {
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         let mut out = Vec::new();
         let mut stack = vec![(0usize, 0u32)];
         while let Some((index, depth)) = stack.pop() {
@@ -298,7 +285,7 @@ impl MeshBvh {
 
 impl MeshBvh {
     fn cast(&self, ray: &Ray, side: Option<u8>) -> Result<JsValue, JsError> {
-        let views = self.storage.borrow_dependent();
+        let views = &self.storage;
         Ok(views
             .raycast(ray, &ray_options(side)?)
             .map_or(JsValue::NULL, |hit| hit_object(views, ray, hit)))
@@ -308,29 +295,25 @@ impl MeshBvh {
     #[must_use]
     pub fn raycast_ray(&self, ray: &Ray) -> Option<RayHit> {
         self.storage
-            .borrow_dependent()
-            .raycast(ray, &meshq::bvh::RayOptions::default())
+            .raycast(ray, &meshq::query::RayOptions::default())
     }
 
     /// Any hit, for Rust callers and tests.
     #[must_use]
     pub fn raycast_any_ray(&self, ray: &Ray) -> bool {
         self.storage
-            .borrow_dependent()
-            .raycast_any(ray, &meshq::bvh::RayOptions::default())
+            .raycast_any(ray, &meshq::query::RayOptions::default())
     }
 
     /// The closest point as core types, for Rust callers and tests.
     #[must_use]
     pub fn closest_point_at(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
-        self.storage
-            .borrow_dependent()
-            .closest_point(point, max_distance)
+        self.storage.closest_point(point, max_distance)
     }
 
     /// The root box as a core type.
     #[must_use]
     pub fn root_bounds(&self) -> meshq::math::Aabb {
-        self.storage.borrow_dependent().bounds()
+        self.storage.bounds()
     }
 }

@@ -1,8 +1,9 @@
 //! Options passed from JavaScript: build settings and three.js material sides.
 
 use js_sys::Reflect;
-use meshq::bvh::{BuildConfig, RayOptions};
+use meshq::bvh::BuildConfig;
 use meshq::geom::CullMode;
+use meshq::query::RayOptions;
 use wasm_bindgen::prelude::*;
 
 /// Reads `{ quality?: "fast" | "balanced" | "high", maxLeafSize?, bins? }` (every field

@@ -2,9 +2,11 @@
 
 use super::format::{f32x3_from_bytes, node_from_bytes, u32x3_from_bytes};
 use super::{BlobMesh, BlobView};
-use crate::bvh::{Bvh, BvhNode, LeafTriangles, PackedTriangle, PackedTriangles, TreeArrays};
+use crate::bvh::{Bvh, BvhNode, TreeArrays};
 use crate::error::{BlobError, BlobSection};
+use crate::math::PackedTriangle;
 use crate::mesh::{MeshRef, ValidMesh};
+use crate::query::{LeafTriangles, PackedTriangles};
 
 fn too_small(section: BlobSection, needed: usize, got: usize) -> BlobError {
     BlobError::BufferTooSmall {
@@ -120,16 +122,10 @@ impl BlobView<'_> {
         }
         for (slot, (dst, id)) in out.iter_mut().zip(self.tree.order).enumerate() {
             if let Some(t) = self.mesh.corners(slot, u32::from_le_bytes(*id)) {
-                *dst = PackedTriangle {
-                    a: t.a.to_array(),
-                    b: t.b.to_array(),
-                    c: t.c.to_array(),
-                };
+                *dst = PackedTriangle::new(&t);
             }
         }
         let out: &'p [PackedTriangle] = out;
-        Ok(PackedTriangles::from_leaf_order(
-            out.get(..n).unwrap_or_default(),
-        ))
+        Ok(PackedTriangles::new(out.get(..n).unwrap_or_default()))
     }
 }

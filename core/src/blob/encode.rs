@@ -8,8 +8,9 @@ use super::format::{
     CHECKSUM_BYTES, ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC,
     MeshLayout, NodeRecord, StructureKind, TriangleRecord,
 };
-use crate::bvh::{BuildConfig, Bvh, PackedTriangle, SplitStrategy};
+use crate::bvh::{BuildConfig, Bvh, SplitStrategy};
 use crate::error::{BlobError, BlobSection};
+use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 
 /// What to put in a blob besides the tree.

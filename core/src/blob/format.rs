@@ -41,6 +41,7 @@ pub enum StructureKind {
 }
 
 /// How a blob stores the mesh its structure was built from.
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum MeshLayout {
     /// Positions and vertex-index triples in the input's order: 12 bytes per vertex plus 12 per
@@ -54,6 +55,19 @@ pub enum MeshLayout {
     /// ([`BlobView::parse_with_mesh`](super::BlobView::parse_with_mesh)), checked against the
     /// header's mesh checksum. Wire tag 2.
     Omitted,
+}
+
+impl MeshLayout {
+    /// The layout's name in lower case: `indexed`, `packed` or `omitted` (what tools print
+    /// and accept).
+    #[must_use]
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Self::Indexed => "indexed",
+            Self::Packed => "packed",
+            Self::Omitted => "omitted",
+        }
+    }
 }
 
 impl StructureKind {

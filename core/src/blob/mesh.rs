@@ -5,10 +5,10 @@ use glam::Vec3;
 use super::format::{
     PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES, f32x3_from_bytes, u32x3_from_bytes,
 };
-use crate::bvh::LeafTriangles;
 use crate::error::BlobError;
 use crate::math::Triangle;
 use crate::mesh::{ValidMesh, check_triangle, check_vertex};
+use crate::query::LeafTriangles;
 
 /// The triangles a [`BlobView`](super::BlobView) queries: read in place from the blob, or the
 /// caller's mesh for a blob baked without one. Validated at load like a

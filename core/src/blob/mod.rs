@@ -2,13 +2,12 @@
 //! queried in place from the bytes — in RAM, from a `fetch`, or in flash.
 //!
 //! ```
-//! use meshq::{blob::{self, BlobView, EncodeOptions}, bvh::{self, Bvh, BuildConfig, BvhNode, PrimRef},
-//!             math::{Ray, Vec3}, mesh::MeshRef};
+//! use meshq::blob::{self, EncodeOptions};
+//! use meshq::prelude::*;
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
-//! let (mut nodes, mut order, mut scratch) =
-//!     ([BvhNode::EMPTY; bvh::node_capacity(1)], [0u32; 1], [PrimRef::EMPTY; 1]);
-//! let bvh = Bvh::build(&mesh, &BuildConfig::default(), &mut nodes, &mut order, &mut scratch)?;
+//! let mut buffers = BvhBuffers::<1>::new();
+//! let bvh = buffers.build(&mesh, &BuildConfig::default())?;
 //!
 //! let options = EncodeOptions::default();
 //! let mut bytes = [0u8; 256];
@@ -17,7 +16,7 @@
 //!
 //! let view = BlobView::parse(&bytes[..n])?;
 //! let hit = view.raycast(&Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z));
-//! assert_eq!(hit, bvh.raycast(&mesh, &Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)));
+//! assert_eq!(hit, bvh.with(&mesh).raycast(&Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!

@@ -1,7 +1,8 @@
 //! The tree of a blob, read in place from its bytes.
 
 use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
-use crate::bvh::{BvhNode, LeafTriangleIds, TreeArrays};
+use crate::bvh::{BvhNode, TreeArrays};
+use crate::query::LeafTriangleIds;
 
 /// A BVH whose nodes and order are read straight out of a validated blob's bytes (in RAM or in
 /// flash): no copy, 32 bytes decoded per node visited.

@@ -1,7 +1,5 @@
 //! Loading a blob: every check once, then queries straight from the bytes.
 
-use core::ops::ControlFlow;
-
 use glam::Vec3;
 
 use super::checksum::mesh_checksum;
@@ -12,11 +10,12 @@ use super::format::{
 use super::mesh::{check_indexed, check_packed};
 use super::reader::Reader;
 use super::{BlobHeader, BlobMesh, BlobTree};
-use crate::bvh::check::{CheckLevel, check};
-use crate::bvh::{OverlapCount, RayOptions, TreeArrays, closest, overlap, raycast};
+use crate::bvh::TreeArrays;
+use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::error::{BlobError, BlobSection};
-use crate::math::{Aabb, ClosestPoint, Ray, RayHit};
+use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
+use crate::query::{LeafTriangles, Traverse, Visitor};
 
 /// A validated blob, queried in place: nodes, order and (unless omitted) the mesh are read from
 /// the byte slice on demand — a blob in flash is never copied into RAM.
@@ -24,9 +23,12 @@ use crate::mesh::ValidMesh;
 /// Made only by [`BlobView::parse`] or [`BlobView::parse_with_mesh`], which check everything
 /// once (magic, version, structure kind, every count against the byte length, the checksum,
 /// every child index and leaf range, the depth, finite nested boxes, the mesh), so no query on a
-/// view can read out of bounds, loop forever or panic. Every query returns exactly what the
-/// in-memory [`Bvh`](crate::bvh::Bvh) it was encoded from returns, bit for bit, with the same
-/// conventions (see [`Bvh::raycast`](crate::bvh::Bvh::raycast)).
+/// view can read out of bounds, loop forever or panic.
+///
+/// A view is a structure and its triangles at once, so it answers every query of
+/// [`MeshQuery`](crate::query::MeshQuery) (`view.raycast(&ray)`, batches, overlaps) and runs
+/// custom visitors ([`Traverse`]), exactly as the in-memory [`Bvh`](crate::bvh::Bvh) it was
+/// encoded from does with its mesh, bit for bit.
 #[derive(Clone, Copy, Debug)]
 pub struct BlobView<'a> {
     pub(super) header: BlobHeader,
@@ -78,9 +80,7 @@ impl<'a> BlobView<'a> {
         &self.header
     }
 
-    /// The tree, for [`MeshQuery`](crate::query::MeshQuery) and custom
-    /// [`BvhVisitor`](crate::bvh::BvhVisitor)s (through
-    /// [`TreeArrays`](crate::bvh::TreeArrays)).
+    /// The tree, read in place (a [`TreeArrays`] structure).
     #[must_use]
     pub const fn tree(&self) -> &BlobTree<'a> {
         &self.tree
@@ -97,73 +97,25 @@ impl<'a> BlobView<'a> {
     pub const fn bounds(&self) -> Aabb {
         self.header.bounds
     }
+}
 
-    /// The closest hit of `ray`, watertight test, both faces (see
-    /// [`Bvh::raycast`](crate::bvh::Bvh::raycast)).
-    #[must_use]
-    pub fn raycast(&self, ray: &Ray) -> Option<RayHit> {
-        self.raycast_with(ray, &RayOptions::default())
+impl Traverse for BlobView<'_> {
+    /// Walks the tree in place, as [`Bvh`](crate::bvh::Bvh) walks its slices.
+    #[inline(always)]
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        self.tree.traverse(visitor);
+    }
+}
+
+impl LeafTriangles for BlobView<'_> {
+    #[inline(always)]
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
+        self.mesh.corners(slot, tri)
     }
 
-    /// [`BlobView::raycast`] with explicit options.
-    #[must_use]
-    pub fn raycast_with(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
-        raycast::raycast_with(&self.tree, &self.mesh, ray, options)
-    }
-
-    /// Runs a custom query over the tree in place, exactly as
-    /// [`Bvh::traverse`](crate::bvh::Bvh::traverse) does over slices; read the leaf triangles
-    /// with [`BlobView::mesh`].
-    pub fn traverse<V: crate::bvh::BvhVisitor>(&self, visitor: &mut V) {
-        crate::bvh::traverse::traverse(&self.tree, visitor);
-    }
-
-    /// Whether `ray` hits anything (see [`Bvh::raycast_any`](crate::bvh::Bvh::raycast_any)).
-    #[must_use]
-    pub fn raycast_any(&self, ray: &Ray) -> bool {
-        self.raycast_any_with(ray, &RayOptions::default())
-    }
-
-    /// [`BlobView::raycast_any`] with explicit options.
-    #[must_use]
-    pub fn raycast_any_with(&self, ray: &Ray, options: &RayOptions) -> bool {
-        raycast::raycast_any_with(&self.tree, &self.mesh, ray, options)
-    }
-
-    /// The closest point within `max_distance` (see
-    /// [`Bvh::closest_point`](crate::bvh::Bvh::closest_point)).
-    #[must_use]
-    pub fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
-        closest::closest_point(&self.tree, &self.mesh, point, max_distance)
-    }
-
-    /// Reports every triangle touching `aabb` (see
-    /// [`Bvh::overlap_aabb`](crate::bvh::Bvh::overlap_aabb)).
-    pub fn overlap_aabb<F: FnMut(u32) -> ControlFlow<()>>(&self, aabb: &Aabb, report: F) {
-        overlap::overlap_aabb(&self.tree, &self.mesh, aabb, report);
-    }
-
-    /// Reports every triangle within `radius` of `center` (see
-    /// [`Bvh::overlap_sphere`](crate::bvh::Bvh::overlap_sphere)).
-    pub fn overlap_sphere<F: FnMut(u32) -> ControlFlow<()>>(
-        &self,
-        center: Vec3,
-        radius: f32,
-        report: F,
-    ) {
-        overlap::overlap_sphere(&self.tree, &self.mesh, center, radius, report);
-    }
-
-    /// [`BlobView::overlap_aabb`] into a caller buffer (see
-    /// [`Bvh::overlap_aabb_into`](crate::bvh::Bvh::overlap_aabb_into)).
-    pub fn overlap_aabb_into(&self, aabb: &Aabb, out: &mut [u32]) -> OverlapCount {
-        overlap::overlap_aabb_into(&self.tree, &self.mesh, aabb, out)
-    }
-
-    /// [`BlobView::overlap_sphere`] into a caller buffer (see
-    /// [`Bvh::overlap_sphere_into`](crate::bvh::Bvh::overlap_sphere_into)).
-    pub fn overlap_sphere_into(&self, center: Vec3, radius: f32, out: &mut [u32]) -> OverlapCount {
-        overlap::overlap_sphere_into(&self.tree, &self.mesh, center, radius, out)
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.mesh.run(first, count)
     }
 }
 
@@ -255,7 +207,7 @@ fn check_tree(
         .config
         .check()
         .map_err(|_| BlobError::HeaderMismatch { field: "config" })?;
-    let depth = check(tree, mesh, CheckLevel::Full)?;
+    let depth = check(tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
     if depth != header.depth {
         return Err(BlobError::HeaderMismatch { field: "depth" });
     }
@@ -270,11 +222,10 @@ fn check_tree(
 impl<'a> BlobTree<'a> {
     /// Validates the tree of any blob without its mesh — topology, leaf ranges, depth, finite
     /// nested boxes, every order entry below the triangle count, the checksum — and returns
-    /// it with the header. For tools that inspect a blob, and for queries through
-    /// [`MeshQuery`](crate::query::MeshQuery) with a mesh held elsewhere (which, as with a
-    /// [`Bvh`](crate::bvh::Bvh), must be the mesh it was built from: another mesh gives
-    /// meaningless answers, never a panic). Prefer [`BlobView::parse_with_mesh`], which checks
-    /// the mesh too.
+    /// it with the header. For tools that inspect a blob, and for queries with a mesh held
+    /// elsewhere (`tree.with(&mesh)`, which, as with a [`Bvh`](crate::bvh::Bvh), must be the
+    /// mesh it was built from: another mesh gives meaningless answers, never a panic). Prefer
+    /// [`BlobView::parse_with_mesh`], which checks the mesh too.
     ///
     /// # Errors
     /// As [`BlobView::parse`], except that a missing mesh is not an error.

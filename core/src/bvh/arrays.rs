@@ -1,16 +1,15 @@
 //! Read access to a BVH's two arrays wherever they are stored: in slices (a [`Bvh`]) or in the
 //! bytes of a blob, read in place.
 
-use core::slice;
-
 use super::{Bvh, BvhNode};
+use crate::query::LeafTriangleIds;
 
-/// The node and order arrays of a BVH, read by index.
+/// The node and order arrays of a binary BVH, read by index.
 ///
-/// Traversal, the queries and the validator are written once over this trait, so a tree in
-/// caller slices ([`Bvh`]) and a tree read straight out of a blob's bytes run the same code and
-/// return the same bits. Implementations return `None` for anything out of range; they never
-/// panic.
+/// Traversal ([`Traverse`](crate::query::Traverse), so every query) and the validator are
+/// written once over this trait, so a tree in caller slices ([`Bvh`]) and a tree read straight
+/// out of a blob's bytes run the same code and return the same bits. Implementations return
+/// `None` for anything out of range; they never panic.
 pub trait TreeArrays {
     /// Number of nodes (0 for an empty tree).
     fn node_count(&self) -> usize;
@@ -29,79 +28,6 @@ pub trait TreeArrays {
     /// them exist.
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>>;
 }
-
-/// The triangles of one leaf: `(order slot, mesh triangle index)` pairs, slots ascending.
-#[derive(Clone, Debug)]
-pub struct LeafTriangleIds<'a> {
-    next_slot: usize,
-    ids: Ids<'a>,
-}
-
-#[derive(Clone, Debug)]
-enum Ids<'a> {
-    /// Native `u32`s in a slice.
-    Words(slice::Iter<'a, u32>),
-    /// Little-endian `u32`s in bytes (a blob).
-    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
-    Bytes(slice::Iter<'a, [u8; 4]>),
-}
-
-impl<'a> LeafTriangleIds<'a> {
-    pub(crate) fn from_words(first_slot: usize, ids: &'a [u32]) -> Self {
-        Self {
-            next_slot: first_slot,
-            ids: Ids::Words(ids.iter()),
-        }
-    }
-
-    /// Slots `first..first + count` of an order array, or `None` unless all exist.
-    #[inline(always)]
-    pub(crate) fn in_order(order: &'a [u32], first: usize, count: usize) -> Option<Self> {
-        let ids = order.get(first..first.checked_add(count)?)?;
-        Some(Self::from_words(first, ids))
-    }
-
-    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
-    pub(crate) fn from_le_bytes(first_slot: usize, ids: &'a [[u8; 4]]) -> Self {
-        Self {
-            next_slot: first_slot,
-            ids: Ids::Bytes(ids.iter()),
-        }
-    }
-}
-
-impl LeafTriangleIds<'_> {
-    /// The order slot of the next triangle (the first one, before iterating).
-    #[inline(always)]
-    pub(crate) const fn first_slot(&self) -> usize {
-        self.next_slot
-    }
-}
-
-impl Iterator for LeafTriangleIds<'_> {
-    type Item = (usize, u32);
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<(usize, u32)> {
-        let tri = match &mut self.ids {
-            Ids::Words(it) => *it.next()?,
-            Ids::Bytes(it) => u32::from_le_bytes(*it.next()?),
-        };
-        let slot = self.next_slot;
-        self.next_slot = slot.wrapping_add(1);
-        Some((slot, tri))
-    }
-
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = match &self.ids {
-            Ids::Words(it) => it.len(),
-            Ids::Bytes(it) => it.len(),
-        };
-        (n, Some(n))
-    }
-}
-
-impl ExactSizeIterator for LeafTriangleIds<'_> {}
 
 impl TreeArrays for Bvh<'_> {
     #[inline(always)]

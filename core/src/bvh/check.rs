@@ -1,7 +1,8 @@
 //! The structure validator: the one place that decides whether nodes and order can be trusted.
 
-use super::{LeafTriangles, MAX_DEPTH, TreeArrays};
+use super::{MAX_DEPTH, TreeArrays};
 use crate::error::StructureError;
+use crate::query::LeafTriangles;
 
 /// How much to check.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -12,17 +13,42 @@ pub(crate) enum CheckLevel {
     Full,
 }
 
+/// Whether nodes and slots past those the tree uses are allowed (the untrimmed buffers a build
+/// was given) or refused (a blob, whose counts must be exact).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Extent {
+    /// Every node reachable and every slot in a leaf.
+    Exact,
+    /// The reachable nodes must be a prefix of the array, and the leaves must tile a prefix of
+    /// the slots; anything after is ignored.
+    Prefix,
+}
+
+/// What a check found: the depth and how many nodes and slots the tree uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Shape {
+    pub depth: u32,
+    pub nodes: usize,
+    pub slots: usize,
+}
+
 /// Checks nodes and order (and, with a triangle source, the triangle indices and containment);
-/// returns the depth. Walks left-first with a fixed stack, so leaf ranges must appear in order.
+/// returns the shape. Walks left-first with a fixed stack, so leaf ranges must appear in order.
 pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     mesh: Option<&S>,
     level: CheckLevel,
-) -> Result<u32, StructureError> {
+    extent: Extent,
+) -> Result<Shape, StructureError> {
     let (node_count, slot_count) = (tree.node_count(), tree.slot_count());
+    let empty = Shape {
+        depth: 0,
+        nodes: 0,
+        slots: 0,
+    };
     if node_count == 0 || slot_count == 0 {
         return if node_count == 0 && slot_count == 0 {
-            Ok(0)
+            Ok(empty)
         } else {
             Err(StructureError::EmptyMismatch)
         };
@@ -35,6 +61,7 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
     let mut sp = 0usize;
     let mut current = Some((0u32, 1u32));
     let mut reached = 0u32;
+    let mut highest = 0u32;
     let mut next_slot = 0usize;
     let mut depth = 0u32;
     while let Some((index, node_depth)) = current.take() {
@@ -42,6 +69,7 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
             return Err(StructureError::TooDeep { node: index });
         }
         depth = depth.max(node_depth);
+        highest = highest.max(index);
         reached = reached.saturating_add(1);
         if reached > total {
             // Only a shared subtree can be reached more often than there are nodes.
@@ -104,11 +132,19 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
             current = Some((left, node_depth + 1));
         }
     }
-    if reached != total {
+    // Each node is reached at most once (a shared subtree repeats a leaf range, refused above),
+    // so the reached nodes are a prefix exactly when the highest index is one below their count.
+    let prefix = highest.checked_add(1) == Some(reached);
+    let exact = reached == total;
+    if !exact && (extent == Extent::Exact || !prefix) {
         return Err(StructureError::UnreachableNodes { reached, total });
     }
-    if next_slot != slot_count {
+    if next_slot != slot_count && extent == Extent::Exact {
         return Err(StructureError::LeafRangesNotContiguous { node: total });
     }
-    Ok(depth)
+    Ok(Shape {
+        depth,
+        nodes: reached as usize,
+        slots: next_slot,
+    })
 }

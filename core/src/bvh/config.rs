@@ -8,6 +8,7 @@ use crate::error::BuildError;
 /// On the wire (blob header) a varint tag: 0 = [`SplitStrategy::Sah`], 1 =
 /// [`SplitStrategy::Centre`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum SplitStrategy {
     /// Binned surface area heuristic: at each node, triangle centroids are sorted into `bins`
     /// equal slices along each axis and the split with the lowest cost
@@ -21,6 +22,17 @@ pub enum SplitStrategy {
     /// to build than [`SplitStrategy::Sah`], for trees that answer rays 10–20 % more slowly
     /// (measured on the bunny). The same rule as three-mesh-bvh's default (`CENTER`).
     Centre,
+}
+
+impl SplitStrategy {
+    /// The strategy's name in lower case: `sah` or `centre` (what tools print).
+    #[must_use]
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Self::Sah => "sah",
+            Self::Centre => "centre",
+        }
+    }
 }
 
 /// How a BVH is built. Use a preset ([`BuildConfig::fast`], [`BuildConfig::balanced`] — the

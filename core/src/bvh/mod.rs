@@ -2,15 +2,21 @@
 //! buffers.
 //!
 //! ```
-//! use meshq::{bvh::{self, Bvh, BuildConfig, BvhNode, PrimRef}, math::{Ray, Vec3}, mesh::MeshRef};
+//! use meshq::prelude::*;
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
+//! // Caller-owned buffers, sized by the sizing functions...
 //! let mut nodes = [BvhNode::EMPTY; bvh::node_capacity(1)];
 //! let mut order = [0u32; 1];
 //! let mut scratch = [PrimRef::EMPTY; 1];
 //! let bvh = Bvh::build(&mesh, &BuildConfig::default(), &mut nodes, &mut order, &mut scratch)?;
-//! let hit = bvh.raycast(&mesh, &Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z));
+//! let hit = bvh.with(&mesh).raycast(&Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z));
 //! assert_eq!(hit.map(|h| (h.tri, h.t)), Some((0, 1.0)));
+//!
+//! // ...or all of them in one value.
+//! let mut buffers = BvhBuffers::<1>::new();
+//! let again = buffers.build(&mesh, &BuildConfig::default())?;
+//! assert_eq!(again.nodes(), bvh.nodes());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
@@ -19,42 +25,31 @@
 //! maps back to the mesh's own triangle indices (the mesh itself is never reordered).
 
 mod arrays;
-mod batch_order;
 mod binning;
+mod buffers;
 mod build;
 mod build_box;
 mod centre;
 pub(crate) mod check;
-pub(crate) mod closest;
-pub(crate) mod closest_batch;
 mod config;
 mod lanes;
-mod leaf_batches;
 mod median;
 mod node;
-pub(crate) mod overlap;
 mod packed;
 mod partition;
 mod prim_ref;
-pub(crate) mod raycast;
-pub(crate) mod raycast_batch;
 mod refit;
 mod stats;
-pub(crate) mod traverse;
+mod traverse;
 mod tree;
-mod wide;
 
-pub use arrays::{LeafTriangleIds, TreeArrays};
+pub use arrays::TreeArrays;
+pub use buffers::BvhBuffers;
 pub use config::{BuildConfig, SplitStrategy};
 pub use node::BvhNode;
-pub use overlap::OverlapCount;
-pub use packed::{LeafTriangles, PackedTriangle, PackedTriangles};
 pub use prim_ref::PrimRef;
-pub use raycast::{RayOptions, TriangleTest};
 pub use stats::{LEAF_HISTOGRAM_LEN, TreeStats};
-pub use traverse::BvhVisitor;
 pub use tree::Bvh;
-pub use wide::{WideBvh, WideNode};
 
 /// The deepest tree any builder makes and any loader accepts (the root is level 1).
 ///
@@ -62,7 +57,9 @@ pub use wide::{WideBvh, WideNode};
 /// overflow.
 pub const MAX_DEPTH: u32 = 64;
 
-/// Nodes needed for a tree over `tri_count` triangles: `2·n − 1` (0 for no triangles).
+/// Nodes needed for a tree over `tri_count` triangles: `2·n − 1` (0 for no triangles). The
+/// order array and the build scratch take one entry per triangle; packed triangles one per
+/// triangle; a four-wide tree [`wide_node_capacity`](crate::wide::wide_node_capacity).
 #[must_use]
 pub const fn node_capacity(tri_count: usize) -> usize {
     if tri_count == 0 {

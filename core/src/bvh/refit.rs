@@ -1,4 +1,4 @@
-use super::check::{CheckLevel, check};
+use super::check::{CheckLevel, Extent, check};
 use super::{Bvh, BvhNode};
 use crate::error::StructureError;
 use crate::math::Aabb;
@@ -25,7 +25,12 @@ impl<'a> Bvh<'a> {
             order,
             depth: 0,
         };
-        let depth = check(&unchecked, Some(mesh), CheckLevel::Topology)?;
+        let shape = check(&unchecked, Some(mesh), CheckLevel::Topology, Extent::Prefix)?;
+        let (nodes, order) = (
+            nodes.get_mut(..shape.nodes).unwrap_or_default(),
+            order.get(..shape.slots).unwrap_or_default(),
+        );
+        let depth = shape.depth;
         for i in (0..nodes.len()).rev() {
             let Some(&node) = nodes.get(i) else {
                 continue;

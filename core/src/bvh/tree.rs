@@ -1,5 +1,5 @@
 use super::build::build_into;
-use super::check::{CheckLevel, check};
+use super::check::{CheckLevel, Extent, check};
 use super::{BuildConfig, BvhNode, PrimRef};
 use crate::error::{BuildError, StructureError};
 use crate::math::Aabb;
@@ -50,6 +50,11 @@ impl<'a> Bvh<'a> {
     /// A view over nodes and order kept from an earlier build (or decoded from storage),
     /// after checking them fully against `mesh` (see [`Bvh::check`]).
     ///
+    /// The buffers may be the untrimmed ones the build was given: the view keeps the nodes
+    /// reachable from the root, which must be a prefix of `nodes`, and the slots its leaves
+    /// tile, which must be a prefix of `order`; whatever follows is ignored. For a mesh with no
+    /// triangles the view is empty, whatever the buffers hold.
+    ///
     /// # Errors
     /// The first [`StructureError`] found.
     pub fn from_parts(
@@ -57,19 +62,27 @@ impl<'a> Bvh<'a> {
         order: &'a [u32],
         mesh: &ValidMesh<'_>,
     ) -> Result<Self, StructureError> {
-        Self::checked(nodes, order, Some(mesh), CheckLevel::Full)
+        Self::checked(nodes, order, mesh, CheckLevel::Full)
     }
 
-    /// A view over `nodes` and `order` once [`check`] at `level` passes.
+    /// A view over the used prefix of `nodes` and `order` once [`check`] at `level` passes.
     fn checked(
         nodes: &'a [BvhNode],
         order: &'a [u32],
-        mesh: Option<&ValidMesh<'_>>,
+        mesh: &ValidMesh<'_>,
         level: CheckLevel,
     ) -> Result<Self, StructureError> {
+        if mesh.triangle_count() == 0 {
+            return Ok(Self::from_validated(&[], &[], 0));
+        }
         let unchecked = Self::from_validated(nodes, order, 0);
-        let depth = check(&unchecked, mesh, level)?;
-        Ok(Self::from_validated(nodes, order, depth))
+        let triangles = (level == CheckLevel::Full).then_some(mesh);
+        let shape = check(&unchecked, triangles, level, Extent::Prefix)?;
+        Ok(Self::from_validated(
+            nodes.get(..shape.nodes).unwrap_or_default(),
+            order.get(..shape.slots).unwrap_or_default(),
+            shape.depth,
+        ))
     }
 
     /// A view over nodes and order that [`Bvh::build`] wrote for `mesh` and nothing has changed
@@ -78,7 +91,8 @@ impl<'a> Bvh<'a> {
     /// indices below the mesh's count — but not box nesting or triangle containment, the
     /// costly part of [`Bvh::from_parts`] (a leaf's triangles are gathered from the mesh for
     /// that). Boxes that are wrong give wrong answers, never a panic or an endless query; when
-    /// the arrays come from anywhere else, use [`Bvh::from_parts`].
+    /// the arrays come from anywhere else, use [`Bvh::from_parts`]. Untrimmed buffers are
+    /// accepted as by [`Bvh::from_parts`].
     ///
     /// # Errors
     /// The first [`StructureError`] found.
@@ -87,7 +101,8 @@ impl<'a> Bvh<'a> {
         order: &'a [u32],
         mesh: &ValidMesh<'_>,
     ) -> Result<Self, StructureError> {
-        let bvh = Self::checked(nodes, order, None, CheckLevel::Topology)?;
+        let bvh = Self::checked(nodes, order, mesh, CheckLevel::Topology)?;
+        let (nodes, order) = (bvh.nodes, bvh.order);
         let count = mesh.triangle_count();
         // One pass without early exit (it vectorises); the slow search only names the culprit.
         if !order
@@ -126,7 +141,7 @@ impl<'a> Bvh<'a> {
     /// # Errors
     /// The first [`StructureError`] found.
     pub fn check(&self, mesh: &ValidMesh<'_>) -> Result<(), StructureError> {
-        check(self, Some(mesh), CheckLevel::Full).map(|_| ())
+        check(self, Some(mesh), CheckLevel::Full, Extent::Exact).map(|_| ())
     }
 
     /// The nodes, root first.

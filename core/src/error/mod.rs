@@ -41,7 +41,7 @@ pub enum MeshError {
         /// The vertex.
         vertex: u32,
     },
-    /// A vertex coordinate's magnitude exceeds [`MAX_COORDINATE`](crate::mesh::MAX_COORDINATE),
+    /// A vertex coordinate's magnitude exceeds [`MAX_COORDINATE`](crate::math::MAX_COORDINATE),
     /// beyond which products in the kernels could overflow. Fix: rescale or re-centre the mesh.
     CoordinateTooLarge {
         /// The vertex.
@@ -88,7 +88,7 @@ impl fmt::Display for MeshError {
             Self::CoordinateTooLarge { vertex } => write!(
                 f,
                 "vertex {vertex} has a coordinate beyond ±{:e}",
-                crate::mesh::MAX_COORDINATE
+                crate::math::MAX_COORDINATE
             ),
         }
     }
@@ -98,6 +98,7 @@ impl core::error::Error for MeshError {}
 
 /// Which caller buffer a [`BuildError::BufferTooSmall`] is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum BufferKind {
     /// The node array (size it with [`bvh::node_capacity`](crate::bvh::node_capacity)).
     Nodes,
@@ -105,7 +106,7 @@ pub enum BufferKind {
     Order,
     /// The build scratch (one [`PrimRef`](crate::bvh::PrimRef) per triangle).
     Scratch,
-    /// Packed triangles (one [`PackedTriangle`](crate::bvh::PackedTriangle) per triangle).
+    /// Packed triangles (one [`PackedTriangle`](crate::math::PackedTriangle) per triangle).
     Packed,
     /// Wide nodes (size it with [`Bvh::wide_node_count`](crate::bvh::Bvh::wide_node_count)).
     WideNodes,

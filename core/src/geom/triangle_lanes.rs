@@ -3,8 +3,7 @@
 
 use glam::{BVec4A, Mat4, Vec3, Vec4};
 
-use crate::bvh::PackedTriangle;
-use crate::math::Triangle;
+use crate::math::{PackedTriangle, Triangle};
 
 /// One coordinate axis of four points, a lane each.
 #[derive(Clone, Copy)]

@@ -5,19 +5,29 @@
 //! same inputs give the same bits on every target.
 
 mod aabb;
+mod aabb4;
 mod hit;
 mod morton;
+mod packed_triangle;
 mod plane;
 mod ray;
 mod scalar;
 mod triangle;
 
 pub use aabb::Aabb;
+pub use aabb4::Aabb4;
 pub use hit::{ClosestPoint, RayHit, TriangleFeature};
 pub use morton::morton_code;
+pub use packed_triangle::PackedTriangle;
 pub use plane::Plane;
 pub use ray::Ray;
 pub use scalar::{cross, dot, max_f32, min_f32};
 pub use triangle::Triangle;
 
 pub use glam::{Vec2, Vec3};
+
+/// The largest coordinate magnitude a valid mesh may have: 2⁵⁰ ≈ 1.1·10¹⁵ (also
+/// `mesh::MAX_COORDINATE`).
+///
+/// Edge vectors and their cross products stay far from `f32` overflow below this bound.
+pub const MAX_COORDINATE: f32 = 1_125_899_906_842_624.0;

@@ -13,7 +13,4 @@ pub use mesh_ref::MeshRef;
 pub(crate) use mesh_ref::{check_triangle, check_vertex};
 pub use valid_mesh::ValidMesh;
 
-/// The largest coordinate magnitude a valid mesh may have: 2⁵⁰ ≈ 1.1·10¹⁵.
-///
-/// Edge vectors and their cross products stay far from `f32` overflow below this bound.
-pub const MAX_COORDINATE: f32 = 1_125_899_906_842_624.0;
+pub use crate::math::MAX_COORDINATE;

@@ -13,8 +13,8 @@ pub struct ValidMesh<'a> {
 }
 
 impl<'a> ValidMesh<'a> {
-    /// Only for `MeshRef::validate`, after its checks.
-    pub(super) const fn new_unchecked_by_validate(
+    /// Only for `MeshRef::validate`, after its checks, and for copies of a validated mesh.
+    pub(crate) const fn new_unchecked_by_validate(
         positions: &'a [[f32; 3]],
         triangles: &'a [[u32; 3]],
     ) -> Self {

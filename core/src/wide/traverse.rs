@@ -1,26 +1,9 @@
-//! Depth-first traversal of a four-wide BVH, nearest child first.
+//! Depth-first traversal of a four-wide BVH, nearest child first: the structure's half of
+//! every query (see [`Traverse`]).
 
-use glam::Vec4;
-
-use super::{WideBvh, WideNode};
-use crate::bvh::traverse::Walk;
-use crate::bvh::{BvhVisitor, LeafTriangleIds, MAX_DEPTH};
-
-/// A [`BvhVisitor`] that can also judge the four child boxes of a [`WideNode`] at once.
-pub(crate) trait LaneVisitor: BvhVisitor {
-    /// The lanes to enter, as a bit mask (bit `i` for lane `i`, unused lanes never set), and
-    /// each lane's key with the meaning [`BvhVisitor::enter`] gives it: smaller keys are
-    /// visited first, and [`BvhVisitor::revisit`] judges them when they come off the stack.
-    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4);
-}
-
-/// Lanes of unused children are empty boxes (`min > max`): the mask of the used ones.
-#[inline(always)]
-pub(crate) fn used_lanes(node: &WideNode) -> u32 {
-    Vec4::from_array(node.min_x)
-        .cmple(Vec4::from_array(node.max_x))
-        .bitmask()
-}
+use super::WideBvh;
+use crate::bvh::MAX_DEPTH;
+use crate::query::{LeafTriangleIds, Traverse, Visitor};
 
 /// A child to visit: an inner node (`count == 0`, `child` its index) or a leaf.
 #[derive(Clone, Copy)]
@@ -43,10 +26,18 @@ impl Child {
 /// the binary tree it came from ([`MAX_DEPTH`]), so the stack never fills.
 const STACK: usize = 3 * MAX_DEPTH as usize;
 
-/// Runs `visitor` over `tree`: depth first, children in ascending key order (lower lane first
-/// on equal keys), with a fixed stack and no allocation.
+impl Traverse for WideBvh<'_> {
+    /// Depth first, each node's four child boxes judged at once
+    /// ([`Visitor::enter_lanes`]) and visited in ascending key order (the lower lane first on
+    /// equal keys), with a fixed stack and no allocation.
+    #[inline(always)]
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        traverse_wide(self, visitor);
+    }
+}
+
 #[inline(always)]
-pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V) {
+fn traverse_wide<V: Visitor + ?Sized>(tree: &WideBvh<'_>, visitor: &mut V) {
     // Uninitialised until pushed: zeroing kilobytes per query would cost more than a node.
     let mut stack = heapless::Vec::<Child, STACK>::new();
     let mut at = Child::ROOT;
@@ -58,10 +49,9 @@ pub(crate) fn traverse_wide<V: LaneVisitor>(tree: &WideBvh<'_>, visitor: &mut V)
                 return;
             }
         } else if let Some(node) = tree.nodes.get(at.child as usize) {
-            let (mask, keys) = visitor.enter_lanes(node);
-            let mask = mask & 0xF;
+            let (mask, keys) = visitor.enter_lanes(&node.bounds);
+            let mask = mask & node.bounds.used_mask() & 0xF;
             if mask != 0 {
-                let keys = keys.to_array();
                 let lane_of = |lane: u32| -> Child {
                     let lane = lane as usize;
                     Child {
@@ -138,11 +128,4 @@ fn by_key(mask: u32, keys: [f32; 4]) -> ([u32; 4], usize) {
 #[inline(always)]
 fn leaf<'t>(tree: &WideBvh<'t>, first: u32, count: u32) -> Option<LeafTriangleIds<'t>> {
     LeafTriangleIds::in_order(tree.order, first as usize, count as usize)
-}
-
-impl Walk for WideBvh<'_> {
-    #[inline(always)]
-    fn walk<V: LaneVisitor>(&self, visitor: &mut V) {
-        traverse_wide(self, visitor);
-    }
 }

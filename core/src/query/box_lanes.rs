@@ -1,13 +1,12 @@
-//! The box tests of a wide node's four lanes, one SIMD operation per coordinate.
+//! The box tests of four boxes at once ([`Aabb4`]), one SIMD operation per coordinate.
 //!
-//! Like the binary tree's box tests these only decide what a query visits, with the query's
-//! margin of slack, so lane-wise rounding (or a target without SIMD) never changes an answer.
+//! Like the one-box tests these only decide what a query visits, with the query's margin of
+//! slack, so lane-wise rounding (or a target without SIMD) never changes an answer.
 
 use glam::{Vec3, Vec4};
 
-use super::WideNode;
-use super::traverse::used_lanes;
 use crate::geom::SlabRay;
+use crate::math::Aabb4;
 
 /// A ray's origin and padded inverse direction (from its [`SlabRay`]) spread over four lanes,
 /// computed once per ray.
@@ -39,11 +38,11 @@ impl LaneRay {
     #[inline(always)]
     pub(crate) fn enter(
         &self,
-        node: &WideNode,
+        node: &Aabb4,
         t_min: f32,
         t_max: f32,
         margin: f32,
-    ) -> (u32, Vec4) {
+    ) -> (u32, [f32; 4]) {
         let [ox, oy, oz] = self.origin;
         let [ix, iy, iz] = self.inv_dir;
         let [neg_x, neg_y, neg_z] = self.negative;
@@ -60,7 +59,7 @@ impl LaneRay {
             .min(Vec4::splat(t_max));
         let lo = entry - entry.abs() * margin;
         let hi = exit + exit.abs() * margin;
-        (lo.cmple(hi).bitmask() & used_lanes(node), lo)
+        (lo.cmple(hi).bitmask() & node.used_mask(), lo.to_array())
     }
 }
 
@@ -77,7 +76,7 @@ fn near_far(negative: bool, min: [f32; 4], max: [f32; 4]) -> (Vec4, Vec4) {
 /// The lanes whose box lies within squared distance `limit` of `point`, after shrinking each
 /// squared distance by `margin` (relative), and those shrunk squared distances.
 #[inline(always)]
-pub(crate) fn enter_point(node: &WideNode, point: Vec3, limit: f32, margin: f32) -> (u32, Vec4) {
+pub(crate) fn enter_point(node: &Aabb4, point: Vec3, limit: f32, margin: f32) -> (u32, [f32; 4]) {
     let axis = |p: f32, min: [f32; 4], max: [f32; 4]| {
         let p = Vec4::splat(p);
         let d = (Vec4::from_array(min) - p)
@@ -91,7 +90,7 @@ pub(crate) fn enter_point(node: &WideNode, point: Vec3, limit: f32, margin: f32)
     // A product, not `d2 − d2·margin`: an overflowed (infinite) distance stays comparable.
     let lo = d2 * (1.0 - margin);
     (
-        lo.cmple(Vec4::splat(limit)).bitmask() & used_lanes(node),
-        lo,
+        lo.cmple(Vec4::splat(limit)).bitmask() & node.used_mask(),
+        lo.to_array(),
     )
 }

@@ -1,19 +1,15 @@
+//! The closest point of a mesh to a query point.
+
 use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec3A, Vec4};
 
+use super::MARGIN;
+use super::box_lanes::enter_point;
 use super::leaf_batches::{LANES_PAY, for_each_batch};
-use super::traverse::Walk;
-use super::wide::traverse::LaneVisitor;
-use super::wide::{WideNode, lanes};
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
+use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::closest_point_regions;
-use crate::math::{ClosestPoint, Triangle, dot};
-
-/// Relative slack on box distances (as in ray traversal): a box is entered when it might hold
-/// a point within a few thousand ulps of the current best, so rounding can never cull the
-/// winner or a tie.
-const MARGIN: f32 = 1.0 / 65_536.0;
+use crate::math::{Aabb, Aabb4, ClosestPoint, Triangle, dot};
 
 /// The closest-point visitor; `LANES` picks the leaf test (see [`LANES_PAY`]).
 struct Closest<'m, S: ?Sized, const LANES: bool> {
@@ -28,17 +24,18 @@ struct Closest<'m, S: ?Sized, const LANES: bool> {
     best: Option<(u32, Triangle)>,
 }
 
-impl<S: LeafTriangles + ?Sized, const LANES: bool> BvhVisitor for Closest<'_, S, LANES> {
+impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LANES> {
     #[inline(always)]
-    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
-        let d2 = box_distance_squared(
-            Vec3A::from_array(node.min),
-            Vec3A::from_array(node.max),
-            self.lanes,
-        );
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
+        let d2 = box_distance_squared(Vec3A::from(aabb.min), Vec3A::from(aabb.max), self.lanes);
         // A product, not `d2 − d2·MARGIN`: an overflowed (infinite) distance stays comparable.
         let lo = d2 * (1.0 - MARGIN);
         (lo <= self.limit).then_some(lo)
+    }
+
+    #[inline(always)]
+    fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        enter_point(boxes, self.point, self.limit, MARGIN)
     }
 
     #[inline(always)]
@@ -106,13 +103,6 @@ impl<S: ?Sized, const LANES: bool> Closest<'_, S, LANES> {
     }
 }
 
-impl<S: LeafTriangles + ?Sized, const LANES: bool> LaneVisitor for Closest<'_, S, LANES> {
-    #[inline(always)]
-    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
-        lanes::enter_point(node, self.point, self.limit, MARGIN)
-    }
-}
-
 /// Squared distance from `p` to the box `[min, max]`, in SIMD lanes where the target has them.
 ///
 /// Used only to decide what to visit (with [`MARGIN`] of slack), never for a reported
@@ -124,31 +114,9 @@ fn box_distance_squared(min: Vec3A, max: Vec3A, p: Vec3A) -> f32 {
     d.dot(d)
 }
 
-impl Bvh<'_> {
-    /// The point of `source` (the mesh, or its packed triangles) closest to `point`, if one lies within `max_distance` (inclusive;
-    /// pass `f32::INFINITY` for no limit).
-    ///
-    /// Exact up to rounding: the answer equals the minimum of
-    /// [`closest_point_triangle`](crate::geom::closest_point_triangle) over all non-degenerate
-    /// triangles, with the same bits; on equal squared distance the lower triangle index wins.
-    /// Distances are compared squared, so `max_distance` is squared once first. Returns `None`
-    /// for a non-finite `point`, a negative or NaN `max_distance`, or an empty tree.
-    ///
-    /// The search is depth first, nearer box first, and skips boxes farther than the best
-    /// distance so far.
-    #[must_use]
-    pub fn closest_point<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        point: Vec3,
-        max_distance: f32,
-    ) -> Option<ClosestPoint> {
-        closest_point(self, source, point, max_distance)
-    }
-}
-
-/// [`Bvh::closest_point`] over any storage.
-pub(crate) fn closest_point<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+/// The point of `source` closest to `point` through `tree` (see
+/// [`MeshQuery::closest_point`](super::MeshQuery::closest_point)).
+pub(crate) fn closest_point<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     point: Vec3,
@@ -159,7 +127,7 @@ pub(crate) fn closest_point<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
 
 /// [`closest_point`] with the leaf test chosen by `LANES`, so tests can run the one the
 /// target would not.
-fn closest_point_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
+fn closest_point_by<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
     tree: &A,
     source: &S,
     point: Vec3,
@@ -173,7 +141,7 @@ fn closest_point_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bo
 /// a batch, say) bounds the search from the start. The answer does not depend on the seed —
 /// it is the minimum under the same total order, and the seed is just one more triangle
 /// considered — only the work done does.
-pub(super) fn search<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
+pub(super) fn search<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
     tree: &A,
     source: &S,
     point: Vec3,
@@ -197,7 +165,7 @@ pub(super) fn search<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: b
         let d = point - q;
         v.consider(dot(d, d), tri, t);
     }
-    tree.walk(&mut v);
+    tree.traverse(&mut v);
     v.best
 }
 
@@ -223,10 +191,12 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
-    use crate::bvh::closest_batch::closest_points_by;
-    use crate::bvh::{BuildConfig, PackedTriangle, PrimRef, WideNode, node_capacity};
+    use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
     use crate::geom::closest_point_triangle;
+    use crate::math::PackedTriangle;
     use crate::mesh::MeshRef;
+    use crate::query::closest_batch::closest_points_by;
+    use crate::wide::WideNode;
 
     /// Deterministic xorshift floats in `[-1, 1)`.
     fn floats(mut state: u64, n: usize) -> Vec<f32> {

@@ -6,16 +6,15 @@
 
 use glam::Vec3;
 
-use super::LeafTriangles;
 use super::batch_order::{answer_in_order, morton_order};
 use super::closest::{answer, search};
 use super::leaf_batches::LANES_PAY;
-use super::traverse::Walk;
+use super::{LeafTriangles, Traverse};
 use crate::error::BatchError;
 use crate::math::ClosestPoint;
 
-/// [`MeshQuery::closest_points`](crate::query::MeshQuery::closest_points) over any storage.
-pub(crate) fn closest_points<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+/// [`MeshQuery::closest_points`](crate::query::MeshQuery::closest_points) through any structure.
+pub(crate) fn closest_points<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     points: &[Vec3],
@@ -27,7 +26,11 @@ pub(crate) fn closest_points<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
 }
 
 /// [`closest_points`] with the leaf test chosen by `LANES`.
-pub(super) fn closest_points_by<A: Walk + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
+pub(super) fn closest_points_by<
+    A: Traverse + ?Sized,
+    S: LeafTriangles + ?Sized,
+    const LANES: bool,
+>(
     tree: &A,
     source: &S,
     points: &[Vec3],

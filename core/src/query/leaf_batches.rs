@@ -4,9 +4,9 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{LeafTriangleIds, LeafTriangles, PackedTriangle};
+use super::{LeafTriangleIds, LeafTriangles};
 use crate::geom::TriangleLanes;
-use crate::math::Triangle;
+use crate::math::{PackedTriangle, Triangle};
 
 /// Whether the target has 128-bit SIMD for glam's `Vec4`, so four triangles in lanes cost
 /// about what one does. Without it (a Cortex-M4) the lanes would be four scalar tests with no

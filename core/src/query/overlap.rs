@@ -1,11 +1,12 @@
+//! Overlap queries: every triangle that touches a box or a sphere.
+
 use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::traverse::traverse;
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles, TreeArrays};
+use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::{closest_point_regions, overlap_triangle_aabb};
-use crate::math::{Aabb, dot};
+use crate::math::{Aabb, Triangle, dot};
 
 /// How many triangles an `*_into` overlap query found and how many fit in the buffer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -32,15 +33,15 @@ struct Overlap<'m, S: ?Sized, B, T, F> {
     report: F,
 }
 
-impl<S, B, T, F> BvhVisitor for Overlap<'_, S, B, T, F>
+impl<S, B, T, F> Visitor for Overlap<'_, S, B, T, F>
 where
     S: LeafTriangles + ?Sized,
-    B: Fn(&BvhNode) -> bool,
-    T: Fn(&crate::math::Triangle) -> bool,
+    B: Fn(&Aabb) -> bool,
+    T: Fn(&Triangle) -> bool,
     F: FnMut(u32) -> ControlFlow<()>,
 {
-    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
-        (self.enter_box)(node).then_some(0.0)
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
+        (self.enter_box)(aabb).then_some(0.0)
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
@@ -56,56 +57,6 @@ where
     }
 }
 
-impl Bvh<'_> {
-    /// Calls `report` with the index of every non-degenerate triangle that shares a point with
-    /// `aabb` (exact triangle–box test; touching counts), in traversal order, until it returns
-    /// `Break`.
-    pub fn overlap_aabb<S: LeafTriangles + ?Sized, F: FnMut(u32) -> ControlFlow<()>>(
-        &self,
-        source: &S,
-        aabb: &Aabb,
-        report: F,
-    ) {
-        overlap_aabb(self, source, aabb, report);
-    }
-
-    /// Calls `report` with the index of every non-degenerate triangle within `radius`
-    /// (inclusive) of `center`, in traversal order, until it returns `Break`. A non-finite
-    /// center or a negative or NaN radius reports nothing.
-    pub fn overlap_sphere<S: LeafTriangles + ?Sized, F: FnMut(u32) -> ControlFlow<()>>(
-        &self,
-        source: &S,
-        center: Vec3,
-        radius: f32,
-        report: F,
-    ) {
-        overlap_sphere(self, source, center, radius, report);
-    }
-
-    /// [`Bvh::overlap_aabb`] writing triangle indices into `out`; keeps counting past its end
-    /// so the result says how large a buffer would have been needed.
-    pub fn overlap_aabb_into<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        aabb: &Aabb,
-        out: &mut [u32],
-    ) -> OverlapCount {
-        overlap_aabb_into(self, source, aabb, out)
-    }
-
-    /// [`Bvh::overlap_sphere`] writing triangle indices into `out`; keeps counting past its
-    /// end so the result says how large a buffer would have been needed.
-    pub fn overlap_sphere_into<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        center: Vec3,
-        radius: f32,
-        out: &mut [u32],
-    ) -> OverlapCount {
-        overlap_sphere_into(self, source, center, radius, out)
-    }
-}
-
 fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> {
     if let Some(slot) = out.get_mut(count.written) {
         *slot = tri;
@@ -115,10 +66,10 @@ fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> 
     ControlFlow::Continue(())
 }
 
-/// [`Bvh::overlap_aabb`] over any storage.
+/// Reports the triangles touching `aabb` (see [`MeshQuery::overlap_aabb`](super::MeshQuery::overlap_aabb)).
 pub(crate) fn overlap_aabb<A, S, F>(tree: &A, source: &S, aabb: &Aabb, report: F)
 where
-    A: TreeArrays + ?Sized,
+    A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
     F: FnMut(u32) -> ControlFlow<()>,
 {
@@ -128,17 +79,18 @@ where
     let query = *aabb;
     let mut v = Overlap {
         source,
-        enter_box: |n: &BvhNode| n.aabb().overlaps(&query),
-        hits: |t: &crate::math::Triangle| overlap_triangle_aabb(t, &query),
+        enter_box: |b: &Aabb| b.overlaps(&query),
+        hits: |t: &Triangle| overlap_triangle_aabb(t, &query),
         report,
     };
-    traverse(tree, &mut v);
+    tree.traverse(&mut v);
 }
 
-/// [`Bvh::overlap_sphere`] over any storage.
+/// Reports the triangles within `radius` of `center` (see
+/// [`MeshQuery::overlap_sphere`](super::MeshQuery::overlap_sphere)).
 pub(crate) fn overlap_sphere<A, S, F>(tree: &A, source: &S, center: Vec3, radius: f32, report: F)
 where
-    A: TreeArrays + ?Sized,
+    A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
     F: FnMut(u32) -> ControlFlow<()>,
 {
@@ -148,18 +100,18 @@ where
     let r2 = radius * radius;
     let mut v = Overlap {
         source,
-        enter_box: |n: &BvhNode| n.aabb().distance_squared_to_point(center) <= r2,
-        hits: |t: &crate::math::Triangle| {
+        enter_box: |b: &Aabb| b.distance_squared_to_point(center) <= r2,
+        hits: |t: &Triangle| {
             let (q, ..) = closest_point_regions(center, t.a, t.b, t.c);
             let d = center - q;
             dot(d, d) <= r2
         },
         report,
     };
-    traverse(tree, &mut v);
+    tree.traverse(&mut v);
 }
 
-/// [`Bvh::overlap_aabb_into`] over any storage.
+/// [`overlap_aabb`] into a buffer.
 pub(crate) fn overlap_aabb_into<A, S>(
     tree: &A,
     source: &S,
@@ -167,7 +119,7 @@ pub(crate) fn overlap_aabb_into<A, S>(
     out: &mut [u32],
 ) -> OverlapCount
 where
-    A: TreeArrays + ?Sized,
+    A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
 {
     let mut count = OverlapCount {
@@ -178,7 +130,7 @@ where
     count
 }
 
-/// [`Bvh::overlap_sphere_into`] over any storage.
+/// [`overlap_sphere`] into a buffer.
 pub(crate) fn overlap_sphere_into<A, S>(
     tree: &A,
     source: &S,
@@ -187,7 +139,7 @@ pub(crate) fn overlap_sphere_into<A, S>(
     out: &mut [u32],
 ) -> OverlapCount
 where
-    A: TreeArrays + ?Sized,
+    A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
 {
     let mut count = OverlapCount {

@@ -1,15 +1,15 @@
+//! Ray queries: the closest hit and any hit, with either triangle test.
+
 use core::ops::ControlFlow;
 
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 
+use super::MARGIN;
+use super::box_lanes::LaneRay;
 use super::leaf_batches::{LANES_PAY, for_each_batch};
-use super::traverse::Walk;
-use super::wide::WideNode;
-use super::wide::lanes::LaneRay;
-use super::wide::traverse::LaneVisitor;
-use super::{Bvh, BvhNode, BvhVisitor, LeafTriangleIds, LeafTriangles};
+use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::{CullMode, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore};
-use crate::math::{Ray, RayHit, Triangle};
+use crate::math::{Aabb, Aabb4, Ray, RayHit, Triangle};
 
 /// Which ray–triangle test a query uses. Both give bit-identical answers on every target; they
 /// differ only at edges shared by two triangles.
@@ -32,11 +32,6 @@ pub struct RayOptions {
     /// Faces to ignore (none by default: both sides hit).
     pub cull: CullMode,
 }
-
-/// Relative slack on box entry/exit distances: a box is entered when it might hold a hit within
-/// a few thousand ulps of the current best, so rounding in the slab test can never cull a
-/// triangle whose own rounded `t` would win (ties included).
-const MARGIN: f32 = 1.0 / 65_536.0;
 
 /// A ray–triangle test with an adjustable upper bound.
 trait Kernel {
@@ -88,9 +83,11 @@ impl Kernel for Wt {
     }
 }
 
+/// The entry distance of `aabb` less the margin, when the ray enters it within its interval
+/// (widened by the margin).
 #[inline(always)]
-fn enter_box(slab: &SlabRay, node: &BvhNode) -> Option<f32> {
-    let (entry, exit) = slab.clip(node.min, node.max);
+fn enter_box(slab: &SlabRay, aabb: &Aabb) -> Option<f32> {
+    let (entry, exit) = slab.clip(aabb.min.to_array(), aabb.max.to_array());
     let lo = entry - entry.abs() * MARGIN;
     let hi = exit + exit.abs() * MARGIN;
     (lo <= hi).then_some(lo)
@@ -98,6 +95,8 @@ fn enter_box(slab: &SlabRay, node: &BvhNode) -> Option<f32> {
 
 struct ClosestHit<'m, S: ?Sized, K> {
     source: &'m S,
+    /// The ray as given, for structures that walk along it.
+    ray: Ray,
     slab: SlabRay,
     /// The same ray for wide nodes (optimised away when the tree is binary).
     lanes: LaneRay,
@@ -105,10 +104,21 @@ struct ClosestHit<'m, S: ?Sized, K> {
     best: Option<RayHit>,
 }
 
-impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for ClosestHit<'_, S, K> {
+impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for ClosestHit<'_, S, K> {
     #[inline(always)]
-    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
-        enter_box(&self.slab, node)
+    fn ray(&self) -> Option<&Ray> {
+        Some(&self.ray)
+    }
+
+    #[inline(always)]
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
+        enter_box(&self.slab, aabb)
+    }
+
+    #[inline(always)]
+    fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        self.lanes
+            .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)
     }
 
     #[inline(always)]
@@ -164,16 +174,10 @@ impl<S: ?Sized, K: Kernel> ClosestHit<'_, S, K> {
     }
 }
 
-impl<S: LeafTriangles + ?Sized, K: Kernel> LaneVisitor for ClosestHit<'_, S, K> {
-    #[inline(always)]
-    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
-        self.lanes
-            .enter(node, self.slab.t_min, self.slab.t_max, MARGIN)
-    }
-}
-
 struct AnyHit<'m, S: ?Sized, K> {
     source: &'m S,
+    /// The ray as given, for structures that walk along it.
+    ray: Ray,
     slab: SlabRay,
     /// The same ray for wide nodes (optimised away when the tree is binary).
     lanes: LaneRay,
@@ -181,10 +185,21 @@ struct AnyHit<'m, S: ?Sized, K> {
     found: bool,
 }
 
-impl<S: LeafTriangles + ?Sized, K: Kernel> BvhVisitor for AnyHit<'_, S, K> {
+impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for AnyHit<'_, S, K> {
     #[inline(always)]
-    fn enter(&mut self, node: &BvhNode) -> Option<f32> {
-        enter_box(&self.slab, node)
+    fn ray(&self) -> Option<&Ray> {
+        Some(&self.ray)
+    }
+
+    #[inline(always)]
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
+        enter_box(&self.slab, aabb)
+    }
+
+    #[inline(always)]
+    fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        self.lanes
+            .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)
     }
 
     #[inline(always)]
@@ -226,64 +241,10 @@ impl<S: ?Sized, K: Kernel> AnyHit<'_, S, K> {
     }
 }
 
-impl<S: LeafTriangles + ?Sized, K: Kernel> LaneVisitor for AnyHit<'_, S, K> {
-    #[inline(always)]
-    fn enter_lanes(&mut self, node: &WideNode) -> (u32, Vec4) {
-        self.lanes
-            .enter(node, self.slab.t_min, self.slab.t_max, MARGIN)
-    }
-}
-
-impl Bvh<'_> {
-    /// The closest hit of `ray` on the triangles of `source` — the [`ValidMesh`] this BVH was
-    /// built from, or its [`PackedTriangles`](super::PackedTriangles) (same answer, bit for
-    /// bit) — with the watertight test and both faces: [`RayOptions::default`].
-    ///
-    /// [`ValidMesh`]: crate::mesh::ValidMesh
-    ///
-    /// Conventions: `t` in units of the ray direction's length, within `[t_min, t_max]`
-    /// (inclusive); on equal `t` the lower triangle index wins, so every structure and target
-    /// returns the same hit; degenerate triangles are never hit; an invalid ray
-    /// ([`Ray::is_valid`]) hits nothing.
-    #[must_use]
-    pub fn raycast<S: LeafTriangles + ?Sized>(&self, source: &S, ray: &Ray) -> Option<RayHit> {
-        self.raycast_with(source, ray, &RayOptions::default())
-    }
-
-    /// [`Bvh::raycast`] with explicit options.
-    #[must_use]
-    pub fn raycast_with<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        ray: &Ray,
-        options: &RayOptions,
-    ) -> Option<RayHit> {
-        raycast_with(self, source, ray, options)
-    }
-
-    /// True when `ray` hits any triangle within `[t_min, t_max]` (occlusion / line of sight),
-    /// stopping at the first hit found. Agrees with [`Bvh::raycast`]: `raycast_any` is true
-    /// exactly when `raycast` returns a hit.
-    #[must_use]
-    pub fn raycast_any<S: LeafTriangles + ?Sized>(&self, source: &S, ray: &Ray) -> bool {
-        self.raycast_any_with(source, ray, &RayOptions::default())
-    }
-
-    /// [`Bvh::raycast_any`] with explicit options.
-    #[must_use]
-    pub fn raycast_any_with<S: LeafTriangles + ?Sized>(
-        &self,
-        source: &S,
-        ray: &Ray,
-        options: &RayOptions,
-    ) -> bool {
-        raycast_any_with(self, source, ray, options)
-    }
-}
-
-/// [`Bvh::raycast_with`] over any storage.
+/// The closest hit of `ray` on `source` through `tree` (see
+/// [`MeshQuery::raycast_with`](super::MeshQuery::raycast_with)).
 #[inline]
-pub(crate) fn raycast_with<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+pub(crate) fn raycast_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     ray: &Ray,
@@ -295,9 +256,10 @@ pub(crate) fn raycast_with<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
     with_kernel(ray, options, ClosestQuery { tree, source })
 }
 
-/// [`Bvh::raycast_any_with`] over any storage.
+/// Whether `ray` hits `source` through `tree` (see
+/// [`MeshQuery::raycast_any_with`](super::MeshQuery::raycast_any_with)).
 #[inline]
-pub(crate) fn raycast_any_with<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+pub(crate) fn raycast_any_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     ray: &Ray,
@@ -313,13 +275,14 @@ pub(crate) fn raycast_any_with<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
 /// and each kernel gets its own monomorphized traversal.
 trait WithKernel {
     type Output;
-    fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> Self::Output;
+    fn run<K: Kernel>(self, ray: &Ray, slab: SlabRay, kernel: K) -> Self::Output;
 }
 
 fn with_kernel<W: WithKernel>(ray: &Ray, options: &RayOptions, query: W) -> W::Output {
     let slab = SlabRay::new(ray);
     match options.test {
         TriangleTest::Watertight => query.run(
+            ray,
             slab,
             Wt {
                 ray: WatertightRay::new(ray),
@@ -327,6 +290,7 @@ fn with_kernel<W: WithKernel>(ray: &Ray, options: &RayOptions, query: W) -> W::O
             },
         ),
         TriangleTest::MollerTrumbore => query.run(
+            ray,
             slab,
             Mt {
                 ray: *ray,
@@ -341,18 +305,19 @@ struct ClosestQuery<'q, A: ?Sized, S: ?Sized> {
     source: &'q S,
 }
 
-impl<A: Walk + ?Sized, S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, A, S> {
+impl<A: Traverse + ?Sized, S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, A, S> {
     type Output = Option<RayHit>;
 
-    fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> Option<RayHit> {
+    fn run<K: Kernel>(self, ray: &Ray, slab: SlabRay, kernel: K) -> Option<RayHit> {
         let mut v = ClosestHit {
             source: self.source,
+            ray: *ray,
             slab,
             lanes: LaneRay::new(&slab),
             kernel,
             best: None,
         };
-        self.tree.walk(&mut v);
+        self.tree.traverse(&mut v);
         v.best
     }
 }
@@ -362,18 +327,19 @@ struct AnyQuery<'q, A: ?Sized, S: ?Sized> {
     source: &'q S,
 }
 
-impl<A: Walk + ?Sized, S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, A, S> {
+impl<A: Traverse + ?Sized, S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, A, S> {
     type Output = bool;
 
-    fn run<K: Kernel>(self, slab: SlabRay, kernel: K) -> bool {
+    fn run<K: Kernel>(self, ray: &Ray, slab: SlabRay, kernel: K) -> bool {
         let mut v = AnyHit {
             source: self.source,
+            ray: *ray,
             slab,
             lanes: LaneRay::new(&slab),
             kernel,
             found: false,
         };
-        self.tree.walk(&mut v);
+        self.tree.traverse(&mut v);
         v.found
     }
 }

@@ -4,14 +4,13 @@
 //! while they are still in cache.
 
 use super::batch_order::{answer_in_order, morton_order};
-use super::raycast::{raycast_any_with, raycast_with};
-use super::traverse::Walk;
-use super::{LeafTriangles, RayOptions};
+use super::ray::{raycast_any_with, raycast_with};
+use super::{LeafTriangles, RayOptions, Traverse};
 use crate::error::BatchError;
 use crate::math::{Ray, RayHit};
 
-/// [`MeshQuery::raycast_batch`](crate::query::MeshQuery::raycast_batch) over any storage.
-pub(crate) fn raycast_batch<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+/// [`MeshQuery::raycast_batch`](crate::query::MeshQuery::raycast_batch) through any structure.
+pub(crate) fn raycast_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     rays: &[Ray],
@@ -28,7 +27,7 @@ pub(crate) fn raycast_batch<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
 
 /// [`MeshQuery::raycast_any_batch`](crate::query::MeshQuery::raycast_any_batch) over any
 /// storage.
-pub(crate) fn raycast_any_batch<A: Walk + ?Sized, S: LeafTriangles + ?Sized>(
+pub(crate) fn raycast_any_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     rays: &[Ray],

@@ -1,0 +1,111 @@
+//! [`MeshBvh`] to and from blobs (features `alloc` and `blob`).
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use super::MeshBvh;
+use crate::blob::{self, BlobView, EncodeOptions, MeshLayout};
+use crate::bvh::BvhNode;
+use crate::error::{BlobError, BlobSection};
+use crate::math::PackedTriangle;
+use crate::mesh::ValidMesh;
+
+impl MeshBvh {
+    /// Validates a self-contained blob once ([`BlobView::parse`]) and decodes it into owned
+    /// buffers, so it queries as a built one does and answers the same, bit for bit. The
+    /// config is the one the blob records.
+    ///
+    /// A blob baked with [`MeshLayout::Packed`] stores corners, not the indexed mesh: the mesh
+    /// becomes three vertices of its own per triangle, in triangle order (same triangles,
+    /// same indices, same answers).
+    ///
+    /// # Errors
+    /// What [`BlobView::parse`] reports ([`BlobError::MeshNotIncluded`] for a blob baked
+    /// without its mesh: use [`MeshBvh::from_blob_with_mesh`]).
+    pub fn from_blob(bytes: &[u8]) -> Result<Self, BlobError> {
+        Self::decode(&BlobView::parse(bytes)?)
+    }
+
+    /// [`MeshBvh::from_blob`] for any blob, with the mesh it was baked from
+    /// ([`BlobView::parse_with_mesh`]): needed for a blob baked without its mesh.
+    ///
+    /// # Errors
+    /// What [`BlobView::parse_with_mesh`] reports.
+    pub fn from_blob_with_mesh(bytes: &[u8], mesh: &ValidMesh<'_>) -> Result<Self, BlobError> {
+        Self::decode(&BlobView::parse_with_mesh(bytes, *mesh)?)
+    }
+
+    fn decode(view: &BlobView<'_>) -> Result<Self, BlobError> {
+        let header = *view.header();
+        let (n, v) = (header.triangle_count as usize, header.vertex_count as usize);
+        let mut nodes = vec![BvhNode::EMPTY; header.node_count as usize];
+        let mut order = vec![0u32; n];
+        let depth = view.decode_tree(&mut nodes, &mut order)?.depth();
+        let (positions, triangles) = if header.mesh == MeshLayout::Packed {
+            let mut packed = vec![PackedTriangle::EMPTY; n];
+            view.decode_packed(&mut packed)?;
+            unshared_mesh(&order, &packed)
+        } else {
+            let mut positions = vec![[0.0f32; 3]; v];
+            let mut triangles = vec![[0u32; 3]; n];
+            view.decode_mesh(&mut positions, &mut triangles)?;
+            (positions, triangles)
+        };
+        Self::assemble(positions, triangles, nodes, order, depth, header.config).map_err(|_| {
+            // Unreachable: the buffers are sized from the validated blob's own counts.
+            BlobError::BufferTooSmall {
+                section: BlobSection::PackedTriangles,
+                needed: n,
+                got: 0,
+            }
+        })
+    }
+
+    /// The exact size of [`MeshBvh::to_blob`]'s output for `layout`.
+    ///
+    /// # Errors
+    /// [`BlobError::TooLarge`] when a count does not fit the format.
+    pub fn encoded_len(&self, layout: MeshLayout) -> Result<usize, BlobError> {
+        blob::encoded_len(&self.bvh(), &self.mesh(), &self.encode_options(layout))
+    }
+
+    /// Encodes the tree and (as `layout` says) the mesh as a blob, with this tree's config in
+    /// its header: the bytes [`blob::encode_into`] writes, which depend only on the mesh, the
+    /// tree and the layout, on every target.
+    ///
+    /// # Errors
+    /// What [`blob::encode_into`] reports.
+    pub fn to_blob(&self, layout: MeshLayout) -> Result<Vec<u8>, BlobError> {
+        let options = self.encode_options(layout);
+        let (bvh, mesh) = (self.bvh(), self.mesh());
+        let mut out = vec![0u8; blob::encoded_len(&bvh, &mesh, &options)?];
+        let n = blob::encode_into(&bvh, &mesh, &options, &mut out)?;
+        out.truncate(n);
+        Ok(out)
+    }
+
+    fn encode_options(&self, layout: MeshLayout) -> EncodeOptions {
+        EncodeOptions {
+            mesh: layout,
+            config: self.config,
+        }
+    }
+}
+
+/// Positions and triangles of triangles given in leaf order (`packed[slot]` is triangle
+/// `order[slot]`): three vertices of their own per triangle, in triangle order.
+fn unshared_mesh(order: &[u32], packed: &[PackedTriangle]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let mut positions = vec![[0.0f32; 3]; 3 * packed.len()];
+    for (&tri, corners) in order.iter().zip(packed) {
+        let at = 3 * tri as usize;
+        if let Some(out) = positions.get_mut(at..at + 3) {
+            out.copy_from_slice(&[corners.a, corners.b, corners.c]);
+        }
+    }
+    let triangles = (0u32..)
+        .step_by(3)
+        .take(packed.len())
+        .map(|v| [v, v + 1, v + 2])
+        .collect();
+    (positions, triangles)
+}

@@ -1,0 +1,156 @@
+//! [`MeshBvh`]: a mesh, its BVH and the copies queries read, in buffers it owns.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
+use crate::error::BuildError;
+use crate::math::{Aabb, PackedTriangle, Triangle};
+use crate::mesh::ValidMesh;
+use crate::query::{LeafTriangles, PackedTriangles, Traverse, Visitor};
+use crate::wide::{WideBvh, WideNode, wide_node_capacity};
+
+/// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
+/// (nodes and order), the triangles packed in leaf order, and the tree collapsed four-wide —
+/// each sized by the crate's sizing functions and trimmed to what the build used.
+///
+/// It is a structure and its triangles at once, so it answers every query of
+/// [`MeshQuery`](crate::query::MeshQuery) (`scene.raycast(&ray)`, batches, overlaps) and runs
+/// custom visitors ([`Traverse`]). Queries walk the wide tree over the packed triangles; every
+/// answer is exactly what the binary tree over the mesh gives, bit for bit, on every target.
+/// [`MeshBvh::bvh`], [`MeshBvh::wide`], [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the
+/// views for code that wants a particular one.
+#[derive(Clone, Debug)]
+pub struct MeshBvh {
+    pub(super) positions: Vec<[f32; 3]>,
+    pub(super) triangles: Vec<[u32; 3]>,
+    pub(super) nodes: Vec<BvhNode>,
+    pub(super) order: Vec<u32>,
+    pub(super) depth: u32,
+    pub(super) packed: Vec<PackedTriangle>,
+    pub(super) wide: Vec<WideNode>,
+    pub(super) config: BuildConfig,
+}
+
+impl MeshBvh {
+    /// Copies `mesh` and builds its BVH with `config` (see [`Bvh::build`]), then packs its
+    /// triangles and widens it. Deterministic: the same mesh and config give the same buffers
+    /// on every target.
+    ///
+    /// # Errors
+    /// [`BuildError::TooDeep`] or [`BuildError::InvalidConfig`], as [`Bvh::build`].
+    pub fn build(mesh: &ValidMesh<'_>, config: &BuildConfig) -> Result<Self, BuildError> {
+        let positions = mesh.positions().to_vec();
+        let triangles = mesh.triangles().to_vec();
+        let n = triangles.len();
+        let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+        let mut order = vec![0u32; n];
+        let mut scratch = vec![PrimRef::EMPTY; n];
+        let depth = {
+            let copy = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
+            let bvh = Bvh::build(&copy, config, &mut nodes, &mut order, &mut scratch)?;
+            let used = bvh.nodes().len();
+            let depth = bvh.depth();
+            nodes.truncate(used);
+            depth
+        };
+        drop(scratch);
+        Self::assemble(positions, triangles, nodes, order, depth, *config)
+    }
+
+    /// Packs and widens a built (or decoded) tree and keeps it all, trimmed.
+    pub(super) fn assemble(
+        positions: Vec<[f32; 3]>,
+        triangles: Vec<[u32; 3]>,
+        mut nodes: Vec<BvhNode>,
+        order: Vec<u32>,
+        depth: u32,
+        config: BuildConfig,
+    ) -> Result<Self, BuildError> {
+        nodes.shrink_to_fit();
+        let n = order.len();
+        let mut packed = vec![PackedTriangle::EMPTY; n];
+        let mut wide = vec![WideNode::EMPTY; wide_node_capacity(n)];
+        let wide_count = {
+            let mesh = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
+            let bvh = Bvh::from_validated(&nodes, &order, depth);
+            bvh.pack_triangles(&mesh, &mut packed)?;
+            bvh.widen(&mut wide)?.nodes().len()
+        };
+        wide.truncate(wide_count);
+        wide.shrink_to_fit();
+        Ok(Self {
+            positions,
+            triangles,
+            nodes,
+            order,
+            depth,
+            packed,
+            wide,
+            config,
+        })
+    }
+
+    /// The mesh.
+    #[must_use]
+    pub fn mesh(&self) -> ValidMesh<'_> {
+        // Copied from a validated mesh (or decoded from a validated blob) and never changed.
+        ValidMesh::new_unchecked_by_validate(&self.positions, &self.triangles)
+    }
+
+    /// The binary BVH over [`MeshBvh::mesh`].
+    #[must_use]
+    pub fn bvh(&self) -> Bvh<'_> {
+        Bvh::from_validated(&self.nodes, &self.order, self.depth)
+    }
+
+    /// The same tree four-wide, which queries walk.
+    #[must_use]
+    pub fn wide(&self) -> WideBvh<'_> {
+        WideBvh::from_validated(&self.wide, &self.order)
+    }
+
+    /// The triangles in the tree's leaf order, which queries read.
+    #[must_use]
+    pub fn packed(&self) -> PackedTriangles<'_> {
+        PackedTriangles::new(&self.packed)
+    }
+
+    /// The config the tree was built with (for a blob, the one it records).
+    #[must_use]
+    pub const fn config(&self) -> &BuildConfig {
+        &self.config
+    }
+
+    /// Number of triangles.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The root's padded box ([`Aabb::EMPTY`] for no triangles).
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        self.bvh().bounds()
+    }
+}
+
+impl Traverse for MeshBvh {
+    /// Walks the wide tree.
+    #[inline(always)]
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        self.wide().traverse(visitor);
+    }
+}
+
+impl LeafTriangles for MeshBvh {
+    #[inline(always)]
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
+        self.packed.as_slice().corners(slot, tri)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.packed.as_slice().run(first, count)
+    }
+}

@@ -1,0 +1,18 @@
+//! The owned API (feature `alloc`): [`MeshBvh`], one value that sizes, owns and builds every
+//! buffer, for code with an allocator (tools, the browser package, tests).
+//!
+//! ```
+//! use meshq::prelude::*;
+//! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+//! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
+//! let scene = MeshBvh::build(&mesh, &BuildConfig::default())?;
+//! let hit = scene.raycast(&Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z));
+//! assert_eq!(hit.map(|h| h.tri), Some(0));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+#[cfg(feature = "blob")]
+mod blob;
+mod mesh_bvh;
+
+pub use mesh_bvh::MeshBvh;

@@ -1,0 +1,169 @@
+//! Leaf access: which triangles a leaf holds, and where their corners are read.
+
+use core::slice;
+
+use crate::math::{PackedTriangle, Triangle};
+use crate::mesh::ValidMesh;
+
+/// The triangles of one leaf (or cell): `(slot, mesh triangle index)` pairs, slots ascending by
+/// one from the first.
+///
+/// The *slot* is the position of the entry in the structure's reference array (a BVH's order
+/// array): [`LeafTriangles`] sources stored in that order ([`PackedTriangles`]) read corners
+/// by slot; the mesh reads them by triangle index.
+#[derive(Clone, Debug)]
+pub struct LeafTriangleIds<'a> {
+    next_slot: usize,
+    ids: Ids<'a>,
+}
+
+#[derive(Clone, Debug)]
+enum Ids<'a> {
+    /// Native `u32`s in a slice.
+    Words(slice::Iter<'a, u32>),
+    /// Little-endian `u32`s in bytes (a blob).
+    Bytes(slice::Iter<'a, [u8; 4]>),
+}
+
+impl<'a> LeafTriangleIds<'a> {
+    /// The triangles `ids`, in slots `first_slot, first_slot + 1, …`.
+    #[inline(always)]
+    #[must_use]
+    pub fn new(first_slot: usize, ids: &'a [u32]) -> Self {
+        Self {
+            next_slot: first_slot,
+            ids: Ids::Words(ids.iter()),
+        }
+    }
+
+    /// The triangles in slots `first..first + count` of `order`, or `None` unless all exist.
+    #[inline(always)]
+    #[must_use]
+    pub fn in_order(order: &'a [u32], first: usize, count: usize) -> Option<Self> {
+        let ids = order.get(first..first.checked_add(count)?)?;
+        Some(Self::new(first, ids))
+    }
+
+    /// [`LeafTriangleIds::new`] over little-endian `u32`s stored as bytes (as a blob holds
+    /// them), read in place.
+    #[inline(always)]
+    #[must_use]
+    pub fn from_le_bytes(first_slot: usize, ids: &'a [[u8; 4]]) -> Self {
+        Self {
+            next_slot: first_slot,
+            ids: Ids::Bytes(ids.iter()),
+        }
+    }
+
+    /// The slot of the next triangle (the first one, before iterating).
+    #[inline(always)]
+    #[must_use]
+    pub const fn first_slot(&self) -> usize {
+        self.next_slot
+    }
+}
+
+impl Iterator for LeafTriangleIds<'_> {
+    type Item = (usize, u32);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, u32)> {
+        let tri = match &mut self.ids {
+            Ids::Words(it) => *it.next()?,
+            Ids::Bytes(it) => u32::from_le_bytes(*it.next()?),
+        };
+        let slot = self.next_slot;
+        self.next_slot = slot.wrapping_add(1);
+        Some((slot, tri))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = match &self.ids {
+            Ids::Words(it) => it.len(),
+            Ids::Bytes(it) => it.len(),
+        };
+        (n, Some(n))
+    }
+}
+
+impl ExactSizeIterator for LeafTriangleIds<'_> {}
+
+/// Where a query reads a leaf's triangle corners: from the mesh by triangle index, or from
+/// [`PackedTriangles`] by slot. Implement it to supply leaf geometry your own way.
+pub trait LeafTriangles {
+    /// The corners of the triangle in slot `slot`, whose mesh index is `tri`; `None` when the
+    /// source does not have it (the query then skips it).
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle>;
+
+    /// The triangles of slots `first..first + count` as one contiguous run, when the source
+    /// stores them that way (as [`PackedTriangles`] do), so a query can load a leaf with wide
+    /// loads; `None` (the default) makes queries call [`corners`](Self::corners) per triangle.
+    /// A run must hold exactly what `corners` returns for the same slots.
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        let _ = (first, count);
+        None
+    }
+}
+
+impl LeafTriangles for ValidMesh<'_> {
+    #[inline(always)]
+    fn corners(&self, _slot: usize, tri: u32) -> Option<Triangle> {
+        self.triangle(tri)
+    }
+}
+
+/// Triangles copied in a structure's slot order (slot `i` holds mesh triangle `order[i]`), so a
+/// leaf reads one contiguous run instead of gathering indices and vertices. Queries given
+/// packed triangles return exactly what they return given the mesh, bit for bit, usually
+/// faster; the cost is 36 bytes per triangle.
+///
+/// Made by [`Bvh::pack_triangles`](crate::bvh::Bvh::pack_triangles), or by
+/// [`PackedTriangles::new`] over a buffer it filled earlier. Refit does not update it: pack
+/// again after vertices move.
+#[derive(Clone, Copy, Debug)]
+pub struct PackedTriangles<'a> {
+    tris: &'a [PackedTriangle],
+}
+
+impl<'a> PackedTriangles<'a> {
+    /// Wraps triangles in a structure's slot order: what
+    /// [`Bvh::pack_triangles`](crate::bvh::Bvh::pack_triangles) wrote for the same tree and
+    /// mesh (kept, or moved since). Nothing is checked: triangles in another order give wrong
+    /// answers, never a panic; slots past the end are skipped.
+    #[inline]
+    #[must_use]
+    pub const fn new(tris: &'a [PackedTriangle]) -> Self {
+        Self { tris }
+    }
+
+    /// The packed triangles, in slot order.
+    #[must_use]
+    pub const fn as_slice(&self) -> &'a [PackedTriangle] {
+        self.tris
+    }
+}
+
+impl LeafTriangles for PackedTriangles<'_> {
+    #[inline(always)]
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
+        self.tris.corners(slot, tri)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.tris.run(first, count)
+    }
+}
+
+/// A slice of triangles in a structure's slot order reads as [`PackedTriangles`] do.
+impl LeafTriangles for [PackedTriangle] {
+    #[inline(always)]
+    fn corners(&self, slot: usize, _tri: u32) -> Option<Triangle> {
+        self.get(slot).map(PackedTriangle::triangle)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.get(first..first.checked_add(count)?)
+    }
+}

@@ -1,0 +1,227 @@
+//! Every query, as one trait over anything that has both a traversal and its triangles.
+
+use core::ops::ControlFlow;
+
+use glam::Vec3;
+
+use super::{
+    LeafTriangles, OverlapCount, RayOptions, Traverse, Visitor, closest, closest_batch, overlap,
+    ray, raycast_batch,
+};
+use crate::error::BatchError;
+use crate::math::{Aabb, ClosestPoint, PackedTriangle, Ray, RayHit, Triangle};
+
+/// The queries of meshq, answered by a structure together with the triangles it indexes.
+///
+/// Implemented for every type that is both a [`Traverse`] structure and a [`LeafTriangles`]
+/// source: a structure paired with its triangles by [`Traverse::with`] (`bvh.with(&mesh)`), a
+/// blob's view (`BlobView`, feature `blob`), and the owned `MeshBvh` (feature `alloc`). Every
+/// answer is exactly what a linear scan over all triangles with the same primitive test would
+/// return, bits included, under the crate's tie rule: on equal `t` or distance the lower
+/// triangle index wins, so every structure and target returns the same answer. Degenerate
+/// (zero-area) triangles are never returned.
+///
+/// Run a query of your own with [`Traverse::traverse`] and a [`Visitor`]; it reads leaf
+/// triangles through this value's [`LeafTriangles`].
+pub trait MeshQuery: Traverse + LeafTriangles {
+    /// The closest hit of `ray`, with the watertight test and both faces
+    /// ([`RayOptions::default`]).
+    ///
+    /// Conventions: `t` in units of the ray direction's length, within `[t_min, t_max]`
+    /// (inclusive); on equal `t` the lower triangle index wins; degenerate triangles are never
+    /// hit; an invalid ray ([`Ray::is_valid`]) hits nothing.
+    #[must_use]
+    #[inline]
+    fn raycast(&self, ray: &Ray) -> Option<RayHit> {
+        ray::raycast_with(self, self, ray, &RayOptions::default())
+    }
+
+    /// [`MeshQuery::raycast`] with explicit options (triangle test, culled faces).
+    #[must_use]
+    #[inline]
+    fn raycast_with(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
+        ray::raycast_with(self, self, ray, options)
+    }
+
+    /// True when `ray` hits any triangle within `[t_min, t_max]` (occlusion, line of sight),
+    /// stopping at the first hit found: true exactly when [`MeshQuery::raycast`] is `Some`.
+    #[must_use]
+    #[inline]
+    fn raycast_any(&self, ray: &Ray) -> bool {
+        ray::raycast_any_with(self, self, ray, &RayOptions::default())
+    }
+
+    /// [`MeshQuery::raycast_any`] with explicit options: true exactly when
+    /// [`MeshQuery::raycast_with`] is `Some` with the same options.
+    #[must_use]
+    #[inline]
+    fn raycast_any_with(&self, ray: &Ray, options: &RayOptions) -> bool {
+        ray::raycast_any_with(self, self, ray, options)
+    }
+
+    /// The point of the mesh closest to `point`, if one lies within `max_distance`
+    /// (inclusive; pass `f32::INFINITY` for no limit).
+    ///
+    /// Exact up to rounding: the answer equals the minimum of
+    /// [`closest_point_triangle`](crate::geom::closest_point_triangle()) over all
+    /// non-degenerate triangles, with the same bits; on equal squared distance the lower
+    /// triangle index wins. Distances are compared squared, so `max_distance` is squared once
+    /// first. `None` for a non-finite `point`, a negative or NaN `max_distance`, or no
+    /// triangles.
+    #[must_use]
+    #[inline]
+    fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
+        closest::closest_point(self, self, point, max_distance)
+    }
+
+    /// The closest point to each of `points` within `max_distance`: `out[i]` is exactly what
+    /// [`MeshQuery::closest_point`] returns for `points[i]`, bits included, whatever the other
+    /// points are.
+    ///
+    /// The points are answered in Morton order, and each search starts from the triangle found
+    /// for the previous one, a tight bound from the first box on. `keys` is scratch for that
+    /// order, one per point (its contents afterwards are unspecified); elements of `keys` and
+    /// `out` past `points.len()` are left alone.
+    ///
+    /// # Errors
+    /// [`BatchError::BufferTooSmall`] when `keys` or `out` is shorter than `points`;
+    /// [`BatchError::TooLarge`] beyond `u32::MAX` points. Nothing is written then.
+    fn closest_points(
+        &self,
+        points: &[Vec3],
+        max_distance: f32,
+        keys: &mut [u64],
+        out: &mut [Option<ClosestPoint>],
+    ) -> Result<(), BatchError> {
+        closest_batch::closest_points(self, self, points, max_distance, keys, out)
+    }
+
+    /// The closest hit of each of `rays`: `out[i]` is exactly what
+    /// [`MeshQuery::raycast_with`] returns for `rays[i]`. The rays are cast in Morton order of
+    /// their origins, so rays starting near each other run one after another; rays from one
+    /// origin (a camera's) keep their given order. Buffers, errors and scratch as
+    /// [`MeshQuery::closest_points`].
+    ///
+    /// # Errors
+    /// As [`MeshQuery::closest_points`].
+    fn raycast_batch(
+        &self,
+        rays: &[Ray],
+        options: &RayOptions,
+        keys: &mut [u64],
+        out: &mut [Option<RayHit>],
+    ) -> Result<(), BatchError> {
+        raycast_batch::raycast_batch(self, self, rays, options, keys, out)
+    }
+
+    /// Whether each of `rays` hits anything: `out[i]` is exactly
+    /// [`MeshQuery::raycast_any_with`] for `rays[i]`, in the order of
+    /// [`MeshQuery::raycast_batch`].
+    ///
+    /// # Errors
+    /// As [`MeshQuery::closest_points`].
+    fn raycast_any_batch(
+        &self,
+        rays: &[Ray],
+        options: &RayOptions,
+        keys: &mut [u64],
+        out: &mut [bool],
+    ) -> Result<(), BatchError> {
+        raycast_batch::raycast_any_batch(self, self, rays, options, keys, out)
+    }
+
+    /// Calls `report` with the index of every non-degenerate triangle that shares a point with
+    /// `aabb` (exact triangle–box test; touching counts), in traversal order, until it returns
+    /// `Break`. An empty or non-finite box reports nothing.
+    fn overlap_aabb<F: FnMut(u32) -> ControlFlow<()>>(&self, aabb: &Aabb, report: F) {
+        overlap::overlap_aabb(self, self, aabb, report);
+    }
+
+    /// Calls `report` with the index of every non-degenerate triangle within `radius`
+    /// (inclusive) of `center`, in traversal order, until it returns `Break`. A non-finite
+    /// center or a negative or NaN radius reports nothing.
+    fn overlap_sphere<F: FnMut(u32) -> ControlFlow<()>>(
+        &self,
+        center: Vec3,
+        radius: f32,
+        report: F,
+    ) {
+        overlap::overlap_sphere(self, self, center, radius, report);
+    }
+
+    /// [`MeshQuery::overlap_aabb`] writing triangle indices into `out`; keeps counting past
+    /// its end, so the result says how large a buffer would have been needed.
+    fn overlap_aabb_into(&self, aabb: &Aabb, out: &mut [u32]) -> OverlapCount {
+        overlap::overlap_aabb_into(self, self, aabb, out)
+    }
+
+    /// [`MeshQuery::overlap_sphere`] writing triangle indices into `out`; keeps counting past
+    /// its end, so the result says how large a buffer would have been needed.
+    fn overlap_sphere_into(&self, center: Vec3, radius: f32, out: &mut [u32]) -> OverlapCount {
+        overlap::overlap_sphere_into(self, self, center, radius, out)
+    }
+}
+
+impl<T: Traverse + LeafTriangles + ?Sized> MeshQuery for T {}
+
+/// A structure paired with the triangles it indexes, made by [`Traverse::with`]: it answers
+/// every [`MeshQuery`]. Two references, free to make and copy.
+///
+/// The triangles must be those the structure was built over (the mesh, or a packed copy in its
+/// slot order): other triangles give meaningless answers, never a panic.
+#[derive(Debug)]
+pub struct With<'a, T: ?Sized, S: ?Sized> {
+    structure: &'a T,
+    triangles: &'a S,
+}
+
+impl<T: ?Sized, S: ?Sized> Clone for With<'_, T, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T: ?Sized, S: ?Sized> Copy for With<'_, T, S> {}
+
+impl<'a, T: ?Sized, S: ?Sized> With<'a, T, S> {
+    /// Pairs `structure` with `triangles` (what [`Traverse::with`] does).
+    #[inline(always)]
+    #[must_use]
+    pub const fn new(structure: &'a T, triangles: &'a S) -> Self {
+        Self {
+            structure,
+            triangles,
+        }
+    }
+
+    /// The structure.
+    #[must_use]
+    pub const fn structure(&self) -> &'a T {
+        self.structure
+    }
+
+    /// The triangles.
+    #[must_use]
+    pub const fn triangles(&self) -> &'a S {
+        self.triangles
+    }
+}
+
+impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
+    #[inline(always)]
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        self.structure.traverse(visitor);
+    }
+}
+
+impl<T: ?Sized, S: LeafTriangles + ?Sized> LeafTriangles for With<'_, T, S> {
+    #[inline(always)]
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
+        self.triangles.corners(slot, tri)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.triangles.run(first, count)
+    }
+}

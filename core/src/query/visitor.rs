@@ -1,0 +1,97 @@
+//! The two halves of every query: a structure's traversal ([`Traverse`]) and the query's
+//! decisions ([`Visitor`]).
+
+use core::ops::ControlFlow;
+
+use super::{LeafTriangleIds, LeafTriangles, With};
+use crate::math::{Aabb, Aabb4, Ray};
+
+/// A query as a structure's traversal sees it: it judges boxes, says when deferred work is no
+/// longer worth doing, and does the triangle work at the leaves.
+///
+/// Every built-in query (closest hit, any hit, closest point, box and sphere overlap) is a
+/// visitor, and any [`Traverse`] structure runs it. Write your own for anything else and run
+/// it with [`Traverse::traverse`].
+///
+/// # Keys
+/// [`enter`](Self::enter) gives each box it accepts a *key*, a number the structure uses to
+/// order its work: of the boxes it can visit next, it visits the one with the smaller key
+/// first (the lower lane, or the left child, on equal keys), and asks
+/// [`revisit`](Self::revisit) before it returns to a deferred one. The key's meaning is the
+/// visitor's: the ray parameter `t` where a ray enters the box, a squared distance, or a
+/// constant for a query with no order. A visitor whose [`ray`](Self::ray) is `Some` must use
+/// ray parameters (in units of that ray's direction), so a structure that walks cells along
+/// the ray can ask `revisit(t)` with a cell's entry `t` and stop where the answer can no
+/// longer change.
+pub trait Visitor {
+    /// The ray this query follows, for structures that walk cells in ray order (a grid's
+    /// 3D-DDA, a k-d tree's slabs): `None` (the default) for a query that is not a ray's.
+    /// Structures that judge boxes through [`enter`](Self::enter) may ignore it.
+    fn ray(&self) -> Option<&Ray> {
+        None
+    }
+
+    /// Whether to enter the box `aabb` (a node's, or a cell's): `None` skips it and everything
+    /// in it, `Some(key)` enters it (see the trait's *Keys*).
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32>;
+
+    /// [`enter`](Self::enter) for four boxes at once: bit `i` of the mask is set for each lane
+    /// `i` to enter, with its key in `keys[i]` (keys of lanes not entered are ignored). The
+    /// structure ignores the verdict on unused (empty) lanes. The default asks `enter` lane by
+    /// lane; built-in visitors test the four boxes in SIMD lanes.
+    fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        let mut mask = 0u32;
+        let mut keys = [f32::INFINITY; 4];
+        for (lane, key) in keys.iter_mut().enumerate() {
+            if let Some(k) = self.enter(&boxes.lane(lane)) {
+                mask |= 1 << lane;
+                *key = k;
+            }
+        }
+        (mask, keys)
+    }
+
+    /// Whether a box entered earlier with `key` and deferred is still worth visiting now (for
+    /// example, not when a closer hit has been found since). Structures that walk in key order
+    /// stop at the first `false`. The default visits everything.
+    fn revisit(&self, key: f32) -> bool {
+        let _ = key;
+        true
+    }
+
+    /// Visits a leaf (or a cell): its triangles as `(slot, mesh triangle index)` pairs, where
+    /// the slot is what [`LeafTriangles::corners`] is asked for. `Break` ends the traversal.
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;
+}
+
+/// An acceleration structure: it runs a [`Visitor`] over its boxes and leaves.
+///
+/// Implementing this one method is all a structure needs: [`Traverse::with`] then pairs it
+/// with its triangles, and the pair answers every query of [`MeshQuery`](super::MeshQuery) —
+/// closest hit, any hit, closest point, their batches, box and sphere overlap — with the
+/// layer's visitors and leaf tests. See the [module docs](super) for a worked example.
+///
+/// # Contract
+/// - Every triangle the structure holds is reachable through some box: a leaf holding it is
+///   visited whenever the visitor enters every box on the way to it (boxes are conservative:
+///   they hold their triangles, padded for rounding if need be).
+/// - The walk ends: no leaf is visited twice in one traversal unless the structure says so
+///   (a triangle in several cells may be offered more than once; the built-in queries give
+///   the same answers either way), and it stops when [`Visitor::leaf`] returns `Break`.
+/// - It never panics and allocates nothing.
+///
+/// Then every built-in query returns exactly what a scan of all triangles returns, whatever
+/// the order of the walk: each answer is the minimum under a total order (distance, then
+/// triangle index).
+pub trait Traverse {
+    /// Runs `visitor` over the structure.
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V);
+
+    /// This structure with the triangles it was built over — the
+    /// [`ValidMesh`](crate::mesh::ValidMesh), or a packed copy in its leaf order — ready for
+    /// every query of [`MeshQuery`](super::MeshQuery).
+    #[inline(always)]
+    fn with<'a, S: LeafTriangles + ?Sized>(&'a self, triangles: &'a S) -> With<'a, Self, S> {
+        With::new(self, triangles)
+    }
+}
