@@ -18,9 +18,9 @@ pub enum SplitStrategy {
     Sah,
     /// The middle of the centroid bounds on their longest axis (the lowest axis on a tie):
     /// triangles whose centroid lies below it go left. Every node of more than `max_leaf_size`
-    /// triangles is split; `bins` and the two costs are not used. About four times quicker
-    /// to build than [`SplitStrategy::Sah`], for trees that answer rays 10–20 % more slowly
-    /// (measured on the bunny). The same rule as three-mesh-bvh's default (`CENTER`).
+    /// triangles is split; `bins` and the two costs are not used. Quicker to build than
+    /// [`SplitStrategy::Sah`], for trees that answer rays more slowly (the README's benchmark
+    /// table has the figures). The same rule as three-mesh-bvh's default (`CENTER`).
     Centre,
 }
 
@@ -88,9 +88,8 @@ impl BuildConfig {
     }
 
     /// The default: binned SAH with 32 bins, leaves of up to 4 triangles, a node visit
-    /// costed at three triangle tests. (Measured on the bunny against a cost of one: 43 %
-    /// fewer nodes, about 10 % quicker to build, and rays and closest points as fast or up to
-    /// 14 % faster — a visit really does cost more than one triangle test.)
+    /// costed at three triangle tests (a visit costs more than one triangle test, so this
+    /// gives fewer nodes than a cost of one, and queries at least as fast).
     #[must_use]
     pub const fn balanced() -> Self {
         Self {

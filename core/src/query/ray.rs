@@ -93,18 +93,91 @@ fn enter_box(slab: &SlabRay, aabb: &Aabb) -> Option<f32> {
     (lo <= hi).then_some(lo)
 }
 
-struct ClosestHit<'m, S: ?Sized, K> {
+/// What a ray query keeps of the hits its kernel finds.
+trait Goal {
+    /// Whether a closer hit bounds the walk (deferred boxes beyond it are skipped).
+    const PRUNES: bool;
+
+    /// Takes the hit `h` of triangle `tri` (corners `corners`); `Break` ends the walk. May
+    /// shrink the ray (kernel and slabs) to the hit.
+    fn take<K: Kernel>(
+        &mut self,
+        tri: u32,
+        h: TriangleHit,
+        corners: &Triangle,
+        kernel: &mut K,
+        slab: &mut SlabRay,
+    ) -> ControlFlow<()>;
+}
+
+/// The closest hit: the best so far, under the tie rule.
+struct Nearest(Option<RayHit>);
+
+impl Goal for Nearest {
+    const PRUNES: bool = true;
+
+    #[inline(always)]
+    fn take<K: Kernel>(
+        &mut self,
+        tri: u32,
+        h: TriangleHit,
+        corners: &Triangle,
+        kernel: &mut K,
+        slab: &mut SlabRay,
+    ) -> ControlFlow<()> {
+        let candidate = RayHit {
+            t: h.t,
+            tri,
+            u: h.u,
+            v: h.v,
+        };
+        // The degeneracy check is only paid for a hit that would win.
+        if self.0.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
+            self.0 = Some(candidate);
+            kernel.shrink(h.t);
+            slab.t_max = h.t;
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// Any hit: the first non-degenerate one ends the walk.
+struct Occluded(bool);
+
+impl Goal for Occluded {
+    const PRUNES: bool = false;
+
+    #[inline(always)]
+    fn take<K: Kernel>(
+        &mut self,
+        _tri: u32,
+        _h: TriangleHit,
+        corners: &Triangle,
+        _kernel: &mut K,
+        _slab: &mut SlabRay,
+    ) -> ControlFlow<()> {
+        self.0 = !corners.is_degenerate();
+        if self.0 {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+}
+
+/// The ray visitor: boxes by the slab test, leaves by the kernel, hits to the goal.
+struct RayVisitor<'m, S: ?Sized, K, G> {
     source: &'m S,
     /// The ray as given, for structures that walk along it.
     ray: Ray,
     slab: SlabRay,
-    /// The same ray for wide nodes (optimised away when the tree is binary).
+    /// The same ray for four boxes at once (optimised away when no structure asks).
     lanes: LaneRay,
     kernel: K,
-    best: Option<RayHit>,
+    goal: G,
 }
 
-impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for ClosestHit<'_, S, K> {
+impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S, K, G> {
     #[inline(always)]
     fn ray(&self) -> Option<&Ray> {
         Some(&self.ray)
@@ -124,7 +197,7 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for ClosestHit<'_, S, K> {
     #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
         let t = self.slab.t_max;
-        key <= t + t.abs() * MARGIN
+        !G::PRUNES || key <= t + t.abs() * MARGIN
     }
 
     #[inline(always)]
@@ -137,7 +210,7 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for ClosestHit<'_, S, K> {
                     let lane = maybe.trailing_zeros() as usize;
                     maybe &= maybe - 1;
                     if let Some((tri, corners)) = batch.triangle(lane) {
-                        self.offer(tri, &corners);
+                        self.offer(tri, &corners)?;
                     }
                 }
                 ControlFlow::Continue(())
@@ -145,99 +218,23 @@ impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for ClosestHit<'_, S, K> {
         }
         for (slot, tri) in tris {
             if let Some(corners) = self.source.corners(slot, tri) {
-                self.offer(tri, &corners);
+                self.offer(tri, &corners)?;
             }
         }
         ControlFlow::Continue(())
     }
 }
 
-impl<S: ?Sized, K: Kernel> ClosestHit<'_, S, K> {
-    /// Tests triangle `tri` and keeps its hit if it beats the best so far.
+impl<S: ?Sized, K: Kernel, G: Goal> RayVisitor<'_, S, K, G> {
+    /// Tests triangle `tri` and hands a hit to the goal.
     #[inline(always)]
-    fn offer(&mut self, tri: u32, corners: &Triangle) {
-        let Some(h) = self.kernel.test(corners.a, corners.b, corners.c) else {
-            return;
-        };
-        let candidate = RayHit {
-            t: h.t,
-            tri,
-            u: h.u,
-            v: h.v,
-        };
-        // The degeneracy check is only paid for a hit that would win.
-        if self.best.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
-            self.best = Some(candidate);
-            self.kernel.shrink(h.t);
-            self.slab.t_max = h.t;
+    fn offer(&mut self, tri: u32, corners: &Triangle) -> ControlFlow<()> {
+        match self.kernel.test(corners.a, corners.b, corners.c) {
+            Some(h) => self
+                .goal
+                .take(tri, h, corners, &mut self.kernel, &mut self.slab),
+            None => ControlFlow::Continue(()),
         }
-    }
-}
-
-struct AnyHit<'m, S: ?Sized, K> {
-    source: &'m S,
-    /// The ray as given, for structures that walk along it.
-    ray: Ray,
-    slab: SlabRay,
-    /// The same ray for wide nodes (optimised away when the tree is binary).
-    lanes: LaneRay,
-    kernel: K,
-    found: bool,
-}
-
-impl<S: LeafTriangles + ?Sized, K: Kernel> Visitor for AnyHit<'_, S, K> {
-    #[inline(always)]
-    fn ray(&self) -> Option<&Ray> {
-        Some(&self.ray)
-    }
-
-    #[inline(always)]
-    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
-        enter_box(&self.slab, aabb)
-    }
-
-    #[inline(always)]
-    fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes
-            .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)
-    }
-
-    #[inline(always)]
-    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
-        if K::LANES {
-            let source = self.source;
-            return for_each_batch(source, tris, |batch| {
-                let mut maybe = self.kernel.may_hit(&batch.lanes) & batch.used;
-                while maybe != 0 {
-                    let lane = maybe.trailing_zeros() as usize;
-                    maybe &= maybe - 1;
-                    if let Some((_, corners)) = batch.triangle(lane)
-                        && self.hits(&corners)
-                    {
-                        return ControlFlow::Break(());
-                    }
-                }
-                ControlFlow::Continue(())
-            });
-        }
-        for (slot, tri) in tris {
-            if let Some(corners) = self.source.corners(slot, tri)
-                && self.hits(&corners)
-            {
-                return ControlFlow::Break(());
-            }
-        }
-        ControlFlow::Continue(())
-    }
-}
-
-impl<S: ?Sized, K: Kernel> AnyHit<'_, S, K> {
-    /// Whether the ray hits the (non-degenerate) triangle; records it.
-    #[inline(always)]
-    fn hits(&mut self, corners: &Triangle) -> bool {
-        self.found =
-            self.kernel.test(corners.a, corners.b, corners.c).is_some() && !corners.is_degenerate();
-        self.found
     }
 }
 
@@ -253,7 +250,7 @@ pub(crate) fn raycast_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     if !ray.is_valid() {
         return None;
     }
-    with_kernel(ray, options, ClosestQuery { tree, source })
+    walk(tree, source, ray, options, Nearest(None)).0
 }
 
 /// Whether `ray` hits `source` through `tree` (see
@@ -268,78 +265,58 @@ pub(crate) fn raycast_any_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     if !ray.is_valid() {
         return false;
     }
-    with_kernel(ray, options, AnyQuery { tree, source })
+    walk(tree, source, ray, options, Occluded(false)).0
 }
 
-/// A ray query, run with whichever kernel the options name: the choice is made once per ray
-/// and each kernel gets its own monomorphized traversal.
-trait WithKernel {
-    type Output;
-    fn run<K: Kernel>(self, ray: &Ray, slab: SlabRay, kernel: K) -> Self::Output;
-}
-
-fn with_kernel<W: WithKernel>(ray: &Ray, options: &RayOptions, query: W) -> W::Output {
-    let slab = SlabRay::new(ray);
+/// Walks `tree` with the kernel the options name — chosen once per ray, each kernel with its
+/// own monomorphized traversal — and returns the goal.
+fn walk<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, G: Goal>(
+    tree: &A,
+    source: &S,
+    ray: &Ray,
+    options: &RayOptions,
+    goal: G,
+) -> G {
     match options.test {
-        TriangleTest::Watertight => query.run(
+        TriangleTest::Watertight => walk_with(
+            tree,
+            source,
             ray,
-            slab,
             Wt {
                 ray: WatertightRay::new(ray),
                 cull: options.cull,
             },
+            goal,
         ),
-        TriangleTest::MollerTrumbore => query.run(
+        TriangleTest::MollerTrumbore => walk_with(
+            tree,
+            source,
             ray,
-            slab,
             Mt {
                 ray: *ray,
                 cull: options.cull,
             },
+            goal,
         ),
     }
 }
 
-struct ClosestQuery<'q, A: ?Sized, S: ?Sized> {
-    tree: &'q A,
-    source: &'q S,
-}
-
-impl<A: Traverse + ?Sized, S: LeafTriangles + ?Sized> WithKernel for ClosestQuery<'_, A, S> {
-    type Output = Option<RayHit>;
-
-    fn run<K: Kernel>(self, ray: &Ray, slab: SlabRay, kernel: K) -> Option<RayHit> {
-        let mut v = ClosestHit {
-            source: self.source,
-            ray: *ray,
-            slab,
-            lanes: LaneRay::new(&slab),
-            kernel,
-            best: None,
-        };
-        self.tree.traverse(&mut v);
-        v.best
-    }
-}
-
-struct AnyQuery<'q, A: ?Sized, S: ?Sized> {
-    tree: &'q A,
-    source: &'q S,
-}
-
-impl<A: Traverse + ?Sized, S: LeafTriangles + ?Sized> WithKernel for AnyQuery<'_, A, S> {
-    type Output = bool;
-
-    fn run<K: Kernel>(self, ray: &Ray, slab: SlabRay, kernel: K) -> bool {
-        let mut v = AnyHit {
-            source: self.source,
-            ray: *ray,
-            slab,
-            lanes: LaneRay::new(&slab),
-            kernel,
-            found: false,
-        };
-        self.tree.traverse(&mut v);
-        v.found
-    }
+fn walk_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, K: Kernel, G: Goal>(
+    tree: &A,
+    source: &S,
+    ray: &Ray,
+    kernel: K,
+    goal: G,
+) -> G {
+    let slab = SlabRay::new(ray);
+    let mut v = RayVisitor {
+        source,
+        ray: *ray,
+        slab,
+        lanes: LaneRay::new(&slab),
+        kernel,
+        goal,
+    };
+    tree.traverse(&mut v);
+    v.goal
 }

@@ -1,5 +1,5 @@
-//! A four-wide BVH collapsed from a binary one, for faster queries: the one structure built
-//! from another (a [`Bvh`](crate::bvh::Bvh)).
+//! A four-wide BVH collapsed from a binary one, whose queries take fewer, fuller steps: the one
+//! structure built from another (a [`Bvh`](crate::bvh::Bvh)).
 //!
 //! ```
 //! use meshq::prelude::*;
