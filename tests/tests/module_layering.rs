@@ -1,7 +1,10 @@
-//! The core's modules form layers with no import circle: every `crate::<module>` path in the
-//! code of `core/src` (tests excluded) is an edge between two top-level modules, and the graph
-//! must be acyclic, with the query layer below every structure and structures independent of
-//! each other (the wide BVH, collapsed from the binary one, is the one exception).
+//! The core's modules form layers with no import circle, read from the `use` lines of
+//! `core/src` (tests excluded):
+//! - between top-level modules, every `crate::<module>` path is an edge, and the graph must be
+//!   acyclic, with the query layer below every structure and structures independent of each
+//!   other (the wide BVH, collapsed from the binary one, is the one exception);
+//! - between files, every `use` path is resolved to the file that defines the item (through
+//!   `pub use` re-exports), and no file may reach itself.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -105,4 +108,192 @@ fn the_query_layer_sits_below_every_structure() {
     assert!(!reaches(&graph, "bvh", "wide"), "{graph:?}");
     assert!(!reaches(&graph, "bvh", "blob"), "{graph:?}");
     assert!(!reaches(&graph, "wide", "blob"), "{graph:?}");
+}
+
+/// The code of a file up to its tests, comments removed.
+fn code_of(file: &Path) -> String {
+    let text = fs::read_to_string(file).unwrap();
+    text.lines()
+        .take_while(|l| l.trim() != "#[cfg(test)]")
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The `use` declarations of `code`, each expanded into full paths (`a::{b, c::d}` gives
+/// `a::b` and `a::c::d`; `self` in a group names the group's prefix).
+fn use_paths(code: &str) -> Vec<Vec<String>> {
+    fn expand(prefix: &[String], tree: &str, out: &mut Vec<Vec<String>>) {
+        let tree = tree.trim();
+        if let Some(open) = tree.find('{') {
+            let head: Vec<String> = tree[..open]
+                .split("::")
+                .map(str::trim)
+                .filter(|s| !s.is_empty())
+                .map(String::from)
+                .collect();
+            let inner = &tree[open + 1..tree.rfind('}').unwrap()];
+            let (mut depth, mut start) = (0, 0);
+            let mut parts = Vec::new();
+            for (i, c) in inner.char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        parts.push(&inner[start..i]);
+                        start = i + 1;
+                    }
+                    _ => {}
+                }
+            }
+            parts.push(&inner[start..]);
+            let base: Vec<String> = prefix.iter().cloned().chain(head).collect();
+            for part in parts.into_iter().filter(|p| !p.trim().is_empty()) {
+                if part.trim() == "self" {
+                    out.push(base.clone());
+                } else {
+                    expand(&base, part, out);
+                }
+            }
+        } else {
+            let name = tree.split(" as ").next().unwrap_or(tree);
+            let mut path = prefix.to_vec();
+            path.extend(name.split("::").map(|s| s.trim().to_owned()));
+            out.push(path);
+        }
+    }
+    let mut out = Vec::new();
+    for (at, _) in code.match_indices("use ") {
+        let before = code[..at].chars().last();
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue;
+        }
+        let Some(end) = code[at..].find(';') else {
+            continue;
+        };
+        expand(&[], &code[at + 4..at + end], &mut out);
+    }
+    out
+}
+
+/// A module: its directory and the file that holds its code.
+#[derive(Clone, Debug)]
+struct Module {
+    dir: PathBuf,
+    file: PathBuf,
+}
+
+fn child(m: &Module, name: &str) -> Option<Module> {
+    let as_dir = m.dir.join(name);
+    if as_dir.join("mod.rs").is_file() {
+        return Some(Module {
+            file: as_dir.join("mod.rs"),
+            dir: as_dir,
+        });
+    }
+    let as_file = m.dir.join(format!("{name}.rs"));
+    as_file.is_file().then(|| Module {
+        dir: m.dir.join(name),
+        file: as_file,
+    })
+}
+
+/// The module that declares `m` (for a file module `x.rs` its directory's module, for a
+/// `mod.rs` the directory above).
+fn parent(m: &Module, root: &Path) -> Module {
+    let dir = m.dir.parent().unwrap().to_path_buf();
+    let file = if dir == root {
+        root.join("lib.rs")
+    } else {
+        dir.join("mod.rs")
+    };
+    Module { dir, file }
+}
+
+fn module_of(file: &Path, root: &Path) -> Module {
+    if file.ends_with("mod.rs") || file == root.join("lib.rs") {
+        Module {
+            dir: file.parent().unwrap().to_path_buf(),
+            file: file.to_path_buf(),
+        }
+    } else {
+        Module {
+            dir: file.with_extension(""),
+            file: file.to_path_buf(),
+        }
+    }
+}
+
+/// The file that defines what `path` names, seen from module `at`; `None` outside the crate.
+fn resolve(path: &[String], at: &Module, root: &Path, depth: usize) -> Option<PathBuf> {
+    if depth > 16 || path.is_empty() {
+        return None;
+    }
+    let mut m = match path[0].as_str() {
+        "crate" => Module {
+            dir: root.to_path_buf(),
+            file: root.join("lib.rs"),
+        },
+        "super" => parent(at, root),
+        "self" => at.clone(),
+        // Not a child module: another crate (core, glam, serde, …).
+        first => child(at, first)?,
+    };
+    let mut rest = &path[1..];
+    while let Some(seg) = rest.first() {
+        if seg == "super" {
+            m = parent(&m, root);
+        } else if let Some(c) = child(&m, seg) {
+            m = c;
+        } else {
+            // An item: defined in this module's file, or re-exported from elsewhere.
+            for used in use_paths(&code_of(&m.file)) {
+                if used.last() == Some(seg) && used.len() > 1 {
+                    return resolve(&used, &m, root, depth + 1);
+                }
+            }
+            return Some(m.file.clone());
+        }
+        rest = &rest[1..];
+    }
+    Some(m.file.clone())
+}
+
+#[test]
+fn core_files_have_no_import_circle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../core/src")
+        .canonicalize()
+        .unwrap();
+    let mut files = Vec::new();
+    rust_files(&root, &mut files);
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    let name = |p: &Path| p.strip_prefix(&root).unwrap().display().to_string();
+    for file in &files {
+        let at = module_of(file, &root);
+        let deps = graph.entry(name(file)).or_default();
+        for path in use_paths(&code_of(file)) {
+            if let Some(target) = resolve(&path, &at, &root, 0)
+                && target != *file
+            {
+                deps.insert(name(&target));
+            }
+        }
+    }
+    assert!(
+        graph["query/ray.rs"].contains("query/traverse.rs"),
+        "{graph:?}"
+    );
+    assert!(
+        graph["bvh/traverse.rs"].contains("bvh/sizing.rs"),
+        "{graph:?}"
+    );
+    let circular: Vec<(&String, &BTreeSet<String>)> = graph
+        .iter()
+        .filter(|(f, _)| reaches(&graph, f, f))
+        .collect();
+    assert!(
+        circular.is_empty(),
+        "files that reach themselves (file -> what it uses): {circular:?}"
+    );
 }

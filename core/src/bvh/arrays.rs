@@ -1,15 +1,15 @@
-//! Read access to a BVH's two arrays wherever they are stored: in slices (a [`Bvh`]) or in the
-//! bytes of a blob, read in place.
+//! Read access to a BVH's two arrays wherever they are stored: in slices (a
+//! [`Bvh`](super::Bvh)) or in the bytes of a blob, read in place.
 
-use super::{Bvh, BvhNode};
+use super::BvhNode;
 use crate::query::LeafTriangleIds;
 
 /// The node and order arrays of a binary BVH, read by index.
 ///
 /// Traversal ([`Traverse`](crate::query::Traverse), so every query) and the validator are
-/// written once over this trait, so a tree in caller slices ([`Bvh`]) and a tree read straight
-/// out of a blob's bytes run the same code and return the same bits. Implementations return
-/// `None` for anything out of range; they never panic.
+/// written once over this trait, so a tree in caller slices ([`Bvh`](super::Bvh)) and a tree
+/// read straight out of a blob's bytes run the same code and return the same bits.
+/// Implementations return `None` for anything out of range; they never panic.
 pub trait TreeArrays {
     /// Number of nodes (0 for an empty tree).
     fn node_count(&self) -> usize;
@@ -27,34 +27,4 @@ pub trait TreeArrays {
     /// The mesh triangle indices in order slots `first..first + count`, or `None` unless all of
     /// them exist.
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>>;
-}
-
-impl TreeArrays for Bvh<'_> {
-    #[inline(always)]
-    fn node_count(&self) -> usize {
-        self.nodes.len()
-    }
-
-    #[inline(always)]
-    fn slot_count(&self) -> usize {
-        self.order.len()
-    }
-
-    #[inline(always)]
-    fn node(&self, index: usize) -> Option<BvhNode> {
-        self.nodes.get(index).copied()
-    }
-
-    #[inline(always)]
-    fn node_pair(&self, first: usize) -> Option<[BvhNode; 2]> {
-        self.nodes
-            .get(first..first.wrapping_add(2))
-            .and_then(|pair| <&[BvhNode; 2]>::try_from(pair).ok())
-            .copied()
-    }
-
-    #[inline(always)]
-    fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
-        LeafTriangleIds::in_order(self.order, first, count)
-    }
 }

@@ -39,6 +39,7 @@ mod packed;
 mod partition;
 mod prim_ref;
 mod refit;
+mod sizing;
 mod stats;
 mod traverse;
 mod tree;
@@ -48,23 +49,6 @@ pub use buffers::BvhBuffers;
 pub use config::{BuildConfig, SplitStrategy};
 pub use node::BvhNode;
 pub use prim_ref::PrimRef;
+pub use sizing::{MAX_DEPTH, node_capacity};
 pub use stats::{LEAF_HISTOGRAM_LEN, TreeStats};
 pub use tree::Bvh;
-
-/// The deepest tree any builder makes and any loader accepts (the root is level 1).
-///
-/// Every traversal keeps a fixed stack of this many entries, which therefore can never
-/// overflow.
-pub const MAX_DEPTH: u32 = 64;
-
-/// Nodes needed for a tree over `tri_count` triangles: `2·n − 1` (0 for no triangles). The
-/// order array and the build scratch take one entry per triangle; packed triangles one per
-/// triangle; a four-wide tree [`wide_node_capacity`](crate::wide::wide_node_capacity).
-#[must_use]
-pub const fn node_capacity(tri_count: usize) -> usize {
-    if tri_count == 0 {
-        0
-    } else {
-        tri_count.saturating_mul(2) - 1
-    }
-}

@@ -1,9 +1,10 @@
 use super::build::build_into;
 use super::check::{CheckLevel, Extent, check};
-use super::{BuildConfig, BvhNode, PrimRef};
+use super::{BuildConfig, BvhNode, PrimRef, TreeArrays};
 use crate::error::{BuildError, StructureError};
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
+use crate::query::LeafTriangleIds;
 
 /// A built BVH: a read-only view over the caller's node and order buffers.
 ///
@@ -185,4 +186,34 @@ fn leaf_of_slot(nodes: &[BvhNode], slot: usize) -> u32 {
         })
         .and_then(|i| u32::try_from(i).ok())
         .unwrap_or(0)
+}
+
+impl TreeArrays for Bvh<'_> {
+    #[inline(always)]
+    fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    #[inline(always)]
+    fn slot_count(&self) -> usize {
+        self.order.len()
+    }
+
+    #[inline(always)]
+    fn node(&self, index: usize) -> Option<BvhNode> {
+        self.nodes.get(index).copied()
+    }
+
+    #[inline(always)]
+    fn node_pair(&self, first: usize) -> Option<[BvhNode; 2]> {
+        self.nodes
+            .get(first..first.wrapping_add(2))
+            .and_then(|pair| <&[BvhNode; 2]>::try_from(pair).ok())
+            .copied()
+    }
+
+    #[inline(always)]
+    fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
+        LeafTriangleIds::in_order(self.order, first, count)
+    }
 }

@@ -2,7 +2,8 @@
 
 use core::fmt;
 
-use super::{MeshError, StructureError};
+use super::mesh::MeshError;
+use super::structure::StructureError;
 
 /// A part of a blob, named in [`BlobError`]s.
 #[non_exhaustive]

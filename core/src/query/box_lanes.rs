@@ -8,6 +8,12 @@ use glam::{Vec3, Vec4};
 use crate::geom::SlabRay;
 use crate::math::Aabb4;
 
+/// Relative slack on box distances (ray entry and exit `t`, squared point distances): a box is
+/// entered when it might hold an answer within a few thousand ulps of the current best, so
+/// rounding in a box test can never cull a triangle whose own rounded answer would win (ties
+/// included).
+pub(super) const MARGIN: f32 = 1.0 / 65_536.0;
+
 /// A ray's origin and padded inverse direction (from its [`SlabRay`]) spread over four lanes,
 /// computed once per ray.
 #[derive(Clone, Copy, Debug)]

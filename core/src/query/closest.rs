@@ -4,8 +4,7 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec3A, Vec4};
 
-use super::MARGIN;
-use super::box_lanes::enter_point;
+use super::box_lanes::{MARGIN, enter_point};
 use super::leaf_batches::{LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::closest_point_regions;

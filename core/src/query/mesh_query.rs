@@ -5,11 +5,11 @@ use core::ops::ControlFlow;
 use glam::Vec3;
 
 use super::{
-    LeafTriangles, OverlapCount, RayOptions, Traverse, Visitor, closest, closest_batch, overlap,
-    ray, raycast_batch,
+    LeafTriangles, OverlapCount, RayOptions, Traverse, closest, closest_batch, overlap, ray,
+    raycast_batch,
 };
 use crate::error::BatchError;
-use crate::math::{Aabb, ClosestPoint, PackedTriangle, Ray, RayHit, Triangle};
+use crate::math::{Aabb, ClosestPoint, Ray, RayHit};
 
 /// The queries of meshq, answered by a structure together with the triangles it indexes.
 ///
@@ -21,7 +21,7 @@ use crate::math::{Aabb, ClosestPoint, PackedTriangle, Ray, RayHit, Triangle};
 /// triangle index wins, so every structure and target returns the same answer. Degenerate
 /// (zero-area) triangles are never returned.
 ///
-/// Run a query of your own with [`Traverse::traverse`] and a [`Visitor`]; it reads leaf
+/// Run a query of your own with [`Traverse::traverse`] and a [`Visitor`](super::Visitor); it reads leaf
 /// triangles through this value's [`LeafTriangles`].
 pub trait MeshQuery: Traverse + LeafTriangles {
     /// The closest hit of `ray`, with the watertight test and both faces
@@ -163,65 +163,3 @@ pub trait MeshQuery: Traverse + LeafTriangles {
 }
 
 impl<T: Traverse + LeafTriangles + ?Sized> MeshQuery for T {}
-
-/// A structure paired with the triangles it indexes, made by [`Traverse::with`]: it answers
-/// every [`MeshQuery`]. Two references, free to make and copy.
-///
-/// The triangles must be those the structure was built over (the mesh, or a packed copy in its
-/// slot order): other triangles give meaningless answers, never a panic.
-#[derive(Debug)]
-pub struct With<'a, T: ?Sized, S: ?Sized> {
-    structure: &'a T,
-    triangles: &'a S,
-}
-
-impl<T: ?Sized, S: ?Sized> Clone for With<'_, T, S> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<T: ?Sized, S: ?Sized> Copy for With<'_, T, S> {}
-
-impl<'a, T: ?Sized, S: ?Sized> With<'a, T, S> {
-    /// Pairs `structure` with `triangles` (what [`Traverse::with`] does).
-    #[inline(always)]
-    #[must_use]
-    pub const fn new(structure: &'a T, triangles: &'a S) -> Self {
-        Self {
-            structure,
-            triangles,
-        }
-    }
-
-    /// The structure.
-    #[must_use]
-    pub const fn structure(&self) -> &'a T {
-        self.structure
-    }
-
-    /// The triangles.
-    #[must_use]
-    pub const fn triangles(&self) -> &'a S {
-        self.triangles
-    }
-}
-
-impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
-    #[inline(always)]
-    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        self.structure.traverse(visitor);
-    }
-}
-
-impl<T: ?Sized, S: LeafTriangles + ?Sized> LeafTriangles for With<'_, T, S> {
-    #[inline(always)]
-    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
-        self.triangles.corners(slot, tri)
-    }
-
-    #[inline(always)]
-    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
-        self.triangles.run(first, count)
-    }
-}

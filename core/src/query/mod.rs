@@ -87,16 +87,10 @@ mod mesh_query;
 mod overlap;
 mod ray;
 mod raycast_batch;
-mod visitor;
+mod traverse;
 
 pub use leaf::{LeafTriangleIds, LeafTriangles, PackedTriangles};
-pub use mesh_query::{MeshQuery, With};
+pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
-pub use visitor::{Traverse, Visitor};
-
-/// Relative slack on box distances (ray entry and exit `t`, squared point distances): a box is
-/// entered when it might hold an answer within a few thousand ulps of the current best, so
-/// rounding in a box test can never cull a triangle whose own rounded answer would win (ties
-/// included).
-pub(crate) const MARGIN: f32 = 1.0 / 65_536.0;
+pub use traverse::{Traverse, Visitor, With};

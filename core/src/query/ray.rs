@@ -4,8 +4,7 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::MARGIN;
-use super::box_lanes::LaneRay;
+use super::box_lanes::{LaneRay, MARGIN};
 use super::leaf_batches::{LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::{CullMode, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore};

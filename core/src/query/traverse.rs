@@ -3,8 +3,8 @@
 
 use core::ops::ControlFlow;
 
-use super::{LeafTriangleIds, LeafTriangles, With};
-use crate::math::{Aabb, Aabb4, Ray};
+use super::{LeafTriangleIds, LeafTriangles};
+use crate::math::{Aabb, Aabb4, PackedTriangle, Ray, Triangle};
 
 /// A query as a structure's traversal sees it: it judges boxes, says when deferred work is no
 /// longer worth doing, and does the triangle work at the leaves.
@@ -93,5 +93,67 @@ pub trait Traverse {
     #[inline(always)]
     fn with<'a, S: LeafTriangles + ?Sized>(&'a self, triangles: &'a S) -> With<'a, Self, S> {
         With::new(self, triangles)
+    }
+}
+
+/// A structure paired with the triangles it indexes, made by [`Traverse::with`]: it answers
+/// every [`MeshQuery`](super::MeshQuery). Two references, free to make and copy.
+///
+/// The triangles must be those the structure was built over (the mesh, or a packed copy in its
+/// slot order): other triangles give meaningless answers, never a panic.
+#[derive(Debug)]
+pub struct With<'a, T: ?Sized, S: ?Sized> {
+    structure: &'a T,
+    triangles: &'a S,
+}
+
+impl<T: ?Sized, S: ?Sized> Clone for With<'_, T, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T: ?Sized, S: ?Sized> Copy for With<'_, T, S> {}
+
+impl<'a, T: ?Sized, S: ?Sized> With<'a, T, S> {
+    /// Pairs `structure` with `triangles` (what [`Traverse::with`] does).
+    #[inline(always)]
+    #[must_use]
+    pub const fn new(structure: &'a T, triangles: &'a S) -> Self {
+        Self {
+            structure,
+            triangles,
+        }
+    }
+
+    /// The structure.
+    #[must_use]
+    pub const fn structure(&self) -> &'a T {
+        self.structure
+    }
+
+    /// The triangles.
+    #[must_use]
+    pub const fn triangles(&self) -> &'a S {
+        self.triangles
+    }
+}
+
+impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
+    #[inline(always)]
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        self.structure.traverse(visitor);
+    }
+}
+
+impl<T: ?Sized, S: LeafTriangles + ?Sized> LeafTriangles for With<'_, T, S> {
+    #[inline(always)]
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
+        self.triangles.corners(slot, tri)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.triangles.run(first, count)
     }
 }

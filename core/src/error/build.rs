@@ -1,0 +1,83 @@
+//! Why a structure could not be built.
+
+use core::fmt;
+
+/// Which caller buffer a [`BuildError::BufferTooSmall`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum BufferKind {
+    /// The node array (size it with [`bvh::node_capacity`](crate::bvh::node_capacity)).
+    Nodes,
+    /// The triangle order array (one `u32` per triangle).
+    Order,
+    /// The build scratch (one [`PrimRef`](crate::bvh::PrimRef) per triangle).
+    Scratch,
+    /// Packed triangles (one [`PackedTriangle`](crate::math::PackedTriangle) per triangle).
+    Packed,
+    /// Wide nodes (size it with [`Bvh::wide_node_count`](crate::bvh::Bvh::wide_node_count)).
+    WideNodes,
+}
+
+/// Why a structure could not be built.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BuildError {
+    /// A caller buffer is too small. Nothing was written to any buffer. Fix: size it with the
+    /// structure's sizing function.
+    BufferTooSmall {
+        /// Which buffer.
+        buffer: BufferKind,
+        /// Elements needed.
+        needed: usize,
+        /// Elements given.
+        got: usize,
+    },
+    /// The mesh has more triangles than a tree of `max_depth` levels with `max_leaf_size`
+    /// triangles per leaf can hold. Fix: raise `max_depth` (up to
+    /// [`MAX_DEPTH`](crate::bvh::MAX_DEPTH)) or `max_leaf_size`.
+    TooDeep {
+        /// The configured depth limit.
+        max_depth: u32,
+        /// The triangle count.
+        triangles: usize,
+    },
+    /// A [`BuildConfig`](crate::bvh::BuildConfig) field is out of its documented range. Fix: see
+    /// that field's documentation.
+    InvalidConfig {
+        /// The field's name.
+        field: &'static str,
+    },
+}
+
+impl fmt::Display for BuildError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::BufferTooSmall {
+                buffer,
+                needed,
+                got,
+            } => {
+                let which = match buffer {
+                    BufferKind::Nodes => "node",
+                    BufferKind::Order => "order",
+                    BufferKind::Scratch => "scratch",
+                    BufferKind::Packed => "packed triangle",
+                    BufferKind::WideNodes => "wide node",
+                };
+                write!(f, "{which} buffer too small: needed {needed}, got {got}")
+            }
+            Self::TooDeep {
+                max_depth,
+                triangles,
+            } => write!(
+                f,
+                "{triangles} triangles do not fit in a tree of depth {max_depth} with this leaf size"
+            ),
+            Self::InvalidConfig { field } => {
+                write!(f, "build config field `{field}` is out of range")
+            }
+        }
+    }
+}
+
+impl core::error::Error for BuildError {}
