@@ -6,11 +6,11 @@
 use core::ops::ControlFlow;
 
 use libfuzzer_sys::fuzz_target;
-use meshq::{MeshQuery, Traverse};
 use meshq::blob::{self, BlobHeader, BlobView};
 use meshq::bvh::BvhNode;
 use meshq::math::PackedTriangle;
 use meshq::math::{Aabb, Ray, Vec3};
+use meshq::{MeshBvh, MeshQuery, Traverse};
 
 fuzz_target!(|data: &[u8]| {
     let Some((&mode, rest)) = data.split_first() else {
@@ -46,8 +46,26 @@ fuzz_target!(|data: &[u8]| {
         view.decode_packed(&mut packed),
     ) {
         let ray = Ray::new(c + Vec3::new(0.3, 0.2, 5.0), -Vec3::Z);
-        let a = tree.with(&tris).raycast(&ray).map(|h| (h.t.to_bits(), h.tri));
+        let a = tree
+            .with(&tris)
+            .raycast(&ray)
+            .map(|h| (h.t.to_bits(), h.tri));
         let b = view.raycast(&ray).map(|h| (h.t.to_bits(), h.tri));
+        assert_eq!(a, b);
+    }
+    // The owned decode of a valid blob answers as the view does.
+    if let Ok(scene) = MeshBvh::from_blob(&bytes) {
+        let ray = Ray::new(c + Vec3::new(-0.2, 0.1, 5.0), -Vec3::Z);
+        let a = scene.raycast(&ray).map(|h| (h.t.to_bits(), h.tri));
+        let b = view.raycast(&ray).map(|h| (h.t.to_bits(), h.tri));
+        assert_eq!(a, b);
+        let p = c + Vec3::new(0.1, -0.3, 0.2);
+        let a = scene
+            .closest_point(p, f32::INFINITY)
+            .map(|h| (h.distance_squared.to_bits(), h.tri));
+        let b = view
+            .closest_point(p, f32::INFINITY)
+            .map(|h| (h.distance_squared.to_bits(), h.tri));
         assert_eq!(a, b);
     }
 });

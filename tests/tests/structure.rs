@@ -424,3 +424,58 @@ fn built_parts_are_checked_for_safety_but_not_for_boxes() {
     // …while a wrong box, which only spoils answers, is the documented blind spot.
     assert_eq!(corrupt(&|b| b.nodes[leaf].max = b.nodes[leaf].min), Ok(()));
 }
+
+/// A no_std caller keeps the buffers a build was given, sized by the sizing functions and never
+/// trimmed: every view re-borrows them as they are, ignoring what follows the tree, and answers
+/// as brute force does.
+#[test]
+fn views_accept_the_untrimmed_buffers_a_build_was_given() {
+    use meshq::bvh::{PrimRef, node_capacity};
+    use meshq::math::PackedTriangle;
+    use meshq::query::PackedTriangles;
+    use meshq::wide::{WideNode, wide_node_capacity};
+
+    for name in ["cow", "spot"] {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let n = mesh.triangle_count();
+        let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+        let mut order = vec![0u32; n + 7];
+        let mut scratch = vec![PrimRef::EMPTY; n];
+        let config = BuildConfig::default();
+        let (used, depth) = {
+            let built = Bvh::build(&mesh, &config, &mut nodes, &mut order, &mut scratch).unwrap();
+            (built.nodes().to_vec(), built.depth())
+        };
+        assert!(used.len() < nodes.len(), "{name}: the buffer has room left");
+        let full = Bvh::from_parts(&nodes, &order, &mesh).unwrap();
+        let quick = Bvh::from_built_parts(&nodes, &order, &mesh).unwrap();
+        for view in [full, quick] {
+            assert_eq!(view.nodes(), &used[..], "{name}");
+            assert_eq!(view.order(), &order[..n], "{name}");
+            assert_eq!(view.depth(), depth, "{name}");
+        }
+
+        let mut wide_nodes = vec![WideNode::EMPTY; wide_node_capacity(n) + 3];
+        let written = full.widen(&mut wide_nodes).unwrap().nodes().len();
+        let wide = full.wide_view(&wide_nodes).unwrap();
+        assert_eq!(wide.nodes().len(), written, "{name}");
+        let mut packed = vec![PackedTriangle::EMPTY; n + 5];
+        full.pack_triangles(&mesh, &mut packed).unwrap();
+        let packed = PackedTriangles::new(&packed);
+
+        let brute = BruteForce::new(&mesh);
+        for ray in workload::random_rays(&loaded.positions, 300, 17) {
+            let want = brute.raycast(&ray, &RayOptions::default());
+            assert_eq!(full.with(&mesh).raycast(&ray), want, "{name}");
+            assert_eq!(wide.with(&packed).raycast(&ray), want, "{name}");
+        }
+
+        // Refit works on the untrimmed buffer too and leaves what follows the tree alone.
+        let mut refit_nodes = nodes.clone();
+        let refit = Bvh::refit(&mut refit_nodes, &order, &mesh).unwrap();
+        assert_eq!(refit.nodes().len(), used.len(), "{name}");
+        refit.check(&mesh).unwrap();
+        assert_eq!(&refit_nodes[used.len()..], &nodes[used.len()..], "{name}");
+    }
+}

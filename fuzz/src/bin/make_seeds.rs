@@ -1,8 +1,9 @@
 //! Writes a seed corpus for `blob_parse`: small valid blobs of every mesh layout, each with
 //! both mode bytes, into the directory given as the only argument.
 
-use meshq::blob::{self, EncodeOptions, MeshLayout};
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::MeshBvh;
+use meshq::blob::MeshLayout;
+use meshq::bvh::BuildConfig;
 use meshq::mesh::MeshRef;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -30,19 +31,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             positions.clear();
         }
         let mesh = MeshRef::new(&positions, &triangles).validate()?;
-        let t = mesh.triangle_count();
-        let mut nodes = vec![BvhNode::EMPTY; bvh::node_capacity(t)];
-        let mut order = vec![0u32; t];
-        let mut scratch = vec![PrimRef::EMPTY; t];
         let config = BuildConfig {
             max_leaf_size: 2,
             ..BuildConfig::default()
         };
-        let tree = Bvh::build(&mesh, &config, &mut nodes, &mut order, &mut scratch)?;
+        let scene = MeshBvh::build(&mesh, &config)?;
         for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
-            let options = EncodeOptions { mesh: layout, config };
-            let mut bytes = vec![0u8; blob::encoded_len(&tree, &mesh, &options)?];
-            blob::encode_into(&tree, &mesh, &options, &mut bytes)?;
+            let bytes = scene.to_blob(layout)?;
             for mode in [0u8, 1] {
                 let mut seed = vec![mode];
                 seed.extend_from_slice(&bytes);
