@@ -20,10 +20,11 @@
 //!
 //! ```text
 //! positions + indices ──validate──▶ ValidMesh ──build──▶ Bvh ──widen──▶ WideBvh  (views over your buffers)
-//!                                                         │
-//!                              structure.with(&triangles) ▼            blob ──parse──▶ BlobView
-//!                                                     MeshQuery ◀────────────────────────┘
-//!              raycast · raycast_any · closest_point · batches · overlap_aabb/sphere · traverse
+//!                                                        │
+//!                                                   encode_into ──▶ blob bytes ──parse──▶ BlobView
+//!
+//! structure.with(&triangles) · BlobView · MeshBvh ──▶ MeshQuery: raycast · raycast_any ·
+//!     closest_point · raycast_batch · raycast_any_batch · closest_points · overlap_aabb/sphere
 //! ```
 //!
 //! ## Modules

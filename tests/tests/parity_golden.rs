@@ -119,8 +119,8 @@ fn computed_line(name: &str) -> String {
         in_memory, expected,
         "{name}: in-memory BVH against brute force"
     );
-    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-    let wide = bvh.widen(&mut wide_nodes).unwrap();
+    let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+    let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
     // The root's child boxes are padded around their own triangles: inside the root's box.
     assert!(bounds.contains_aabb(&wide.bounds()), "{name}: wide bounds");
     let from_wide = run_parity(&spec, bounds, &mut Wide { wide, mesh });

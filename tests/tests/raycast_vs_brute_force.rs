@@ -108,8 +108,8 @@ fn run(name: &str, test: TriangleTest) {
     let bvh = checked_bvh(&owned, &mesh).unwrap();
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
     let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-    let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-    let wide = bvh.widen(&mut wide_nodes).unwrap();
+    let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+    let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
     let options = RayOptions {
         test,
         cull: CullMode::None,
@@ -161,8 +161,8 @@ fn culling_and_ray_ranges_match_brute_force() {
         let bvh = checked_bvh(&owned, &mesh).unwrap();
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-        let mut wide_nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-        let wide = bvh.widen(&mut wide_nodes).unwrap();
+        let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+        let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let rays: Vec<Ray> = workload::random_rays(&loaded.positions, 3_000, 7)

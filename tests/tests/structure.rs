@@ -433,7 +433,7 @@ fn views_accept_the_untrimmed_buffers_a_build_was_given() {
     use meshq::bvh::{PrimRef, node_capacity};
     use meshq::math::PackedTriangle;
     use meshq::query::PackedTriangles;
-    use meshq::wide::{WideNode, wide_node_capacity};
+    use meshq::wide::{WideBvh, WideNode, wide_node_capacity};
 
     for name in ["cow", "spot"] {
         let loaded = load_mesh(name);
@@ -457,8 +457,11 @@ fn views_accept_the_untrimmed_buffers_a_build_was_given() {
         }
 
         let mut wide_nodes = vec![WideNode::EMPTY; wide_node_capacity(n) + 3];
-        let written = full.widen(&mut wide_nodes).unwrap().nodes().len();
-        let wide = full.wide_view(&wide_nodes).unwrap();
+        let written = WideBvh::build(&full, &mut wide_nodes)
+            .unwrap()
+            .nodes()
+            .len();
+        let wide = WideBvh::from_parts(&full, &wide_nodes).unwrap();
         assert_eq!(wide.nodes().len(), written, "{name}");
         let mut packed = vec![PackedTriangle::EMPTY; n + 5];
         full.pack_triangles(&mesh, &mut packed).unwrap();

@@ -116,11 +116,11 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
         for (label, config) in &configs {
             let owned = MeshBvh::build(&mesh, config).unwrap();
             let bvh = checked_bvh(&owned, &mesh).unwrap();
-            let count = bvh.wide_node_count();
+            let count = WideBvh::count_nodes(&bvh);
             assert!(count <= wide_node_capacity(mesh.triangle_count()));
             // Exactly sized and bound-sized buffers give the same nodes.
             let mut exact = vec![WideNode::EMPTY; count];
-            let wide = bvh.widen(&mut exact).unwrap();
+            let wide = WideBvh::build(&bvh, &mut exact).unwrap();
             assert_eq!(wide.nodes().len(), count);
             let what = format!("{name} {label}");
             let depth = check_against_binary(&bvh, &wide, &what);
@@ -132,7 +132,7 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
             );
             assert!(depth < bvh.depth() as usize, "{what}: depth {depth}");
             let mut roomy = vec![WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
-            let again = bvh.widen(&mut roomy).unwrap();
+            let again = WideBvh::build(&bvh, &mut roomy).unwrap();
             assert!(
                 again
                     .nodes()
@@ -150,10 +150,10 @@ fn a_short_buffer_is_an_error_and_nothing_is_written() {
     let mesh = loaded.valid();
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &mesh).unwrap();
-    let needed = bvh.wide_node_count();
+    let needed = WideBvh::count_nodes(&bvh);
     let mut short = vec![WideNode::EMPTY; needed - 1];
     assert_eq!(
-        bvh.widen(&mut short).unwrap_err(),
+        WideBvh::build(&bvh, &mut short).unwrap_err(),
         BuildError::BufferTooSmall {
             buffer: BufferKind::WideNodes,
             needed,
@@ -169,10 +169,10 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mesh = loaded.valid();
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &mesh).unwrap();
-    let mut nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-    bvh.widen(&mut nodes).unwrap();
+    let mut nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+    WideBvh::build(&bvh, &mut nodes).unwrap();
     let kept = nodes.clone();
-    let view = bvh.wide_view(&kept).unwrap();
+    let view = WideBvh::from_parts(&bvh, &kept).unwrap();
     let ray = workload::random_rays(&loaded.positions, 1, 3)[0];
     assert_eq!(
         view.with(&mesh).raycast(&ray),
@@ -182,7 +182,7 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mismatch = |node| Err(StructureError::WideNodeMismatch { node });
     let mut shrunk = kept.clone();
     shrunk[7].bounds.max_y[1] = f32::from_bits(shrunk[7].bounds.max_y[1].to_bits() - 1);
-    assert_eq!(bvh.wide_view(&shrunk).map(|_| ()), mismatch(7));
+    assert_eq!(WideBvh::from_parts(&bvh, &shrunk).map(|_| ()), mismatch(7));
     // A lane pointing back at the root would loop forever: refused.
     let mut cycle = kept.clone();
     let (at, lane) = (0..cycle.len())
@@ -194,10 +194,13 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
         })
         .unwrap();
     cycle[at].child[lane] = 0;
-    assert_eq!(bvh.wide_view(&cycle).map(|_| ()), mismatch(at as u32));
+    assert_eq!(
+        WideBvh::from_parts(&bvh, &cycle).map(|_| ()),
+        mismatch(at as u32)
+    );
     let last = kept.len() - 1;
     assert_eq!(
-        bvh.wide_view(&kept[..last]).map(|_| ()),
+        WideBvh::from_parts(&bvh, &kept[..last]).map(|_| ()),
         mismatch(last as u32)
     );
     // The untrimmed buffer a widening was given is accepted: the view covers the nodes
@@ -205,7 +208,7 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mut longer = kept.clone();
     longer.push(WideNode::EMPTY);
     longer.push(kept[0]);
-    let roomy = bvh.wide_view(&longer).unwrap();
+    let roomy = WideBvh::from_parts(&bvh, &longer).unwrap();
     assert_eq!(roomy.nodes().len(), kept.len());
     assert_eq!(
         roomy.with(&mesh).raycast(&ray),
@@ -218,9 +221,9 @@ fn empty_and_single_triangle_trees() {
     let empty = MeshRef::new(&[], &[]).validate().unwrap();
     let owned = MeshBvh::build(&empty, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &empty).unwrap();
-    assert_eq!(bvh.wide_node_count(), 0);
+    assert_eq!(WideBvh::count_nodes(&bvh), 0);
     let mut none: [WideNode; 0] = [];
-    let wide = bvh.widen(&mut none).unwrap();
+    let wide = WideBvh::build(&bvh, &mut none).unwrap();
     assert!(wide.is_empty() && wide.bounds() == Aabb::EMPTY);
     let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
     assert_eq!(wide.with(&empty).raycast(&ray), None);
@@ -235,7 +238,7 @@ fn empty_and_single_triangle_trees() {
     let owned = MeshBvh::build(&one, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &one).unwrap();
     let mut nodes = [WideNode::EMPTY; 1];
-    let wide = bvh.widen(&mut nodes).unwrap();
+    let wide = WideBvh::build(&bvh, &mut nodes).unwrap();
     assert_eq!(wide.nodes()[0].lanes(), 1);
     assert_eq!(wide.bounds(), bvh.bounds());
     let hit = wide.with(&one).raycast(&ray).unwrap();
@@ -290,8 +293,8 @@ fn awkward_meshes_match_brute_force() {
         let mesh = MeshRef::new(positions, triangles).validate().unwrap();
         let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
         let bvh = checked_bvh(&owned, &mesh).unwrap();
-        let mut nodes = vec![WideNode::EMPTY; bvh.wide_node_count()];
-        let wide = bvh.widen(&mut nodes).unwrap();
+        let mut nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+        let wide = WideBvh::build(&bvh, &mut nodes).unwrap();
         check_against_binary(&bvh, &wide, what);
         let brute = BruteForce::new(&mesh);
         let mut hits = 0;

@@ -14,7 +14,7 @@ pub enum BufferKind {
     Scratch,
     /// Packed triangles (one [`PackedTriangle`](crate::math::PackedTriangle) per triangle).
     Packed,
-    /// Wide nodes (size it with [`Bvh::wide_node_count`](crate::bvh::Bvh::wide_node_count)).
+    /// Wide nodes (size it with [`WideBvh::count_nodes`](crate::wide::WideBvh::count_nodes)).
     WideNodes,
 }
 

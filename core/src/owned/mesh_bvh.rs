@@ -75,7 +75,7 @@ impl MeshBvh {
             let mesh = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
             let bvh = Bvh::from_validated(&nodes, &order, depth);
             bvh.pack_triangles(&mesh, &mut packed)?;
-            bvh.widen(&mut wide)?.nodes().len()
+            WideBvh::build(&bvh, &mut wide)?.nodes().len()
         };
         wide.truncate(wide_count);
         wide.shrink_to_fit();

@@ -195,7 +195,7 @@ mod tests {
     use crate::math::PackedTriangle;
     use crate::mesh::MeshRef;
     use crate::query::closest_batch::closest_points_by;
-    use crate::wide::WideNode;
+    use crate::wide::{WideBvh, WideNode};
 
     /// Deterministic xorshift floats in `[-1, 1)`.
     fn floats(mut state: u64, n: usize) -> Vec<f32> {
@@ -251,8 +251,8 @@ mod tests {
         let packed = bvh
             .pack_triangles(&mesh, &mut packed)
             .unwrap_or_else(|e| panic!("{e}"));
-        let mut wide = vec![WideNode::EMPTY; bvh.wide_node_count()];
-        let wide = bvh.widen(&mut wide).unwrap_or_else(|e| panic!("{e}"));
+        let mut wide = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+        let wide = WideBvh::build(&bvh, &mut wide).unwrap_or_else(|e| panic!("{e}"));
 
         let probes = floats(11, 3 * 2_000);
         let points: Vec<Vec3> = probes

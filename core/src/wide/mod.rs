@@ -9,7 +9,7 @@
 //! let config = BuildConfig { max_leaf_size: 1, ..BuildConfig::default() };
 //! let bvh = buffers.build(&mesh, &config)?;
 //! let mut wide_nodes = [WideNode::EMPTY; wide::wide_node_capacity(3)];
-//! let wide = bvh.widen(&mut wide_nodes)?;
+//! let wide = WideBvh::build(&bvh, &mut wide_nodes)?;
 //! let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
 //! assert_eq!(wide.with(&mesh).raycast(&ray), bvh.with(&mesh).raycast(&ray));
 //! # Ok::<(), Box<dyn std::error::Error>>(())

@@ -8,8 +8,8 @@ use crate::math::Aabb;
 /// four children whose boxes are tested together in SIMD lanes, so a query takes fewer,
 /// fuller steps.
 ///
-/// Made by [`Bvh::widen`] into a caller buffer (sized by
-/// [`wide_node_capacity`](super::wide_node_capacity) or [`Bvh::wide_node_count`]); it
+/// Made by [`WideBvh::build`] into a caller buffer (sized by
+/// [`wide_node_capacity`](super::wide_node_capacity) or [`WideBvh::count_nodes`]); it
 /// borrows the binary tree's triangle order, so leaves read the same
 /// [`PackedTriangles`](crate::query::PackedTriangles) slots. Queries go through
 /// [`Traverse`](crate::query::Traverse) (`wide.with(&triangles)`), and every one returns
@@ -21,27 +21,24 @@ pub struct WideBvh<'a> {
     pub(super) order: &'a [u32],
 }
 
-impl<'a> Bvh<'a> {
-    /// Number of wide nodes [`Bvh::widen`] writes for this tree (0 when empty; at most one
+impl<'a> WideBvh<'a> {
+    /// Number of wide nodes [`WideBvh::build`] writes for `bvh` (0 when empty; at most one
     /// per inner node, and 1 for a lone leaf).
     #[must_use]
-    pub fn wide_node_count(&self) -> usize {
-        collapse(self, |_, _| {}).unwrap_or(0)
+    pub fn count_nodes(bvh: &Bvh<'_>) -> usize {
+        collapse(bvh, |_, _| {}).unwrap_or(0)
     }
 
-    /// Collapses this tree into a four-wide one in `out` (at least
-    /// [`Bvh::wide_node_count`] nodes). Deterministic. When `out` holds
-    /// [`wide_node_capacity`](super::wide_node_capacity) of the triangle count, no counting
-    /// pass is needed; the view covers only the nodes written.
+    /// Collapses `bvh` into a four-wide tree in `out` (at least [`WideBvh::count_nodes`]
+    /// nodes). Deterministic. When `out` holds [`wide_node_capacity`](super::wide_node_capacity)
+    /// of the triangle count, no counting pass is needed; the view covers only the nodes
+    /// written.
     ///
     /// # Errors
     /// [`BuildError::BufferTooSmall`] when `out` is too small; nothing is written then.
-    pub fn widen<'w>(&self, out: &'w mut [WideNode]) -> Result<WideBvh<'w>, BuildError>
-    where
-        'a: 'w,
-    {
-        if out.len() < wide_node_capacity(self.order().len()) {
-            let needed = collapse(self, |_, _| {})?;
+    pub fn build(bvh: &Bvh<'a>, out: &'a mut [WideNode]) -> Result<Self, BuildError> {
+        if out.len() < wide_node_capacity(bvh.order().len()) {
+            let needed = collapse(bvh, |_, _| {})?;
             if out.len() < needed {
                 return Err(BuildError::BufferTooSmall {
                     buffer: BufferKind::WideNodes,
@@ -50,7 +47,7 @@ impl<'a> Bvh<'a> {
                 });
             }
         }
-        let needed = collapse(self, |index, node| {
+        let needed = collapse(bvh, |index, node| {
             if let Some(slot) = out.get_mut(index) {
                 *slot = node;
             }
@@ -63,29 +60,24 @@ impl<'a> Bvh<'a> {
                 got: out.len(),
             });
         }
-        let nodes: &'w [WideNode] = out;
+        let nodes: &'a [WideNode] = out;
         Ok(WideBvh {
             nodes: nodes.get(..needed).unwrap_or_default(),
-            order: self.order(),
+            order: bvh.order(),
         })
     }
-}
 
-impl<'a> Bvh<'a> {
-    /// A view over wide nodes written earlier by [`Bvh::widen`] for this very tree (and moved
-    /// since, into a struct that owns them, say), after checking that they are exactly the
-    /// nodes widening gives, bit for bit. The check redoes the collapse, which is cheap next to
-    /// a build, so nothing else can reach a query. `nodes` may be the untrimmed buffer
-    /// `widen` was given: nodes past those it wrote are ignored.
+    /// A view over wide nodes written earlier by [`WideBvh::build`] for this very `bvh` (and
+    /// moved since, into a struct that owns them, say), after checking that they are exactly
+    /// the nodes the collapse gives, bit for bit. The check redoes the collapse, which is cheap
+    /// next to a build, so nothing else can reach a query. `nodes` may be the untrimmed buffer
+    /// `build` was given: nodes past those it wrote are ignored.
     ///
     /// # Errors
     /// [`StructureError::WideNodeMismatch`] naming the first node that differs.
-    pub fn wide_view<'w>(&self, nodes: &'w [WideNode]) -> Result<WideBvh<'w>, StructureError>
-    where
-        'a: 'w,
-    {
+    pub fn from_parts(bvh: &Bvh<'a>, nodes: &'a [WideNode]) -> Result<Self, StructureError> {
         let mut first_difference: Option<usize> = None;
-        let count = collapse(self, |index, node| {
+        let count = collapse(bvh, |index, node| {
             let same = nodes.get(index).is_some_and(|n| n.same_bits(&node));
             if !same && first_difference.is_none_or(|d| index < d) {
                 first_difference = Some(index);
@@ -100,13 +92,13 @@ impl<'a> Bvh<'a> {
         }
         Ok(WideBvh {
             nodes: nodes.get(..count).unwrap_or_default(),
-            order: self.order(),
+            order: bvh.order(),
         })
     }
 }
 
 impl<'a> WideBvh<'a> {
-    /// A view over nodes [`Bvh::widen`] wrote for the tree whose order is `order`, kept
+    /// A view over nodes [`WideBvh::build`] wrote for the tree whose order is `order`, kept
     /// unchanged since (the owned type's buffers).
     #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     pub(crate) const fn from_validated(nodes: &'a [WideNode], order: &'a [u32]) -> Self {
