@@ -68,7 +68,7 @@ pub enum StructureError {
         /// The triangle index.
         tri: u32,
     },
-    /// Wide nodes are not the ones [`Bvh::widen`](crate::bvh::Bvh::widen) writes for the
+    /// Wide nodes are not the ones [`WideBvh::build`](crate::wide::WideBvh::build) writes for the
     /// tree they are paired with.
     WideNodeMismatch {
         /// The first wide node that differs (or the expected count when only the count
