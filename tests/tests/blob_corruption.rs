@@ -211,3 +211,52 @@ fn an_empty_mesh_round_trips() {
         assert_eq!(exercise(&view), 0);
     }
 }
+
+/// Found by the fuzz target (`fuzz/fuzz_targets/blob_parse.rs`) once it compared
+/// `MeshBvh::from_blob` with the view: a packed blob whose order names triangle 0 in both
+/// slots, with different corners in each. The view answers from it (every slot its own
+/// triangle) and stays safe; the owned copy cannot hold triangle 0 twice, so it refuses the
+/// blob rather than answer differently from the view.
+#[test]
+fn an_order_naming_a_triangle_twice_is_refused_by_the_owned_copy() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join("fuzz-repeated-triangle.bin");
+    let input = std::fs::read(path).unwrap();
+    // The fuzz input's first byte is its mode: odd means "reseal the checksum first".
+    let (&mode, rest) = input.split_first().unwrap();
+    let mut bytes = rest.to_vec();
+    if mode & 1 == 1 {
+        blob::reseal(&mut bytes).unwrap();
+    }
+    let view = BlobView::parse(&bytes).unwrap();
+    assert!(exercise(&view) > 0);
+    assert_eq!(
+        MeshBvh::from_blob(&bytes).unwrap_err(),
+        BlobError::RepeatedTriangle { slot: 1, tri: 0 }
+    );
+
+    // The same damage made on purpose to a real blob: one order entry repeated.
+    let (positions, triangles) = small_patch();
+    let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+    let good = bake(&mesh, &BuildConfig::default(), MeshLayout::Packed).unwrap();
+    let scene = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let order = scene.bvh().order();
+    let at = (0..good.len() - 8)
+        .find(|&i| {
+            (0..order.len()).all(|k| good[i + 4 * k..i + 4 * k + 4] == order[k].to_le_bytes())
+        })
+        .unwrap();
+    let mut damaged = good.clone();
+    damaged.copy_within(at..at + 4, at + 4);
+    blob::reseal(&mut damaged).unwrap();
+    assert!(BlobView::parse(&damaged).is_ok());
+    assert_eq!(
+        MeshBvh::from_blob(&damaged).unwrap_err(),
+        BlobError::RepeatedTriangle {
+            slot: 1,
+            tri: order[0]
+        }
+    );
+    assert!(MeshBvh::from_blob(&good).is_ok());
+}

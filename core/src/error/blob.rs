@@ -111,6 +111,15 @@ pub enum BlobError {
         /// The triangle index found there.
         tri: u32,
     },
+    /// The order names a triangle a second time. No encoder writes that, and a view still
+    /// answers from such a blob (each slot as its own triangle), but an owned copy needs each
+    /// triangle once: `MeshBvh::from_blob` (feature `alloc`) refuses it. Fix: bake again.
+    RepeatedTriangle {
+        /// The order slot naming the triangle again.
+        slot: u32,
+        /// The triangle index.
+        tri: u32,
+    },
     /// The stored mesh fails validation; the payload names the vertex or triangle.
     InvalidMesh(MeshError),
     /// The blob was baked without its mesh. Fix: use
@@ -179,6 +188,9 @@ impl fmt::Display for BlobError {
             Self::InvalidNode(e) => write!(f, "invalid tree: {e}"),
             Self::OrderOutOfRange { slot, tri } => {
                 write!(f, "order slot {slot} names triangle {tri}, beyond the mesh")
+            }
+            Self::RepeatedTriangle { slot, tri } => {
+                write!(f, "order slot {slot} names triangle {tri} again")
             }
             Self::InvalidMesh(e) => write!(f, "invalid stored mesh: {e}"),
             Self::MeshNotIncluded => f.write_str(

@@ -21,7 +21,8 @@ impl MeshBvh {
     ///
     /// # Errors
     /// What [`BlobView::parse`] reports ([`BlobError::MeshNotIncluded`] for a blob baked
-    /// without its mesh: use [`MeshBvh::from_blob_with_mesh`]).
+    /// without its mesh: use [`MeshBvh::from_blob_with_mesh`]), and
+    /// [`BlobError::RepeatedTriangle`] for an order that names a triangle twice.
     pub fn from_blob(bytes: &[u8]) -> Result<Self, BlobError> {
         Self::decode(&BlobView::parse(bytes)?)
     }
@@ -30,7 +31,7 @@ impl MeshBvh {
     /// ([`BlobView::parse_with_mesh`]): needed for a blob baked without its mesh.
     ///
     /// # Errors
-    /// What [`BlobView::parse_with_mesh`] reports.
+    /// What [`BlobView::parse_with_mesh`] reports, and [`BlobError::RepeatedTriangle`].
     pub fn from_blob_with_mesh(bytes: &[u8], mesh: &ValidMesh<'_>) -> Result<Self, BlobError> {
         Self::decode(&BlobView::parse_with_mesh(bytes, *mesh)?)
     }
@@ -41,6 +42,7 @@ impl MeshBvh {
         let mut nodes = vec![BvhNode::EMPTY; header.node_count as usize];
         let mut order = vec![0u32; n];
         let depth = view.decode_tree(&mut nodes, &mut order)?.depth();
+        check_permutation(&order)?;
         let (positions, triangles) = if header.mesh == MeshLayout::Packed {
             let mut packed = vec![PackedTriangle::EMPTY; n];
             view.decode_packed(&mut packed)?;
@@ -90,6 +92,19 @@ impl MeshBvh {
             config: self.config,
         }
     }
+}
+
+/// Refuses an order that names a triangle twice (the validated view bounds every entry by the
+/// triangle count, so with as many slots as triangles each one then appears exactly once).
+fn check_permutation(order: &[u32]) -> Result<(), BlobError> {
+    let mut seen = vec![false; order.len()];
+    for (slot, &tri) in (0u32..).zip(order) {
+        match seen.get_mut(tri as usize) {
+            Some(s) if !*s => *s = true,
+            _ => return Err(BlobError::RepeatedTriangle { slot, tri }),
+        }
+    }
+    Ok(())
 }
 
 /// Positions and triangles of triangles given in leaf order (`packed[slot]` is triangle
