@@ -44,6 +44,10 @@ impl MeshBvh {
         let depth = view.decode_tree(&mut nodes, &mut order)?.depth();
         check_permutation(&order)?;
         let (positions, triangles) = if header.mesh == MeshLayout::Packed {
+            // Three vertices of its own per triangle: their indices must fit in `u32`.
+            if header.triangle_count > u32::MAX / 3 {
+                return Err(BlobError::TooLarge);
+            }
             let mut packed = vec![PackedTriangle::EMPTY; n];
             view.decode_packed(&mut packed)?;
             unshared_mesh(&order, &packed)
@@ -108,7 +112,8 @@ fn check_permutation(order: &[u32]) -> Result<(), BlobError> {
 }
 
 /// Positions and triangles of triangles given in leaf order (`packed[slot]` is triangle
-/// `order[slot]`): three vertices of their own per triangle, in triangle order.
+/// `order[slot]`): three vertices of their own per triangle, in triangle order. The caller
+/// makes sure `3 · packed.len()` fits in `u32`.
 fn unshared_mesh(order: &[u32], packed: &[PackedTriangle]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     let mut positions = vec![[0.0f32; 3]; 3 * packed.len()];
     for (&tri, corners) in order.iter().zip(packed) {
