@@ -81,8 +81,10 @@ extern crate alloc;
 #[cfg(feature = "blob")]
 pub mod blob;
 pub mod bvh;
+pub mod cells;
 pub mod error;
 pub mod geom;
+pub mod grid;
 pub mod math;
 pub mod mesh;
 #[cfg(feature = "alloc")]

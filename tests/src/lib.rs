@@ -5,6 +5,7 @@
 
 pub mod assets;
 pub mod oracle;
+pub mod suite;
 pub mod workload;
 
 pub use assets::{LoadedMesh, MESHES, load_mesh, load_obj};

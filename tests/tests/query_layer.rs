@@ -14,11 +14,8 @@ use meshq::mesh::ValidMesh;
 use meshq::query::{LeafTriangleIds, RayOptions, TriangleTest, Visitor};
 use meshq::{MeshBvh, MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{LoadedMesh, MESHES, checked_bvh, load_mesh, workload};
-
-const RAYS: usize = 400;
-const POINTS: usize = 150;
-const OVERLAPS: usize = 12;
+use meshq_tests::suite::check_all;
+use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
 
 /// The smallest structure: one leaf holding every triangle, behind the mesh's bounds.
 struct Scan<'a> {
@@ -79,126 +76,6 @@ impl Traverse for RayOrderedCells<'_> {
             }
         }
     }
-}
-
-/// Every query of `q` against the brute-force scan.
-fn check_all<Q: MeshQuery + ?Sized>(q: &Q, brute: &BruteForce, loaded: &LoadedMesh, what: &str) {
-    let rays = workload::random_rays(&loaded.positions, RAYS, 5);
-    let bits = |h: Option<meshq::math::RayHit>| {
-        h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
-    };
-    let options = [
-        RayOptions::default(),
-        RayOptions {
-            test: TriangleTest::MollerTrumbore,
-            cull: CullMode::Back,
-        },
-    ];
-    for o in &options {
-        for (i, ray) in rays.iter().enumerate() {
-            let want = brute.raycast(ray, o);
-            assert_eq!(
-                bits(q.raycast_with(ray, o)),
-                bits(want),
-                "{what}: ray {i} {o:?}"
-            );
-            assert_eq!(
-                q.raycast_any_with(ray, o),
-                want.is_some(),
-                "{what}: any {i}"
-            );
-        }
-        let mut keys = vec![0u64; rays.len()];
-        let mut hits = vec![None; rays.len()];
-        q.raycast_batch(&rays, o, &mut keys, &mut hits).unwrap();
-        let want: Vec<_> = rays.iter().map(|r| bits(brute.raycast(r, o))).collect();
-        assert_eq!(
-            hits.into_iter().map(bits).collect::<Vec<_>>(),
-            want,
-            "{what}: batch"
-        );
-        let mut any = vec![false; rays.len()];
-        q.raycast_any_batch(&rays, o, &mut keys, &mut any).unwrap();
-        let want: Vec<_> = want.iter().map(Option::is_some).collect();
-        assert_eq!(any, want, "{what}: any batch");
-    }
-    for (i, r) in rays.iter().take(50).enumerate() {
-        assert_eq!(
-            bits(q.raycast(r)),
-            bits(brute.raycast(r, &RayOptions::default()))
-        );
-        assert_eq!(
-            q.raycast_any(r),
-            brute.raycast(r, &RayOptions::default()).is_some(),
-            "{i}"
-        );
-    }
-
-    let (c, radius, _) = workload::centre_radius(&loaded.positions);
-    let points = workload::closest_points(&loaded.positions, POINTS, 6);
-    let key = |p: Option<meshq::math::ClosestPoint>| {
-        p.map(|p| {
-            (
-                p.distance_squared.to_bits(),
-                p.tri,
-                p.point.to_array().map(f32::to_bits),
-            )
-        })
-    };
-    for max in [f32::INFINITY, 0.05 * radius] {
-        let want: Vec<_> = points
-            .iter()
-            .map(|&p| key(brute.closest_point(p, max)))
-            .collect();
-        let got: Vec<_> = points
-            .iter()
-            .map(|&p| key(q.closest_point(p, max)))
-            .collect();
-        assert_eq!(got, want, "{what}: closest point, max {max}");
-        let mut keys = vec![0u64; points.len()];
-        let mut out = vec![None; points.len()];
-        q.closest_points(&points, max, &mut keys, &mut out).unwrap();
-        assert_eq!(
-            out.into_iter().map(key).collect::<Vec<_>>(),
-            want,
-            "{what}: batch"
-        );
-    }
-
-    for (i, p) in workload::closest_points(&loaded.positions, OVERLAPS, 7)
-        .into_iter()
-        .enumerate()
-    {
-        let half = Vec3::splat(radius * 0.02 * (1 + i % 4) as f32);
-        let aabb = Aabb::new(p - half, p + half);
-        let mut want = brute.overlap_aabb(&aabb);
-        want.sort_unstable();
-        let mut out = vec![0u32; want.len() + 3];
-        let count = q.overlap_aabb_into(&aabb, &mut out);
-        assert!(count.is_complete(), "{what}: box {i}");
-        let mut got = out[..count.written].to_vec();
-        got.sort_unstable();
-        assert_eq!(got, want, "{what}: box {i}");
-
-        let r = radius * 0.03 * (1 + i % 3) as f32;
-        let mut want = brute.overlap_sphere(p, r);
-        want.sort_unstable();
-        let mut got = Vec::new();
-        q.overlap_sphere(p, r, |t| {
-            got.push(t);
-            ControlFlow::Continue(())
-        });
-        got.sort_unstable();
-        assert_eq!(got, want, "{what}: sphere {i}");
-        // A report that breaks stops the query.
-        let mut seen = 0;
-        q.overlap_sphere(p, r, |_| {
-            seen += 1;
-            ControlFlow::Break(())
-        });
-        assert_eq!(seen, usize::from(!want.is_empty()), "{what}: break {i}");
-    }
-    let _ = c;
 }
 
 #[test]

@@ -16,6 +16,12 @@ pub enum BufferKind {
     Packed,
     /// Wide nodes (size it with [`WideBvh::count_nodes`](crate::wide::WideBvh::count_nodes)).
     WideNodes,
+    /// A grid's cell offsets (cells + 1; size it with
+    /// [`Grid::measure`](crate::grid::Grid::measure)).
+    CellOffsets,
+    /// The references of a k-d tree, octree or grid (one per triangle and cell it touches;
+    /// size it with the structure's `measure`).
+    References,
 }
 
 /// Why a structure could not be built.
@@ -63,6 +69,8 @@ impl fmt::Display for BuildError {
                     BufferKind::Scratch => "scratch",
                     BufferKind::Packed => "packed triangle",
                     BufferKind::WideNodes => "wide node",
+                    BufferKind::CellOffsets => "cell offset",
+                    BufferKind::References => "reference",
                 };
                 write!(f, "{which} buffer too small: needed {needed}, got {got}")
             }

@@ -75,6 +75,21 @@ pub enum StructureError {
         /// differs).
         node: u32,
     },
+    /// A grid's resolution is zero or above
+    /// [`GridConfig::MAX_RESOLUTION`](crate::grid::GridConfig::MAX_RESOLUTION) on some axis, or
+    /// its offsets are not one more than its cells.
+    BadResolution,
+    /// A grid's cell offsets do not start at 0, decrease, or do not end at the reference count.
+    BadCellOffsets {
+        /// The first cell out of order.
+        cell: u32,
+    },
+    /// A k-d tree or octree node is malformed: a split plane outside its cell or not finite, an
+    /// axis out of range, or a reserved bit set.
+    BadNode {
+        /// The node.
+        node: u32,
+    },
 }
 
 impl fmt::Display for StructureError {
@@ -116,6 +131,9 @@ impl fmt::Display for StructureError {
             Self::WideNodeMismatch { node } => {
                 write!(f, "wide node {node} does not match the binary tree")
             }
+            Self::BadResolution => f.write_str("grid resolution out of range"),
+            Self::BadCellOffsets { cell } => write!(f, "cell {cell}: offsets out of order"),
+            Self::BadNode { node } => write!(f, "node {node}: malformed split or leaf"),
         }
     }
 }

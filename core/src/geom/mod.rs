@@ -4,6 +4,7 @@
 //! does with degenerate input (zero-length directions, zero-area triangles, parallel cases,
 //! NaN). Each one lives in its own file.
 
+mod clip_triangle_aabb;
 mod closest_point_plane;
 mod closest_point_segment;
 mod closest_point_triangle;
@@ -21,6 +22,7 @@ mod triangle_aabb;
 mod triangle_lanes;
 mod triangle_triangle;
 
+pub use clip_triangle_aabb::{ClippedTriangle, clip_triangle_aabb};
 pub use closest_point_plane::closest_point_plane;
 pub use closest_point_segment::closest_point_segment;
 pub use closest_point_triangle::{closest_point_triangle, closest_point_triangle_2d};

@@ -38,6 +38,11 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
     }
 
     #[inline(always)]
+    fn skips_repeats(&self) -> bool {
+        true
+    }
+
+    #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
         key <= self.limit
     }

@@ -2,6 +2,7 @@
 
 use core::slice;
 
+use super::Cell;
 use crate::math::{PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 
@@ -11,9 +12,16 @@ use crate::mesh::ValidMesh;
 /// The *slot* is the position of the entry in the structure's reference array (a BVH's order
 /// array): [`LeafTriangles`] sources stored in that order ([`PackedTriangles`]) read corners
 /// by slot; the mesh reads them by triangle index.
+///
+/// A structure that references a triangle from several cells passes the leaf's
+/// [`cell`](Self::cell), and may mark entries it already offered earlier in the same traversal
+/// as skipped (see [`skipping`](Self::skipping)): iteration leaves them out.
 #[derive(Clone, Debug)]
 pub struct LeafTriangleIds<'a> {
     next_slot: usize,
+    /// Bit `i` set: the entry `i` places after the current one is skipped.
+    skip: u64,
+    cell: Option<Cell>,
     ids: Ids<'a>,
 }
 
@@ -32,6 +40,8 @@ impl<'a> LeafTriangleIds<'a> {
     pub fn new(first_slot: usize, ids: &'a [u32]) -> Self {
         Self {
             next_slot: first_slot,
+            skip: 0,
+            cell: None,
             ids: Ids::Words(ids.iter()),
         }
     }
@@ -51,15 +61,76 @@ impl<'a> LeafTriangleIds<'a> {
     pub fn from_le_bytes(first_slot: usize, ids: &'a [[u8; 4]]) -> Self {
         Self {
             next_slot: first_slot,
+            skip: 0,
+            cell: None,
             ids: Ids::Bytes(ids.iter()),
         }
     }
 
-    /// The slot of the next triangle (the first one, before iterating).
+    /// The same entries, with entry `i` (counted from the next one) left out of iteration when
+    /// bit `i` of `mask` is set: entries a structure already offered in this traversal. Only
+    /// the first 64 entries can be skipped.
+    #[inline(always)]
+    #[must_use]
+    pub const fn skipping(mut self, mask: u64) -> Self {
+        self.skip = mask;
+        self
+    }
+
+    /// The same entries, as the leaf of `cell` (see [`LeafTriangleIds::cell`]).
+    #[inline(always)]
+    #[must_use]
+    pub const fn with_cell(mut self, cell: Cell) -> Self {
+        self.cell = Some(cell);
+        self
+    }
+
+    /// The cell this leaf owns, when the structure may reference a triangle from several
+    /// leaves (k-d tree, octree, grid); `None` for a structure that references each triangle
+    /// once (a BVH). A query that reports triangles must report each from one cell only: see
+    /// [`Cell`].
+    #[inline(always)]
+    #[must_use]
+    pub const fn cell(&self) -> Option<&Cell> {
+        self.cell.as_ref()
+    }
+
+    /// The slot of the next entry (the first one, before iterating), skipped or not.
     #[inline(always)]
     #[must_use]
     pub const fn first_slot(&self) -> usize {
         self.next_slot
+    }
+
+    /// Entries left, skipped ones included (the length of the slot run they occupy).
+    #[inline(always)]
+    #[must_use]
+    pub fn entries(&self) -> usize {
+        match &self.ids {
+            Ids::Words(it) => it.len(),
+            Ids::Bytes(it) => it.len(),
+        }
+    }
+
+    /// The skip mask of the next (up to) 64 entries, as [`skipping`](Self::skipping) set it.
+    #[inline(always)]
+    #[must_use]
+    pub const fn skip_mask(&self) -> u64 {
+        self.skip
+    }
+
+    /// The next entry, skipped or not: `(slot, triangle, skipped)`.
+    #[inline(always)]
+    pub(crate) fn next_entry(&mut self) -> Option<(usize, u32, bool)> {
+        let tri = match &mut self.ids {
+            Ids::Words(it) => *it.next()?,
+            Ids::Bytes(it) => u32::from_le_bytes(*it.next()?),
+        };
+        let slot = self.next_slot;
+        self.next_slot = slot.wrapping_add(1);
+        let skipped = self.skip & 1 != 0;
+        self.skip >>= 1;
+        Some((slot, tri, skipped))
     }
 }
 
@@ -68,21 +139,19 @@ impl Iterator for LeafTriangleIds<'_> {
 
     #[inline(always)]
     fn next(&mut self) -> Option<(usize, u32)> {
-        let tri = match &mut self.ids {
-            Ids::Words(it) => *it.next()?,
-            Ids::Bytes(it) => u32::from_le_bytes(*it.next()?),
-        };
-        let slot = self.next_slot;
-        self.next_slot = slot.wrapping_add(1);
-        Some((slot, tri))
+        loop {
+            let (slot, tri, skipped) = self.next_entry()?;
+            if !skipped {
+                return Some((slot, tri));
+            }
+        }
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = match &self.ids {
-            Ids::Words(it) => it.len(),
-            Ids::Bytes(it) => it.len(),
-        };
-        (n, Some(n))
+        let n = self.entries();
+        let live_mask = if n >= 64 { u64::MAX } else { (1u64 << n) - 1 };
+        let left = n - (self.skip & live_mask).count_ones() as usize;
+        (left, Some(left))
     }
 }
 

@@ -58,16 +58,23 @@ pub(crate) fn for_each_batch<S: LeafTriangles + ?Sized>(
     mut tris: LeafTriangleIds<'_>,
     mut each: impl FnMut(&Batch<'_>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
-    if let Some(run) = source.run(tris.first_slot(), tris.len()) {
+    if let Some(run) = source.run(tris.first_slot(), tris.entries()) {
         for chunk in run.chunks(4) {
             let mut ids = [0u32; 4];
-            for (id, (_, tri)) in ids.iter_mut().zip(&mut tris) {
-                *id = tri;
+            let mut used = 0u32;
+            for (lane, id) in ids.iter_mut().enumerate().take(chunk.len()) {
+                if let Some((_, tri, skipped)) = tris.next_entry() {
+                    *id = tri;
+                    used |= u32::from(!skipped) << lane;
+                }
+            }
+            if used == 0 {
+                continue;
             }
             if let Some(lanes) = TriangleLanes::from_packed(chunk) {
                 each(&Batch {
                     lanes,
-                    used: (1 << chunk.len()) - 1,
+                    used,
                     ids,
                     corners: Corners::Run(chunk),
                 })?;

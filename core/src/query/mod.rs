@@ -79,17 +79,21 @@
 
 mod batch_order;
 mod box_lanes;
+mod cell;
 mod closest;
 mod closest_batch;
 mod leaf;
 mod leaf_batches;
+mod mailbox;
 mod mesh_query;
 mod overlap;
 mod ray;
 mod raycast_batch;
 mod traverse;
 
+pub use cell::Cell;
 pub use leaf::{LeafTriangleIds, LeafTriangles, PackedTriangles};
+pub use mailbox::Mailbox;
 pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};

@@ -4,8 +4,9 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
+use super::box_lanes::MARGIN;
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
-use crate::geom::{closest_point_regions, overlap_triangle_aabb};
+use crate::geom::{clip_triangle_aabb, closest_point_regions, overlap_triangle_aabb};
 use crate::math::{Aabb, Triangle, dot};
 
 /// How many triangles an `*_into` overlap query found and how many fit in the buffer.
@@ -25,19 +26,23 @@ impl OverlapCount {
     }
 }
 
-/// Visits leaves whose box passes `enter_box`, reporting triangles that pass `hits`.
-struct Overlap<'m, S: ?Sized, B, T, F> {
+/// Visits leaves whose box passes `enter_box`, reporting triangles that pass `hits`. In a leaf
+/// with a [`Cell`](super::Cell) a triangle is reported only when the cell owns its `witness`: a
+/// point of the triangle and the query, the same in every cell, so exactly one cell reports it.
+struct Overlap<'m, S: ?Sized, B, T, W, F> {
     source: &'m S,
     enter_box: B,
     hits: T,
+    witness: W,
     report: F,
 }
 
-impl<S, B, T, F> Visitor for Overlap<'_, S, B, T, F>
+impl<S, B, T, W, F> Visitor for Overlap<'_, S, B, T, W, F>
 where
     S: LeafTriangles + ?Sized,
     B: Fn(&Aabb) -> bool,
     T: Fn(&Triangle) -> bool,
+    W: Fn(&Triangle) -> Vec3,
     F: FnMut(u32) -> ControlFlow<()>,
 {
     fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
@@ -45,16 +50,36 @@ where
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        let cell = tris.cell().copied();
         for (slot, tri) in tris {
             let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
-            if !t.is_degenerate() && (self.hits)(&t) {
+            if !t.is_degenerate()
+                && (self.hits)(&t)
+                && cell.is_none_or(|c| c.owns((self.witness)(&t)))
+            {
                 (self.report)(tri)?;
             }
         }
         ControlFlow::Continue(())
     }
+}
+
+/// The point that decides which cell reports triangle `t` overlapping box `query`: the
+/// lexicographically smallest corner of the part of `t` inside `query`, kept inside both the
+/// query and the triangle's bounds, so it lies in a cell the query enters and that holds `t`.
+fn box_witness(t: &Triangle, query: &Aabb) -> Vec3 {
+    let part = clip_triangle_aabb(t, query);
+    let first = part.corners().iter().copied().reduce(|best, p| {
+        let (a, b) = (p.to_array(), best.to_array());
+        if a < b { p } else { best }
+    });
+    let tb = t.bounds();
+    let (lo, hi) = (tb.min.max(query.min), tb.max.min(query.max));
+    // No corner survives clipping only when rounding loses a touching point: the nearest
+    // point of the shared bounds stands in.
+    first.unwrap_or(t.a).clamp(lo, hi.max(lo))
 }
 
 fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> {
@@ -81,6 +106,7 @@ where
         source,
         enter_box: |b: &Aabb| b.overlaps(&query),
         hits: |t: &Triangle| overlap_triangle_aabb(t, &query),
+        witness: |t: &Triangle| box_witness(t, &query),
         report,
     };
     tree.traverse(&mut v);
@@ -100,11 +126,17 @@ where
     let r2 = radius * radius;
     let mut v = Overlap {
         source,
-        enter_box: |b: &Aabb| b.distance_squared_to_point(center) <= r2,
+        // With slack, so the cell owning a triangle's witness is entered despite rounding.
+        enter_box: |b: &Aabb| b.distance_squared_to_point(center) * (1.0 - MARGIN) <= r2,
         hits: |t: &Triangle| {
             let (q, ..) = closest_point_regions(center, t.a, t.b, t.c);
             let d = center - q;
             dot(d, d) <= r2
+        },
+        witness: |t: &Triangle| {
+            let (q, ..) = closest_point_regions(center, t.a, t.b, t.c);
+            let b = t.bounds();
+            q.clamp(b.min, b.max)
         },
         report,
     };

@@ -194,6 +194,11 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
     }
 
     #[inline(always)]
+    fn skips_repeats(&self) -> bool {
+        true
+    }
+
+    #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
         let t = self.slab.t_max;
         !G::PRUNES || key <= t + t.abs() * MARGIN

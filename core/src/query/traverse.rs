@@ -59,6 +59,15 @@ pub trait Visitor {
         true
     }
 
+    /// Whether this query may skip a triangle already offered earlier in the same traversal (a
+    /// ray or closest-point query, whose answer a repeat cannot change). Structures that
+    /// reference a triangle from several cells then skip repeats they remember (see
+    /// [`Mailbox`](super::Mailbox)). The default, `false`, offers every reference: a query that
+    /// reports triangles needs them all to pick the one [`Cell`](super::Cell) that reports each.
+    fn skips_repeats(&self) -> bool {
+        false
+    }
+
     /// Visits a leaf (or a cell): its triangles as `(slot, mesh triangle index)` pairs, where
     /// the slot is what [`LeafTriangles::corners`] is asked for. `Break` ends the traversal.
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;

@@ -1,0 +1,20 @@
+//! What the structures that cut space into cells share — the [k-d tree](crate::kdtree), the
+//! [octree](crate::octree) and the [grid](crate::grid): which cells reference a triangle, how a
+//! cell's triangles are offered to a query, packed triangles per reference, and the figures
+//! `inspect` prints.
+//!
+//! A triangle is referenced from every cell it touches, so references outnumber triangles and
+//! their count is only known once the cells are cut. Each structure therefore gives an exact
+//! sizing pass and a builder that stays within the buffers it is handed.
+
+mod offer;
+mod pack;
+mod reference;
+mod stats;
+mod words;
+
+pub(crate) use offer::Offer;
+pub use pack::pack_references;
+pub(crate) use reference::ReferencePad;
+pub use stats::CellStats;
+pub use words::{LeWords, TwoWordNode, Words};

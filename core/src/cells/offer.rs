@@ -1,0 +1,38 @@
+//! Handing a cell's triangles to a query, once per triangle where the query allows.
+
+use core::ops::ControlFlow;
+
+use crate::query::{Cell, LeafTriangleIds, Mailbox, Visitor};
+
+/// The leaf side of one traversal: a mailbox when the visitor lets repeats be skipped.
+pub(crate) struct Offer {
+    mailbox: Option<Mailbox>,
+}
+
+impl Offer {
+    /// For one traversal with `visitor`.
+    #[inline(always)]
+    pub(crate) fn new<V: Visitor + ?Sized>(visitor: &V) -> Self {
+        Self {
+            mailbox: visitor.skips_repeats().then(Mailbox::new),
+        }
+    }
+
+    /// Offers the references `ids` of `cell` to `visitor` (nothing for an empty cell).
+    #[inline(always)]
+    pub(crate) fn cell<V: Visitor + ?Sized>(
+        &mut self,
+        visitor: &mut V,
+        ids: LeafTriangleIds<'_>,
+        cell: Cell,
+    ) -> ControlFlow<()> {
+        if ids.entries() == 0 {
+            return ControlFlow::Continue(());
+        }
+        let ids = ids.with_cell(cell);
+        match &mut self.mailbox {
+            Some(mailbox) => visitor.leaf(mailbox.filter(ids)),
+            None => visitor.leaf(ids),
+        }
+    }
+}

@@ -1,0 +1,44 @@
+//! Which cells reference a triangle: every cell its triangle touches, padded for rounding.
+
+use crate::geom::overlap_triangle_aabb;
+use crate::math::{Aabb, Triangle, max_f32};
+
+/// The slack added around every cell before testing which triangles touch it.
+///
+/// A query meets a triangle in a cell only if the cell references it. Where the ray, the point
+/// or the query box passes within rounding of a cell face, the traversal may pick the cell on
+/// either side, so a triangle within that distance of a cell is referenced by it too. The pad
+/// is 2⁻¹⁴ of the scene's largest extent plus 2⁻²⁰ of its largest coordinate: hundreds of times
+/// the rounding of a query that starts within a thousand scene sizes, and small enough to add
+/// few references.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ReferencePad(f32);
+
+impl ReferencePad {
+    /// The pad for a scene with bounds `bounds`.
+    pub(crate) fn of(bounds: &Aabb) -> Self {
+        if bounds.is_empty() || !bounds.is_finite() {
+            return Self(0.0);
+        }
+        let e = bounds.extent();
+        let m = bounds.min.abs().max(bounds.max.abs());
+        Self(
+            max_f32(max_f32(e.x, e.y), e.z) / 16_384.0
+                + max_f32(max_f32(m.x, m.y), m.z) / 1_048_576.0,
+        )
+    }
+
+    /// Whether triangle `tri` is referenced by the cell with box `cell`.
+    #[inline]
+    pub(crate) fn touches(self, tri: &Triangle, cell: &Aabb) -> bool {
+        let pad = glam::Vec3::splat(self.0);
+        overlap_triangle_aabb(tri, &Aabb::new(cell.min - pad, cell.max + pad))
+    }
+
+    /// `aabb` grown by the pad.
+    #[inline]
+    pub(crate) fn grow(self, aabb: &Aabb) -> Aabb {
+        let pad = glam::Vec3::splat(self.0);
+        Aabb::new(aabb.min - pad, aabb.max + pad)
+    }
+}

@@ -1,0 +1,184 @@
+//! Building a grid: count the references of a resolution, shrink it until they fit, fill.
+
+use super::{Grid, GridConfig, GridLayout};
+use crate::cells::ReferencePad;
+use crate::error::{BufferKind, BuildError};
+use crate::mesh::ValidMesh;
+
+/// What a grid build needs: its layout and the exact length of each buffer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridSizes {
+    /// The cells' geometry.
+    pub layout: GridLayout,
+    /// Length of the offsets buffer: cells + 1.
+    pub offsets: usize,
+    /// Length of the references buffer: one per triangle and cell it touches.
+    pub items: usize,
+}
+
+/// Calls `each(cell index)` for every cell triangle `tri` of `mesh` touches, in ascending
+/// index order.
+fn for_each_cell(
+    layout: &GridLayout,
+    pad: ReferencePad,
+    mesh: &ValidMesh<'_>,
+    tri: u32,
+    mut each: impl FnMut(usize),
+) {
+    let Some(t) = mesh.triangle(tri) else {
+        return;
+    };
+    let (lo, hi) = layout.cells_touching(&pad.grow(&t.bounds()));
+    for k in lo[2]..=hi[2] {
+        for j in lo[1]..=hi[1] {
+            for i in lo[0]..=hi[0] {
+                let c = [i, j, k];
+                if pad.touches(&t, layout.cell(c).aabb()) {
+                    each(layout.index(c));
+                }
+            }
+        }
+    }
+}
+
+/// The references `layout` needs for `mesh`, counting no further than `limit`.
+fn count_references(layout: &GridLayout, mesh: &ValidMesh<'_>, limit: usize) -> usize {
+    let pad = ReferencePad::of(&layout.bounds);
+    let mut total = 0usize;
+    for tri in 0..mesh.triangle_count() as u32 {
+        for_each_cell(layout, pad, mesh, tri, |_| total += 1);
+        if total > limit {
+            break;
+        }
+    }
+    total
+}
+
+impl<'a> Grid<&'a [u32]> {
+    /// The exact buffer lengths [`Grid::build`] needs to build `mesh` with `config` at full
+    /// resolution: one counting pass over the triangles, nothing written.
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] for a config out of range.
+    pub fn measure(mesh: &ValidMesh<'_>, config: &GridConfig) -> Result<GridSizes, BuildError> {
+        config.validate()?;
+        let layout = GridLayout::for_triangles(
+            mesh.bounds(),
+            mesh.triangle_count(),
+            config.cells_per_triangle,
+            config.max_resolution,
+        );
+        let cells = layout.cell_count().unwrap_or(usize::MAX);
+        Ok(GridSizes {
+            layout,
+            offsets: cells.saturating_add(1),
+            items: count_references(&layout, mesh, usize::MAX),
+        })
+    }
+
+    /// Builds the grid of `mesh` into `offsets` (cell starts) and `items` (references), which
+    /// it borrows. Each cell lists the triangles it touches in ascending index order.
+    ///
+    /// Stays inside the buffers: when the configured λ needs more cells or references than
+    /// they hold, λ is halved (coarser cells) until both fit, down to a single cell. The result
+    /// depends only on the mesh, the config and the two lengths. Buffers are used from the
+    /// front; the grid borrows exactly the prefix it uses.
+    ///
+    /// # Errors
+    /// - [`BuildError::InvalidConfig`] for a config out of range;
+    /// - [`BuildError::BufferTooSmall`] when even one cell does not fit (`offsets` shorter
+    ///   than 2 with triangles, `items` shorter than the triangle count). Nothing usable is
+    ///   returned then; the buffers' contents are unspecified.
+    pub fn build(
+        mesh: &ValidMesh<'_>,
+        config: &GridConfig,
+        offsets: &'a mut [u32],
+        items: &'a mut [u32],
+    ) -> Result<Self, BuildError> {
+        config.validate()?;
+        let n = mesh.triangle_count();
+        let budget = items.len().min(u32::MAX as usize);
+        let mut lambda = config.cells_per_triangle;
+        loop {
+            let layout = GridLayout::for_triangles(mesh.bounds(), n, lambda, config.max_resolution);
+            let cells = layout.cell_count().unwrap_or(usize::MAX);
+            let single = layout.resolution == [1, 1, 1];
+            if cells < offsets.len() {
+                let refs = count_references(&layout, mesh, budget);
+                if refs <= budget {
+                    return Ok(fill(layout, mesh, offsets, items, cells, refs));
+                }
+                if single {
+                    return Err(BuildError::BufferTooSmall {
+                        buffer: BufferKind::References,
+                        needed: refs,
+                        got: items.len(),
+                    });
+                }
+            } else if single {
+                return Err(BuildError::BufferTooSmall {
+                    buffer: BufferKind::CellOffsets,
+                    needed: 2,
+                    got: offsets.len(),
+                });
+            }
+            lambda *= 0.5;
+        }
+    }
+}
+
+/// Writes the cell lists of `layout` (which needs `cells` cells and `refs` references, both
+/// fitting) by a counting sort, and returns the grid over the used prefixes.
+fn fill<'a>(
+    layout: GridLayout,
+    mesh: &ValidMesh<'_>,
+    offsets: &'a mut [u32],
+    items: &'a mut [u32],
+    cells: usize,
+    refs: usize,
+) -> Grid<&'a [u32]> {
+    let pad = ReferencePad::of(&layout.bounds);
+    let offsets = offsets.get_mut(..=cells).unwrap_or_default();
+    let items = items.get_mut(..refs).unwrap_or_default();
+    offsets.fill(0);
+    // Counts land one cell up, so the running sum below leaves each cell's start in place.
+    for tri in 0..mesh.triangle_count() as u32 {
+        for_each_cell(&layout, pad, mesh, tri, |c| {
+            if let Some(o) = offsets.get_mut(c + 1) {
+                *o += 1;
+            }
+        });
+    }
+    let mut sum = 0u32;
+    for o in offsets.iter_mut() {
+        sum += *o;
+        *o = sum;
+    }
+    // offsets[c] is now the start of cell c; each write advances it to the cell's end…
+    for tri in 0..mesh.triangle_count() as u32 {
+        for_each_cell(&layout, pad, mesh, tri, |c| {
+            if let Some(o) = offsets.get_mut(c) {
+                if let Some(slot) = items.get_mut(*o as usize) {
+                    *slot = tri;
+                }
+                *o += 1;
+            }
+        });
+    }
+    // …which is the next cell's start: shift back by one.
+    for c in (1..=cells).rev() {
+        let prev = offsets.get(c - 1).copied().unwrap_or(0);
+        if let Some(o) = offsets.get_mut(c) {
+            *o = prev;
+        }
+    }
+    if let Some(first) = offsets.first_mut() {
+        *first = 0;
+    }
+    let (offsets, items): (&'a [u32], &'a [u32]) = (offsets, items);
+    Grid {
+        layout,
+        offsets,
+        items,
+    }
+}

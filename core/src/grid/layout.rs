@@ -1,0 +1,150 @@
+//! Where a grid's cells are: its bounds cut into `nx × ny × nz` equal cells.
+
+use glam::Vec3;
+
+use crate::math::{Aabb, max_f32};
+use crate::query::Cell;
+
+/// A grid's geometry: the box it covers and its resolution. Cell `(i, j, k)` has index
+/// `i + nx · (j + ny · k)`; its box runs between the cell boundaries
+/// [`boundary`](Self::boundary)`(axis, i)` and `boundary(axis, i + 1)` on each axis, so
+/// neighbouring cells share their faces exactly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridLayout {
+    /// The box the cells cover (the mesh bounds).
+    pub bounds: Aabb,
+    /// Cells along x, y and z, each at least 1.
+    pub resolution: [u32; 3],
+}
+
+impl GridLayout {
+    /// The layout for `triangles` triangles in `bounds` with about `cells_per_triangle` cells
+    /// per triangle, at most `max_resolution` along an axis. Cells are as near cubic as the
+    /// bounds allow: each axis gets `extent · ∛(λN / volume)` cells, rounded up, where a flat
+    /// axis counts as a thousandth of the largest extent.
+    #[must_use]
+    pub fn for_triangles(
+        bounds: Aabb,
+        triangles: usize,
+        cells_per_triangle: f32,
+        max_resolution: u32,
+    ) -> Self {
+        let e = bounds.extent();
+        let largest = max_f32(max_f32(e.x, e.y), e.z);
+        let mut resolution = [1u32; 3];
+        if largest > 0.0 && largest.is_finite() && triangles > 0 {
+            let floor = largest / 1000.0;
+            let e = e.max(Vec3::splat(floor));
+            let volume = f64::from(e.x) * f64::from(e.y) * f64::from(e.z);
+            let cells = f64::from(cells_per_triangle) * triangles as f64;
+            let per_unit = libm::cbrt(cells / volume);
+            for (r, extent) in resolution.iter_mut().zip(e.to_array()) {
+                let n = libm::ceil(f64::from(extent) * per_unit);
+                // `as` saturates; the clamp keeps every axis in 1..=max.
+                *r = (n as u32).clamp(1, max_resolution.max(1));
+            }
+        }
+        Self { bounds, resolution }
+    }
+
+    /// Cells in all (`nx · ny · nz`), or `None` past `usize`.
+    #[must_use]
+    pub fn cell_count(&self) -> Option<usize> {
+        let [x, y, z] = self.resolution.map(|r| r as usize);
+        x.checked_mul(y)?.checked_mul(z)
+    }
+
+    /// The `i`-th boundary along `axis` (0 is the bounds' `min`, `resolution[axis]` its `max`):
+    /// `min + i · (extent / n)`, never past `max`. Increasing in `i`.
+    #[inline(always)]
+    #[must_use]
+    pub fn boundary(&self, axis: usize, i: u32) -> f32 {
+        let (lo, hi) = (self.bounds.min.to_array(), self.bounds.max.to_array());
+        let (Some(&lo), Some(&hi), Some(&n)) =
+            (lo.get(axis), hi.get(axis), self.resolution.get(axis))
+        else {
+            return 0.0;
+        };
+        if i >= n {
+            return hi;
+        }
+        let step = (hi - lo) / n as f32;
+        (lo + i as f32 * step).min(hi)
+    }
+
+    /// The box of the cells `lo..hi` (per axis, `hi` exclusive).
+    #[inline(always)]
+    #[must_use]
+    pub fn range_box(&self, lo: [u32; 3], hi: [u32; 3]) -> Aabb {
+        Aabb::new(
+            Vec3::new(
+                self.boundary(0, lo[0]),
+                self.boundary(1, lo[1]),
+                self.boundary(2, lo[2]),
+            ),
+            Vec3::new(
+                self.boundary(0, hi[0]),
+                self.boundary(1, hi[1]),
+                self.boundary(2, hi[2]),
+            ),
+        )
+    }
+
+    /// The cell `(i, j, k)` as a [`Cell`]: its box, owning its `max` faces on the grid's.
+    #[inline(always)]
+    #[must_use]
+    pub fn cell(&self, c: [u32; 3]) -> Cell {
+        let hi = [c[0] + 1, c[1] + 1, c[2] + 1];
+        let [nx, ny, nz] = self.resolution;
+        Cell::new(
+            self.range_box(c, hi),
+            [hi[0] >= nx, hi[1] >= ny, hi[2] >= nz],
+        )
+    }
+
+    /// The index of cell `(i, j, k)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn index(&self, c: [u32; 3]) -> usize {
+        let [nx, ny, _] = self.resolution.map(|r| r as usize);
+        c[0] as usize + nx * (c[1] as usize + ny * c[2] as usize)
+    }
+
+    /// The cell along `axis` holding coordinate `x`, clamped into the grid (may be one off where
+    /// `x` is within rounding of a boundary: callers widen by one where that matters).
+    #[inline(always)]
+    #[must_use]
+    pub fn coordinate_cell(&self, axis: usize, x: f32) -> u32 {
+        let (lo, hi) = (self.bounds.min.to_array(), self.bounds.max.to_array());
+        let (Some(&lo), Some(&hi), Some(&n)) =
+            (lo.get(axis), hi.get(axis), self.resolution.get(axis))
+        else {
+            return 0;
+        };
+        let extent = hi - lo;
+        if !(extent > 0.0) || !(x > lo) {
+            return 0;
+        }
+        let c = ((x - lo) / extent * n as f32) as u32; // `as` saturates (and maps NaN to 0)
+        c.min(n - 1)
+    }
+
+    /// The cells whose boxes may touch `aabb`: per axis, `lo..=hi` (widened by one cell each
+    /// way for rounding, clamped into the grid).
+    #[must_use]
+    pub fn cells_touching(&self, aabb: &Aabb) -> ([u32; 3], [u32; 3]) {
+        let (mut lo, mut hi) = ([0u32; 3], [0u32; 3]);
+        for axis in 0..3 {
+            let n = self.resolution.get(axis).copied().unwrap_or(1);
+            let (a, b) = (aabb.min.to_array(), aabb.max.to_array());
+            let (Some(&a), Some(&b)) = (a.get(axis), b.get(axis)) else {
+                continue;
+            };
+            if let (Some(l), Some(h)) = (lo.get_mut(axis), hi.get_mut(axis)) {
+                *l = self.coordinate_cell(axis, a).saturating_sub(1);
+                *h = (self.coordinate_cell(axis, b) + 1).min(n - 1);
+            }
+        }
+        (lo, hi)
+    }
+}
