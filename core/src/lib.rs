@@ -85,6 +85,7 @@ pub mod cells;
 pub mod error;
 pub mod geom;
 pub mod grid;
+pub mod kdtree;
 pub mod math;
 pub mod mesh;
 #[cfg(feature = "alloc")]

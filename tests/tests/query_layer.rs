@@ -8,10 +8,10 @@ use std::ops::ControlFlow;
 
 use meshq::blob::{BlobTree, BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
-use meshq::geom::{CullMode, intersect_ray_aabb};
-use meshq::math::{Aabb, Vec3};
+use meshq::geom::intersect_ray_aabb;
+use meshq::math::Aabb;
 use meshq::mesh::ValidMesh;
-use meshq::query::{LeafTriangleIds, RayOptions, TriangleTest, Visitor};
+use meshq::query::{LeafTriangleIds, RayOptions, Visitor};
 use meshq::{MeshBvh, MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;

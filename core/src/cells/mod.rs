@@ -10,11 +10,15 @@
 mod offer;
 mod pack;
 mod reference;
+mod sizes;
 mod stats;
+mod tree_build;
 mod words;
 
 pub(crate) use offer::Offer;
 pub use pack::pack_references;
 pub(crate) use reference::ReferencePad;
+pub use sizes::TreeSizes;
 pub use stats::CellStats;
+pub(crate) use tree_build::{Decision, MAX_ARITY, Splitter, build_tree};
 pub use words::{LeWords, TwoWordNode, Words};

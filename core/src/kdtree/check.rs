@@ -1,0 +1,87 @@
+//! Checking that arrays form a k-d tree.
+
+use super::{KdConfig, KdKind, KdTree};
+use crate::cells::Words;
+use crate::error::StructureError;
+use crate::query::Cell;
+
+/// Checks `tree` (see [`KdTree::from_parts`]). The walk counts visits and stops past the node
+/// count, so arrays that name the same children twice are refused in bounded time (and every
+/// later traversal is bounded by the node count).
+pub(super) fn check<N: Words, W: Words>(
+    tree: &KdTree<N, W>,
+    triangle_count: usize,
+) -> Result<(), StructureError> {
+    let count = tree.node_count();
+    if count == 0 || !tree.nodes.len().is_multiple_of(2) {
+        return Err(StructureError::EmptyMismatch);
+    }
+    let single_empty_leaf = count == 1 && tree.items.is_empty();
+    if !single_empty_leaf && (!tree.bounds.is_finite() || tree.bounds.is_empty()) {
+        return Err(StructureError::BadBounds { node: 0 });
+    }
+    let mut stack = [(0u32, Cell::root(tree.bounds), 0u32); KdConfig::MAX_DEPTH as usize + 2];
+    let mut top = 1usize;
+    let mut visits = 0usize;
+    while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied()) {
+        top -= 1;
+        visits += 1;
+        if visits > count {
+            return Err(StructureError::UnreachableNodes {
+                reached: visits as u32,
+                total: count as u32,
+            });
+        }
+        let Some(n) = tree.node(node as usize) else {
+            return Err(StructureError::ChildOutOfRange { node });
+        };
+        match n.kind() {
+            KdKind::Leaf { first, count: len } => {
+                let end = first as usize + len as usize;
+                if end > tree.items.len() {
+                    return Err(StructureError::LeafRangeOutOfBounds { node });
+                }
+            }
+            KdKind::Inner {
+                axis,
+                split,
+                first_child,
+            } => {
+                if depth >= KdConfig::MAX_DEPTH {
+                    return Err(StructureError::TooDeep { node });
+                }
+                let (lo, hi) = (cell.aabb().min.to_array(), cell.aabb().max.to_array());
+                let inside = matches!((lo.get(axis), hi.get(axis)), (Some(&l), Some(&h)) if split >= l && split <= h);
+                if !split.is_finite() || !inside {
+                    return Err(StructureError::BadNode { node });
+                }
+                if first_child <= node {
+                    return Err(StructureError::ChildNotAfterParent { node });
+                }
+                if first_child as usize + 1 >= count {
+                    return Err(StructureError::ChildOutOfRange { node });
+                }
+                let (below, above) = cell.split(axis, split);
+                for (k, c) in [(1, above), (0, below)] {
+                    if let Some(slot) = stack.get_mut(top) {
+                        *slot = (first_child + k, c, depth + 1);
+                        top += 1;
+                    }
+                }
+            }
+        }
+    }
+    if visits != count {
+        return Err(StructureError::UnreachableNodes {
+            reached: visits as u32,
+            total: count as u32,
+        });
+    }
+    for i in 0..tree.items.len() {
+        let tri = tree.items.word(i).unwrap_or(u32::MAX);
+        if tri as usize >= triangle_count {
+            return Err(StructureError::TriangleOutOfRange { node: 0, tri });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,209 @@
+//! Walking a k-d tree: rays front to back through the cells they cross, other queries nearest
+//! cell first.
+
+use core::ops::ControlFlow;
+
+use super::{KdConfig, KdKind, KdTree};
+use crate::cells::{Offer, Words};
+use crate::geom::SlabRay;
+use crate::math::Ray;
+use crate::query::{Cell, Traverse, Visitor};
+
+/// Relative slack on ray parameters, as the query layer's box tests use: a cell is entered when
+/// the ray might reach it within rounding.
+const MARGIN: f32 = 1.0 / 65_536.0;
+
+/// Deferred cells: one per level at most.
+const STACK: usize = KdConfig::MAX_DEPTH as usize + 2;
+
+impl<N: Words, W: Words> Traverse for KdTree<N, W> {
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        let mut offer = Offer::new(visitor);
+        match visitor.ray().copied() {
+            Some(ray) => {
+                self.march::<V, false>(&ray, visitor, &mut offer);
+            }
+            None => self.descend(visitor, &mut offer),
+        }
+    }
+}
+
+impl<N: Words, W: Words> KdTree<N, W> {
+    /// Offers a leaf's references; `Break` when the visitor ends the walk.
+    #[inline(always)]
+    fn visit<V: Visitor + ?Sized>(
+        &self,
+        first: u32,
+        count: u32,
+        cell: Cell,
+        visitor: &mut V,
+        offer: &mut Offer,
+    ) -> ControlFlow<()> {
+        match self.items.ids(first as usize, count as usize) {
+            Some(ids) => offer.cell(visitor, ids, cell),
+            None => ControlFlow::Continue(()),
+        }
+    }
+
+    /// Front to back along `ray`: at each plane the span `(t_near, t_far)` is cut where the ray
+    /// crosses it; the near side is walked now, the far side deferred with its own span. After
+    /// a leaf, the next deferred cell is entered only if the visitor's answer does not already
+    /// lie before it (`revisit` of its `t_near`): a hit inside the current cell ends the walk,
+    /// one beyond it does not.
+    ///
+    /// `EXIT_ON_ANY_HIT` replaces that rule by "stop once anything was hit" — wrong, kept only
+    /// so a test can show the suites catch it.
+    pub(super) fn march<V: Visitor + ?Sized, const EXIT_ON_ANY_HIT: bool>(
+        &self,
+        ray: &Ray,
+        visitor: &mut V,
+        offer: &mut Offer,
+    ) {
+        let b = self.bounds;
+        let (entry, exit) = SlabRay::new(ray).clip(b.min.to_array(), b.max.to_array());
+        let (t0, t1) = (entry - entry.abs() * MARGIN, exit + exit.abs() * MARGIN);
+        if !(t0 <= t1) {
+            return;
+        }
+        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
+        let mut stack = [(0u32, t0, t1, Cell::root(b)); STACK];
+        let mut top = 0usize;
+        let mut current = Some((0u32, t0, t1, Cell::root(b)));
+        loop {
+            let Some((mut node, near_t, mut far_t, mut cell)) = current.take().or_else(|| {
+                top = top.checked_sub(1)?;
+                stack.get(top).copied()
+            }) else {
+                return;
+            };
+            if !visitor.revisit(near_t) {
+                // Deferred cells come off the stack nearest first: none further can help.
+                return;
+            }
+            loop {
+                match self.node(node as usize).map(|n| n.kind()) {
+                    Some(KdKind::Leaf { first, count }) => {
+                        if self.visit(first, count, cell, visitor, offer).is_break() {
+                            return;
+                        }
+                        if EXIT_ON_ANY_HIT && !visitor.revisit(f32::MAX) {
+                            return;
+                        }
+                        break;
+                    }
+                    Some(KdKind::Inner {
+                        axis,
+                        split,
+                        first_child,
+                    }) => {
+                        let (Some(&oa), Some(&da)) = (o.get(axis), d.get(axis)) else {
+                            return;
+                        };
+                        let (below, above) = cell.split(axis, split);
+                        let low_first = oa < split || (oa == split && da <= 0.0);
+                        let (near, far) = if low_first {
+                            ((first_child, below), (first_child + 1, above))
+                        } else {
+                            ((first_child + 1, above), (first_child, below))
+                        };
+                        let (visit_near, visit_far, cut_lo, cut_hi) = if da == 0.0 {
+                            // Parallel to the plane: only the origin's side, or both when the
+                            // ray lies in the plane.
+                            let both = oa == split;
+                            (true, both, near_t, far_t)
+                        } else if (da < 0.0) == low_first {
+                            // Moving away from the plane: it lies behind the origin.
+                            (true, false, near_t, far_t)
+                        } else {
+                            let ts = (split - oa) / da;
+                            let slack = ts.abs() * MARGIN;
+                            (
+                                ts + slack >= near_t,
+                                ts - slack <= far_t,
+                                ts - slack,
+                                ts + slack,
+                            )
+                        };
+                        match (visit_near, visit_far) {
+                            (true, true) => {
+                                if let Some(slot) = stack.get_mut(top) {
+                                    *slot = (far.0, near_t.max(cut_lo), far_t, far.1);
+                                    top += 1;
+                                }
+                                (node, cell) = near;
+                                far_t = far_t.min(cut_hi);
+                            }
+                            (true, false) => (node, cell) = near,
+                            (false, _) => (node, cell) = far,
+                        }
+                    }
+                    None => break,
+                }
+            }
+        }
+    }
+
+    /// Nearest cell first for queries without a ray: both children entered through their cell
+    /// boxes, the one with the smaller key walked now, the other deferred.
+    fn descend<V: Visitor + ?Sized>(&self, visitor: &mut V, offer: &mut Offer) {
+        let root = Cell::root(self.bounds);
+        let Some(key) = visitor.enter(root.aabb()) else {
+            return;
+        };
+        let mut stack = [(0u32, 0.0f32, root); STACK];
+        let mut top = 0usize;
+        let mut current = Some((0u32, key, root));
+        loop {
+            let Some((mut node, key, mut cell)) = current.take().or_else(|| {
+                top = top.checked_sub(1)?;
+                stack.get(top).copied()
+            }) else {
+                return;
+            };
+            if !visitor.revisit(key) {
+                continue;
+            }
+            loop {
+                match self.node(node as usize).map(|n| n.kind()) {
+                    Some(KdKind::Leaf { first, count }) => {
+                        if self.visit(first, count, cell, visitor, offer).is_break() {
+                            return;
+                        }
+                        break;
+                    }
+                    Some(KdKind::Inner {
+                        axis,
+                        split,
+                        first_child,
+                    }) => {
+                        let (below, above) = cell.split(axis, split);
+                        let kb = visitor.enter(below.aabb());
+                        let ka = visitor.enter(above.aabb());
+                        let pick = match (kb, ka) {
+                            (Some(b), Some(a)) => {
+                                let (near, far) = if a < b {
+                                    ((first_child + 1, above), (first_child, b, below))
+                                } else {
+                                    ((first_child, below), (first_child + 1, a, above))
+                                };
+                                if let Some(slot) = stack.get_mut(top) {
+                                    *slot = far;
+                                    top += 1;
+                                }
+                                Some(near)
+                            }
+                            (Some(_), None) => Some((first_child, below)),
+                            (None, Some(_)) => Some((first_child + 1, above)),
+                            (None, None) => None,
+                        };
+                        match pick {
+                            Some(next) => (node, cell) = next,
+                            None => break,
+                        }
+                    }
+                    None => break,
+                }
+            }
+        }
+    }
+}

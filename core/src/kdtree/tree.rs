@@ -1,0 +1,208 @@
+//! A built k-d tree over its arrays, and its build into caller buffers.
+
+use super::split::KdSplitter;
+use super::{KdConfig, KdKind, KdNode};
+use crate::cells::{CellStats, ReferencePad, TreeSizes, Words, build_tree};
+use crate::error::{BuildError, StructureError};
+use crate::math::Aabb;
+use crate::mesh::ValidMesh;
+use crate::query::Cell;
+
+/// A k-d tree: the mesh bounds cut by axis-aligned planes into leaf cells, each listing the
+/// triangles it touches.
+///
+/// `nodes` are [`KdNode`]s (two words each; node 0 is the root, children after their parent),
+/// `items` the references that leaves point into. The arrays are slices from
+/// [`KdTree::build`] or [`KdTree::from_parts`], or a blob's bytes read in place
+/// ([`LeWords`](crate::cells::LeWords)).
+///
+/// It answers every query through [`Traverse`](crate::query::Traverse): rays walk the leaves
+/// they cross front to back, clipping their `(t_near, t_far)` span at each plane, and stop once
+/// a hit lies inside the current cell; other queries descend nearest cell first.
+#[derive(Clone, Copy, Debug)]
+pub struct KdTree<N, W> {
+    pub(super) bounds: Aabb,
+    pub(super) nodes: N,
+    pub(super) items: W,
+}
+
+impl<'a> KdTree<&'a [KdNode], &'a [u32]> {
+    /// The exact sizes [`KdTree::build`] needs for `mesh` with `config`: a full build that
+    /// writes no nodes, using `work` for the reference lists (see [`TreeSizes`]; give it a few
+    /// times the triangle count, and retry longer while the result is not `complete`).
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] for a config out of range;
+    /// [`BuildError::BufferTooSmall`] when `work` is shorter than the triangle count.
+    pub fn measure(
+        mesh: &ValidMesh<'_>,
+        config: &KdConfig,
+        work: &mut [u32],
+    ) -> Result<TreeSizes, BuildError> {
+        config.validate()?;
+        let splitter = splitter(mesh, config);
+        let built = build_tree(
+            &splitter,
+            mesh.triangle_count(),
+            Cell::root(mesh.bounds()),
+            work,
+            None,
+        )?;
+        Ok(TreeSizes {
+            nodes: built.nodes,
+            items: built.references,
+            work: built.peak,
+            complete: built.complete,
+        })
+    }
+
+    /// Builds the k-d tree of `mesh` into `nodes` and `items`, which it borrows (their used
+    /// prefixes).
+    ///
+    /// Stays inside the buffers: a cell whose children would not fit (nodes, or references
+    /// while building) stays a leaf, so a short buffer gives a coarser tree, never an error,
+    /// as long as the root fits. The tree depends only on the mesh, the config and the two
+    /// lengths; [`KdTree::measure`] tells the lengths that build the full tree.
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] for a config out of range;
+    /// [`BuildError::BufferTooSmall`] when `items` is shorter than the triangle count or
+    /// `nodes` is empty. Nothing usable is returned then.
+    pub fn build(
+        mesh: &ValidMesh<'_>,
+        config: &KdConfig,
+        nodes: &'a mut [KdNode],
+        items: &'a mut [u32],
+    ) -> Result<Self, BuildError> {
+        config.validate()?;
+        let splitter = splitter(mesh, config);
+        let built = build_tree(
+            &splitter,
+            mesh.triangle_count(),
+            Cell::root(mesh.bounds()),
+            items,
+            Some(nodes),
+        )?;
+        let nodes: &'a [KdNode] = nodes.get(..built.nodes).unwrap_or_default();
+        let items: &'a [u32] = items.get(..built.references).unwrap_or_default();
+        Ok(Self {
+            bounds: mesh.bounds(),
+            nodes,
+            items,
+        })
+    }
+}
+
+fn splitter<'m>(mesh: &'m ValidMesh<'m>, config: &KdConfig) -> KdSplitter<'m> {
+    KdSplitter {
+        mesh,
+        config: *config,
+        depth_limit: config.depth_limit(mesh.triangle_count()),
+        pad: ReferencePad::of(&mesh.bounds()),
+    }
+}
+
+impl<N: Words, W: Words> KdTree<N, W> {
+    /// A k-d tree over arrays written earlier by [`KdTree::build`] (kept, copied or stored)
+    /// for a mesh of `triangle_count` triangles with bounds `bounds`, after checking they form
+    /// one: every node reachable exactly once, children after their parent, planes finite and
+    /// inside their cell, depth at most [`KdConfig::MAX_DEPTH`], leaf ranges inside `items`,
+    /// references naming triangles of the mesh. It does not check that each leaf lists exactly
+    /// the triangles touching it: one that lists others answers wrongly, never panics.
+    ///
+    /// # Errors
+    /// The first [`StructureError`] found.
+    pub fn from_parts(
+        bounds: Aabb,
+        nodes: N,
+        items: W,
+        triangle_count: usize,
+    ) -> Result<Self, StructureError> {
+        let tree = Self {
+            bounds,
+            nodes,
+            items,
+        };
+        super::check::check(&tree, triangle_count)?;
+        Ok(tree)
+    }
+
+    /// The root cell's box (the mesh bounds).
+    #[must_use]
+    pub const fn bounds(&self) -> &Aabb {
+        &self.bounds
+    }
+
+    /// The node array.
+    #[must_use]
+    pub const fn nodes(&self) -> N {
+        self.nodes
+    }
+
+    /// The references array.
+    #[must_use]
+    pub const fn items(&self) -> W {
+        self.items
+    }
+
+    /// Node count.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len() / 2
+    }
+
+    /// Node `i`, if present.
+    #[inline(always)]
+    #[must_use]
+    pub fn node(&self, i: usize) -> Option<KdNode> {
+        Some(KdNode {
+            a: self.nodes.word(i.checked_mul(2)?)?,
+            b: self.nodes.word(i * 2 + 1)?,
+        })
+    }
+
+    /// Every leaf with its cell and depth, depth first, below to above.
+    pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
+        let mut stack = [(0u32, Cell::root(self.bounds), 0u32); KdConfig::MAX_DEPTH as usize + 2];
+        let mut top = 1usize;
+        while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied())
+        {
+            top -= 1;
+            match self.node(node as usize).map(|n| n.kind()) {
+                Some(KdKind::Leaf { first, count }) => each(cell, depth, first, count),
+                Some(KdKind::Inner {
+                    axis,
+                    split,
+                    first_child,
+                }) => {
+                    let (below, above) = cell.split(axis, split);
+                    for (k, c) in [(1, above), (0, below)] {
+                        if let Some(slot) = stack.get_mut(top) {
+                            *slot = (first_child + k, c, depth + 1);
+                            top += 1;
+                        }
+                    }
+                }
+                None => {}
+            }
+        }
+    }
+
+    /// Nodes, leaf cells, empty cells, references, depth.
+    #[must_use]
+    pub fn stats(&self, triangles: usize) -> CellStats {
+        let mut stats = CellStats {
+            nodes: self.node_count(),
+            references: self.items.len(),
+            triangles,
+            ..CellStats::default()
+        };
+        self.for_each_leaf(|_, depth, _, count| {
+            stats.cells += 1;
+            stats.empty_cells += usize::from(count == 0);
+            stats.max_depth = stats.max_depth.max(depth as usize);
+            stats.max_cell_references = stats.max_cell_references.max(count as usize);
+        });
+        stats
+    }
+}
