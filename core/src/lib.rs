@@ -88,6 +88,7 @@ pub mod grid;
 pub mod kdtree;
 pub mod math;
 pub mod mesh;
+pub mod octree;
 #[cfg(feature = "alloc")]
 pub mod owned;
 pub mod prelude;

@@ -1,0 +1,75 @@
+//! Checking that arrays form an octree.
+
+use super::tree::STACK;
+use super::{Octree, OctreeConfig};
+use crate::cells::Words;
+use crate::error::StructureError;
+
+/// Checks `tree` (see [`Octree::from_parts`]). The walk counts visits and stops past the node
+/// count, so arrays that name the same children twice are refused in bounded time.
+pub(super) fn check<N: Words, W: Words>(
+    tree: &Octree<N, W>,
+    triangle_count: usize,
+) -> Result<(), StructureError> {
+    let count = tree.node_count();
+    if count == 0 || !tree.nodes.len().is_multiple_of(2) {
+        return Err(StructureError::EmptyMismatch);
+    }
+    let single_empty_leaf = count == 1 && tree.items.is_empty();
+    if !single_empty_leaf && (!tree.root.is_finite() || tree.root.is_empty()) {
+        return Err(StructureError::BadBounds { node: 0 });
+    }
+    let mut stack = [(0u32, 0u32); STACK];
+    let mut top = 1usize;
+    let mut visits = 0usize;
+    while let Some((node, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied()) {
+        top -= 1;
+        visits += 1;
+        if visits > count {
+            return Err(StructureError::UnreachableNodes {
+                reached: visits as u32,
+                total: count as u32,
+            });
+        }
+        let Some(n) = tree.node(node as usize) else {
+            return Err(StructureError::ChildOutOfRange { node });
+        };
+        match n.first_child() {
+            None => {
+                if n.a as usize + n.b as usize > tree.items.len() {
+                    return Err(StructureError::LeafRangeOutOfBounds { node });
+                }
+            }
+            Some(first) => {
+                if depth >= OctreeConfig::MAX_DEPTH {
+                    return Err(StructureError::TooDeep { node });
+                }
+                if first <= node {
+                    return Err(StructureError::ChildNotAfterParent { node });
+                }
+                if first as usize + 8 > count {
+                    return Err(StructureError::ChildOutOfRange { node });
+                }
+                for k in 0..8 {
+                    if let Some(slot) = stack.get_mut(top) {
+                        *slot = (first + k, depth + 1);
+                        top += 1;
+                    }
+                }
+            }
+        }
+    }
+    if visits != count {
+        return Err(StructureError::UnreachableNodes {
+            reached: visits as u32,
+            total: count as u32,
+        });
+    }
+    for i in 0..tree.items.len() {
+        let tri = tree.items.word(i).unwrap_or(u32::MAX);
+        if tri as usize >= triangle_count {
+            return Err(StructureError::TriangleOutOfRange { node: 0, tri });
+        }
+    }
+    Ok(())
+}

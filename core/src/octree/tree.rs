@@ -1,0 +1,190 @@
+//! A built octree over its arrays, and its build into caller buffers.
+
+use super::split::{OctreeSplitter, octants, root_cube};
+use super::{OctreeConfig, OctreeNode};
+use crate::cells::{CellStats, ReferencePad, TreeSizes, Words, build_tree};
+use crate::error::{BuildError, StructureError};
+use crate::math::Aabb;
+use crate::mesh::ValidMesh;
+use crate::query::Cell;
+
+/// Deferred cells of a depth-first walk: seven siblings per level.
+pub(super) const STACK: usize = 7 * OctreeConfig::MAX_DEPTH as usize + 2;
+
+/// An adaptive octree: a cube around the mesh, split into eight octants wherever a cell holds
+/// more than `max_items` references, each leaf listing the triangles it touches.
+///
+/// `nodes` are [`OctreeNode`]s (two words each; node 0 is the root, children after their
+/// parent), `items` the references leaves point into. The arrays are slices from
+/// [`Octree::build`] or [`Octree::from_parts`], or a blob's bytes read in place
+/// ([`LeWords`](crate::cells::LeWords)).
+///
+/// It answers every query through [`Traverse`](crate::query::Traverse): at each cell the
+/// visitor judges the eight octants (four at a time in SIMD lanes) and the walk takes them
+/// nearest first — front to back along a ray — skipping deferred cells the answer has
+/// already passed.
+#[derive(Clone, Copy, Debug)]
+pub struct Octree<N, W> {
+    pub(super) root: Aabb,
+    pub(super) nodes: N,
+    pub(super) items: W,
+}
+
+impl<'a> Octree<&'a [OctreeNode], &'a [u32]> {
+    /// The exact sizes [`Octree::build`] needs for `mesh` with `config`: a full build that
+    /// writes no nodes, using `work` for the reference lists (see [`TreeSizes`]; give it a few
+    /// times the triangle count, and retry longer while the result is not `complete`).
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] for a config out of range;
+    /// [`BuildError::BufferTooSmall`] when `work` is shorter than the triangle count.
+    pub fn measure(
+        mesh: &ValidMesh<'_>,
+        config: &OctreeConfig,
+        work: &mut [u32],
+    ) -> Result<TreeSizes, BuildError> {
+        config.validate()?;
+        let splitter = splitter(mesh, config);
+        let root = Cell::root(root_cube(&mesh.bounds()));
+        let built = build_tree(&splitter, mesh.triangle_count(), root, work, None)?;
+        Ok(TreeSizes {
+            nodes: built.nodes,
+            items: built.references,
+            work: built.peak,
+            complete: built.complete,
+        })
+    }
+
+    /// Builds the octree of `mesh` into `nodes` and `items`, which it borrows (their used
+    /// prefixes).
+    ///
+    /// Stays inside the buffers: a cell whose octants would not fit (nodes, or references
+    /// while building) stays a leaf, so short buffers give a coarser tree, never an error, as
+    /// long as the root fits. The tree depends only on the mesh, the config and the two
+    /// lengths; [`Octree::measure`] tells the lengths that build the full tree.
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] for a config out of range;
+    /// [`BuildError::BufferTooSmall`] when `items` is shorter than the triangle count or
+    /// `nodes` is empty. Nothing usable is returned then.
+    pub fn build(
+        mesh: &ValidMesh<'_>,
+        config: &OctreeConfig,
+        nodes: &'a mut [OctreeNode],
+        items: &'a mut [u32],
+    ) -> Result<Self, BuildError> {
+        config.validate()?;
+        let splitter = splitter(mesh, config);
+        let root = root_cube(&mesh.bounds());
+        let built = build_tree(&splitter, mesh.triangle_count(), Cell::root(root), items, Some(nodes))?;
+        let nodes: &'a [OctreeNode] = nodes.get(..built.nodes).unwrap_or_default();
+        let items: &'a [u32] = items.get(..built.references).unwrap_or_default();
+        Ok(Self { root, nodes, items })
+    }
+}
+
+fn splitter<'m>(mesh: &'m ValidMesh<'m>, config: &OctreeConfig) -> OctreeSplitter<'m> {
+    OctreeSplitter {
+        mesh,
+        config: *config,
+        pad: ReferencePad::of(&mesh.bounds()),
+    }
+}
+
+impl<N: Words, W: Words> Octree<N, W> {
+    /// An octree over arrays written earlier by [`Octree::build`] (kept, copied or stored),
+    /// with root cube `root`, for a mesh of `triangle_count` triangles, after checking they form
+    /// one: every node reachable exactly once, children after their parent, depth at most
+    /// [`OctreeConfig::MAX_DEPTH`], leaf ranges inside `items`, references naming triangles of
+    /// the mesh. It does not check that each leaf lists exactly the triangles touching it: one
+    /// that lists others answers wrongly, never panics.
+    ///
+    /// # Errors
+    /// The first [`StructureError`] found.
+    pub fn from_parts(
+        root: Aabb,
+        nodes: N,
+        items: W,
+        triangle_count: usize,
+    ) -> Result<Self, StructureError> {
+        let tree = Self { root, nodes, items };
+        super::check::check(&tree, triangle_count)?;
+        Ok(tree)
+    }
+
+    /// The root cell's cube.
+    #[must_use]
+    pub const fn root(&self) -> &Aabb {
+        &self.root
+    }
+
+    /// The node array.
+    #[must_use]
+    pub const fn nodes(&self) -> N {
+        self.nodes
+    }
+
+    /// The references array.
+    #[must_use]
+    pub const fn items(&self) -> W {
+        self.items
+    }
+
+    /// Node count.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len() / 2
+    }
+
+    /// Node `i`, if present.
+    #[inline(always)]
+    #[must_use]
+    pub fn node(&self, i: usize) -> Option<OctreeNode> {
+        Some(OctreeNode {
+            a: self.nodes.word(i.checked_mul(2)?)?,
+            b: self.nodes.word(i * 2 + 1)?,
+        })
+    }
+
+    /// Every leaf with its cell and depth, depth first, octant 0 first.
+    pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
+        let mut stack = [(0u32, Cell::root(self.root), 0u32); STACK];
+        let mut top = 1usize;
+        while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied()) {
+            top -= 1;
+            let Some(n) = self.node(node as usize) else {
+                continue;
+            };
+            match n.first_child() {
+                None => each(cell, depth, n.a, n.b),
+                Some(first) if depth < OctreeConfig::MAX_DEPTH => {
+                    for (k, c) in octants(&cell).into_iter().enumerate().rev() {
+                        if let Some(slot) = stack.get_mut(top) {
+                            *slot = (first + k as u32, c, depth + 1);
+                            top += 1;
+                        }
+                    }
+                }
+                Some(_) => {}
+            }
+        }
+    }
+
+    /// Nodes, leaf cells, empty cells, references, depth.
+    #[must_use]
+    pub fn stats(&self, triangles: usize) -> CellStats {
+        let mut stats = CellStats {
+            nodes: self.node_count(),
+            references: self.items.len(),
+            triangles,
+            ..CellStats::default()
+        };
+        self.for_each_leaf(|_, depth, _, count| {
+            stats.cells += 1;
+            stats.empty_cells += usize::from(count == 0);
+            stats.max_depth = stats.max_depth.max(depth as usize);
+            stats.max_cell_references = stats.max_cell_references.max(count as usize);
+        });
+        stats
+    }
+}
