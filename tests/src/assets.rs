@@ -80,3 +80,32 @@ pub fn load_obj(path: &std::path::Path) -> LoadedMesh {
         triangles,
     }
 }
+
+/// The "teapot in a stadium": `mesh` standing on a square ground plane a hundred times wider
+/// than its largest extent (two triangles appended after the mesh's, at the mesh's lowest `y`).
+/// Uneven on purpose: nearly all triangles crowd into a ten-thousandth of the ground's area.
+#[must_use]
+pub fn in_stadium(mesh: &LoadedMesh) -> LoadedMesh {
+    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for p in &mesh.positions {
+        for a in 0..3 {
+            lo[a] = lo[a].min(p[a]);
+            hi[a] = hi[a].max(p[a]);
+        }
+    }
+    let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0f32, f32::max);
+    let (cx, cz) = ((lo[0] + hi[0]) * 0.5, (lo[2] + hi[2]) * 0.5);
+    let half = 50.0 * extent;
+    let y = lo[1];
+    let mut out = mesh.clone();
+    out.name = format!("{}-in-stadium", mesh.name);
+    let v = out.positions.len() as u32;
+    out.positions.extend([
+        [cx - half, y, cz - half],
+        [cx + half, y, cz - half],
+        [cx + half, y, cz + half],
+        [cx - half, y, cz + half],
+    ]);
+    out.triangles.extend([[v, v + 2, v + 1], [v, v + 3, v + 2]]);
+    out
+}

@@ -5,12 +5,12 @@ use crate::math::{Aabb, Triangle, max_f32};
 
 /// The slack added around every cell before testing which triangles touch it.
 ///
-/// A query meets a triangle in a cell only if the cell references it. Where the ray, the point
-/// or the query box passes within rounding of a cell face, the traversal may pick the cell on
-/// either side, so a triangle within that distance of a cell is referenced by it too. The pad
-/// is 2⁻¹⁴ of the scene's largest extent plus 2⁻²⁰ of its largest coordinate: hundreds of times
-/// the rounding of a query that starts within a thousand scene sizes, and small enough to add
-/// few references.
+/// A query meets a triangle in a cell only if the cell references it. Where a hit point, a
+/// closest point or an overlap's witness lies within rounding of a cell face, the traversal may
+/// find it on either side, so a triangle within that distance of a cell is referenced by it
+/// too. The pad is 2⁻²⁰ of the scene's largest extent plus its largest coordinate: sixteen
+/// times the rounding of a point computed within the scene, and small enough that a plane cut
+/// close beside a triangle (as a k-d tree cuts off empty space) does not pick it up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ReferencePad(f32);
 
@@ -22,10 +22,7 @@ impl ReferencePad {
         }
         let e = bounds.extent();
         let m = bounds.min.abs().max(bounds.max.abs());
-        Self(
-            max_f32(max_f32(e.x, e.y), e.z) / 16_384.0
-                + max_f32(max_f32(m.x, m.y), m.z) / 1_048_576.0,
-        )
+        Self((max_f32(max_f32(e.x, e.y), e.z) + max_f32(max_f32(m.x, m.y), m.z)) / 1_048_576.0)
     }
 
     /// Whether triangle `tri` is referenced by the cell with box `cell`.

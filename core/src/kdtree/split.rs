@@ -28,15 +28,16 @@ struct Plane {
 }
 
 impl KdSplitter<'_> {
-    /// The cheapest plane by the surface-area heuristic, if it beats keeping the leaf.
+    /// Per axis, the cheapest plane by the surface-area heuristic if it beats keeping the leaf,
+    /// cheapest axis first.
     ///
     /// Each reference is binned by the bounds of the part of its triangle inside the cell
     /// (clipped, so a long triangle crossing a corner counts only where it is): at a plane, the
     /// references starting below count on the left, those ending above on the right.
-    fn best_plane(&self, b: &Aabb, refs: &[u32]) -> Option<Plane> {
+    fn best_planes(&self, b: &Aabb, refs: &[u32]) -> [Option<Plane>; 3] {
         let area = b.half_area();
         if !(area > 0.0) {
-            return None;
+            return [None; 3];
         }
         let ext = b.extent().to_array();
         let (lo, hi) = (b.min.to_array(), b.max.to_array());
@@ -73,10 +74,10 @@ impl KdSplitter<'_> {
         }
         let c = &self.config;
         let n = refs.len() as f32;
-        let mut best: Option<Plane> = None;
+        let mut best: [Option<Plane>; 3] = [None; 3];
         let leaf_cost = c.triangle_cost * n;
         let axes = lo.iter().zip(&hi).zip(&ext).zip(starts.iter().zip(&ends));
-        for (axis, (((&l, &h), &e), (s, en))) in axes.enumerate() {
+        for (axis, ((((&l, &h), &e), (s, en)), best)) in axes.zip(best.iter_mut()).enumerate() {
             if !(e > 0.0) {
                 continue;
             }
@@ -100,11 +101,61 @@ impl KdSplitter<'_> {
                     cost *= 1.0 - c.empty_bonus;
                 }
                 if cost < leaf_cost && best.is_none_or(|p| cost < p.cost) {
-                    best = Some(Plane { axis, at, cost });
+                    *best = Some(Plane { axis, at, cost });
                 }
             }
         }
+        best.sort_by(|a, b| match (a, b) {
+            (Some(a), Some(b)) => a.cost.total_cmp(&b.cost),
+            (a, b) => b.is_some().cmp(&a.is_some()),
+        });
         best
+    }
+}
+
+impl KdSplitter<'_> {
+    /// Writes the references of both sides of `plane` into `out` (below first); `Leaf` when
+    /// both sides would hold every reference, whether or not they fit (so the decision never
+    /// depends on the room), `NoRoom` when they do not fit.
+    fn partition(
+        &self,
+        cell: &Cell,
+        plane: Plane,
+        refs: &[u32],
+        out: &mut [u32],
+    ) -> Decision<(usize, f32)> {
+        let (below, above) = cell.split(plane.axis, plane.at);
+        let mut written = 0usize;
+        let mut lens = [0u32; MAX_ARITY];
+        for (side, len) in [below, above].iter().zip(lens.iter_mut()) {
+            for &tri in refs {
+                let Some(t) = self.mesh.triangle(tri) else {
+                    continue;
+                };
+                if self.pad.touches(&t, side.aabb()) {
+                    if let Some(slot) = out.get_mut(written) {
+                        *slot = tri;
+                    }
+                    written += 1;
+                    *len += 1;
+                }
+            }
+        }
+        let n = refs.len() as u32;
+        if lens.iter().take(2).all(|&l| l == n) {
+            return Decision::Leaf;
+        }
+        if written > out.len() {
+            return Decision::NoRoom;
+        }
+        let mut cells = [*cell; MAX_ARITY];
+        let [c0, c1, ..] = &mut cells;
+        (*c0, *c1) = (below, above);
+        Decision::Split {
+            inner: (plane.axis, plane.at),
+            cells,
+            lens,
+        }
     }
 }
 
@@ -123,40 +174,16 @@ impl Splitter for KdSplitter<'_> {
         if refs.len() <= self.config.leaf_size as usize || depth >= self.depth_limit {
             return Decision::Leaf;
         }
-        let Some(plane) = self.best_plane(cell.aabb(), refs) else {
-            return Decision::Leaf;
-        };
-        let (below, above) = cell.split(plane.axis, plane.at);
-        let mut written = 0usize;
-        let mut lens = [0u32; MAX_ARITY];
-        for (side, len) in [below, above].iter().zip(lens.iter_mut()) {
-            for &tri in refs {
-                let Some(t) = self.mesh.triangle(tri) else {
-                    continue;
-                };
-                if self.pad.touches(&t, side.aabb()) {
-                    let Some(slot) = out.get_mut(written) else {
-                        return Decision::NoRoom;
-                    };
-                    *slot = tri;
-                    written += 1;
-                    *len += 1;
-                }
+        // The heuristic counts a triangle touching a plane on one side; the references count it
+        // on both. If the cheapest plane then separates nothing, the next axis's may.
+        for plane in self.best_planes(cell.aabb(), refs).into_iter().flatten() {
+            let d = self.partition(cell, plane, refs, out);
+            match d {
+                Decision::Leaf => continue,
+                decision => return decision,
             }
         }
-        let n = refs.len() as u32;
-        if lens.iter().take(2).all(|&l| l == n) {
-            // Every triangle on both sides: the split separates nothing.
-            return Decision::Leaf;
-        }
-        let mut cells = [*cell; MAX_ARITY];
-        let [c0, c1, ..] = &mut cells;
-        (*c0, *c1) = (below, above);
-        Decision::Split {
-            inner: (plane.axis, plane.at),
-            cells,
-            lens,
-        }
+        Decision::Leaf
     }
 
     fn inner((axis, split): (usize, f32), first_child: u32) -> KdNode {

@@ -207,3 +207,65 @@ impl<N: Words, W: Words> KdTree<N, W> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::kdtree::{KdConfig, KdNode};
+    use crate::mesh::MeshRef;
+    use crate::query::MeshQuery;
+
+    /// The k-d tree walked with the wrong early exit: stop after the first leaf that produced
+    /// any hit, wherever that hit lies.
+    struct ExitOnAnyHit<'a>(KdTree<&'a [KdNode], &'a [u32]>);
+
+    impl Traverse for ExitOnAnyHit<'_> {
+        fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+            let mut offer = Offer::new(visitor);
+            if let Some(ray) = visitor.ray().copied() {
+                self.0.march::<V, true>(&ray, visitor, &mut offer);
+            }
+        }
+    }
+
+    /// A ray along +x meets a long sloping triangle first in cells before a row of walls, but
+    /// hits it only at x = 20, behind the first wall (x = 10.5). The hit found in the first
+    /// cells lies outside them, so the walk must go on: the correct rule finds the wall, the
+    /// mutant stops at the slope. (The integration suite runs this scene against brute force,
+    /// so the mutant would fail it.)
+    #[test]
+    fn stopping_at_a_hit_outside_the_cell_gives_a_wrong_answer() {
+        let mut positions = vec![
+            [-1.0, -100.0, 0.71],
+            [200.0, -100.0, -1.29],
+            [-1.0, 100.0, 0.71],
+        ];
+        let mut triangles = vec![[0u32, 1, 2]];
+        for i in 0..21 {
+            let x = 10.5 + i as f32;
+            let v = positions.len() as u32;
+            positions.extend([[x, 0.0, 0.0], [x, 1.0, 0.0], [x, 1.0, 1.0], [x, 0.0, 1.0]]);
+            triangles.extend([[v, v + 1, v + 2], [v, v + 2, v + 3]]);
+        }
+        let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+        let mut work = vec![0; 64 * triangles.len()];
+        let sizes = KdTree::measure(&mesh, &KdConfig::default(), &mut work).unwrap();
+        let mut nodes = vec![KdNode::default(); sizes.nodes];
+        let mut items = vec![0; sizes.work];
+        let tree = KdTree::build(&mesh, &KdConfig::default(), &mut nodes, &mut items).unwrap();
+        assert!(
+            tree.node_count() > 3,
+            "the scene must be split into several cells"
+        );
+        let ray = crate::math::Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::X);
+        let right = tree.with(&mesh).raycast(&ray).unwrap();
+        assert_eq!((right.t, right.tri), (10.5, 1));
+        let wrong = ExitOnAnyHit(tree).with(&mesh).raycast(&ray).unwrap();
+        assert_eq!(
+            wrong.tri, 0,
+            "the mutant stops at the slope, behind the wall"
+        );
+    }
+}

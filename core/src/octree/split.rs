@@ -61,18 +61,21 @@ impl Splitter for OctreeSplitter<'_> {
                     continue;
                 };
                 if self.pad.touches(&t, child.aabb()) {
-                    let Some(slot) = out.get_mut(written) else {
-                        return Decision::NoRoom;
-                    };
-                    *slot = tri;
+                    if let Some(slot) = out.get_mut(written) {
+                        *slot = tri;
+                    }
                     written += 1;
                     *len += 1;
                 }
             }
         }
+        // Decided before the room, so the choice never depends on the buffer's length.
         if lens.iter().all(|&l| l as usize == refs.len()) {
             // Every triangle in every octant: splitting separates nothing.
             return Decision::Leaf;
+        }
+        if written > out.len() {
+            return Decision::NoRoom;
         }
         Decision::Split {
             inner: (),

@@ -76,7 +76,13 @@ impl<'a> Octree<&'a [OctreeNode], &'a [u32]> {
         config.validate()?;
         let splitter = splitter(mesh, config);
         let root = root_cube(&mesh.bounds());
-        let built = build_tree(&splitter, mesh.triangle_count(), Cell::root(root), items, Some(nodes))?;
+        let built = build_tree(
+            &splitter,
+            mesh.triangle_count(),
+            Cell::root(root),
+            items,
+            Some(nodes),
+        )?;
         let nodes: &'a [OctreeNode] = nodes.get(..built.nodes).unwrap_or_default();
         let items: &'a [u32] = items.get(..built.references).unwrap_or_default();
         Ok(Self { root, nodes, items })
@@ -150,7 +156,8 @@ impl<N: Words, W: Words> Octree<N, W> {
     pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
         let mut stack = [(0u32, Cell::root(self.root), 0u32); STACK];
         let mut top = 1usize;
-        while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied()) {
+        while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied())
+        {
             top -= 1;
             let Some(n) = self.node(node as usize) else {
                 continue;
