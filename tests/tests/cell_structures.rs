@@ -9,6 +9,7 @@ use meshq::math::{Ray, Vec3};
 use meshq::mesh::ValidMesh;
 use meshq::octree::{Octree, OctreeConfig, OctreeNode};
 use meshq::query::RayOptions;
+use meshq::owned::{MeshIndex, StructureKind};
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;
@@ -409,4 +410,21 @@ fn buffers_too_small_for_the_root_are_refused() {
             got: 3
         })
     ));
+}
+
+/// The owned structures read packed triangles per reference; they answer as the scan does.
+#[test]
+fn owned_structures_of_every_kind_answer_as_brute_force() {
+    for name in ["cow", "fandisk"] {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let brute = BruteForce::new(&mesh);
+        for kind in StructureKind::ALL {
+            let index = MeshIndex::build(&mesh, kind).unwrap();
+            assert_eq!(index.kind(), kind);
+            assert_eq!(kind.name().parse::<StructureKind>(), Ok(kind));
+            check_all(&index, &brute, &loaded, &format!("{name} owned {kind}"));
+        }
+    }
+    assert!("quadtree".parse::<StructureKind>().is_err());
 }

@@ -44,6 +44,16 @@ impl<W: Words> Grid<W> {
         })
     }
 
+    /// Wraps arrays this crate built or checked itself, without checking again.
+    #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
+    pub(crate) const fn from_validated(layout: GridLayout, offsets: W, items: W) -> Self {
+        Self {
+            layout,
+            offsets,
+            items,
+        }
+    }
+
     /// The cells' geometry.
     #[must_use]
     pub const fn layout(&self) -> &GridLayout {

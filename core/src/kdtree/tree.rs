@@ -127,6 +127,16 @@ impl<N: Words, W: Words> KdTree<N, W> {
         Ok(tree)
     }
 
+    /// Wraps arrays this crate built or checked itself, without checking again.
+    #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
+    pub(crate) const fn from_validated(bounds: Aabb, nodes: N, items: W) -> Self {
+        Self {
+            bounds,
+            nodes,
+            items,
+        }
+    }
+
     /// The root cell's box (the mesh bounds).
     #[must_use]
     pub const fn bounds(&self) -> &Aabb {

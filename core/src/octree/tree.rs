@@ -118,6 +118,12 @@ impl<N: Words, W: Words> Octree<N, W> {
         Ok(tree)
     }
 
+    /// Wraps arrays this crate built or checked itself, without checking again.
+    #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
+    pub(crate) const fn from_validated(root: Aabb, nodes: N, items: W) -> Self {
+        Self { root, nodes, items }
+    }
+
     /// The root cell's cube.
     #[must_use]
     pub const fn root(&self) -> &Aabb {

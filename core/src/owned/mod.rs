@@ -1,5 +1,7 @@
-//! The owned API (feature `alloc`): [`MeshBvh`], one value that sizes, owns and builds every
-//! buffer, for code with an allocator (tools, the browser package, tests).
+//! The owned API (feature `alloc`): [`MeshBvh`], [`MeshKdTree`], [`MeshOctree`] and
+//! [`MeshGrid`], each one value that sizes, owns and builds every buffer of its structure, and
+//! [`MeshIndex`], any of them picked at run time — for code with an allocator (tools, the
+//! browser package, tests).
 //!
 //! ```
 //! use meshq::prelude::*;
@@ -13,6 +15,15 @@
 
 #[cfg(feature = "blob")]
 mod blob;
+mod cell_scene;
 mod mesh_bvh;
+mod mesh_grid;
+mod mesh_index;
+mod mesh_kdtree;
+mod mesh_octree;
 
 pub use mesh_bvh::MeshBvh;
+pub use mesh_grid::MeshGrid;
+pub use mesh_index::{MeshIndex, StructureKind, UnknownStructure};
+pub use mesh_kdtree::MeshKdTree;
+pub use mesh_octree::MeshOctree;

@@ -1,0 +1,72 @@
+//! What the owned cell structures share: the mesh copy, the packed references, and sizing a
+//! tree by measuring until complete.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::cells::{TreeSizes, pack_references};
+use crate::error::BuildError;
+use crate::math::{PackedTriangle, Triangle};
+use crate::mesh::ValidMesh;
+use crate::query::LeafTriangles;
+
+/// A mesh copy and its triangles packed in a cell structure's reference order.
+#[derive(Clone, Debug)]
+pub(super) struct CellScene {
+    pub(super) positions: Vec<[f32; 3]>,
+    pub(super) triangles: Vec<[u32; 3]>,
+    pub(super) packed: Vec<PackedTriangle>,
+}
+
+impl CellScene {
+    /// Copies `mesh` (packing comes later, once the references are known).
+    pub(super) fn copy(mesh: &ValidMesh<'_>) -> Self {
+        Self {
+            positions: mesh.positions().to_vec(),
+            triangles: mesh.triangles().to_vec(),
+            packed: Vec::new(),
+        }
+    }
+
+    /// The mesh copy.
+    pub(super) fn mesh(&self) -> ValidMesh<'_> {
+        // Copied from a validated mesh and never changed.
+        ValidMesh::new_unchecked_by_validate(&self.positions, &self.triangles)
+    }
+
+    /// Packs the triangles of `items`, in their order.
+    pub(super) fn pack(&mut self, items: &[u32]) -> Result<(), BuildError> {
+        let mut packed = vec![PackedTriangle::EMPTY; items.len()];
+        pack_references(&self.mesh(), items, &mut packed)?;
+        self.packed = packed;
+        Ok(())
+    }
+}
+
+impl LeafTriangles for CellScene {
+    #[inline(always)]
+    fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {
+        self.packed.as_slice().corners(slot, tri)
+    }
+
+    #[inline(always)]
+    fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
+        self.packed.as_slice().run(first, count)
+    }
+}
+
+/// Measures a tree with a work buffer of four references per triangle, doubling it until the
+/// measured tree is complete (the one the config describes).
+pub(super) fn measure_fully(
+    triangles: usize,
+    measure: impl Fn(&mut [u32]) -> Result<TreeSizes, BuildError>,
+) -> Result<TreeSizes, BuildError> {
+    let mut len = 4 * triangles.max(1);
+    loop {
+        let sizes = measure(&mut vec![0; len])?;
+        if sizes.complete || len >= u32::MAX as usize {
+            return Ok(sizes);
+        }
+        len = len.saturating_mul(2).min(u32::MAX as usize);
+    }
+}
