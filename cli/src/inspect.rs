@@ -1,19 +1,29 @@
-//! `meshq inspect`: what a blob holds, after full validation of its tree.
+//! `meshq inspect`: what a blob holds, after full validation of its tree; or, for a mesh file,
+//! the shape of the structure `--structure` builds over it.
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
 use clap::Args;
-use meshq::blob::{BlobHeader, BlobTree};
+use meshq::blob::{BlobHeader, BlobTree, MAGIC};
 use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
+use meshq::mesh::MeshRef;
+use meshq::owned::MeshIndex;
 use serde::Serialize;
 
+use crate::mesh_file::read_mesh;
 use crate::output;
+use crate::structure_arg::StructureArg;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {
-    /// The blob.
+    /// The blob, or a mesh file (OBJ, PLY, STL) to build a structure over.
     pub blob: PathBuf,
+    /// For a mesh file: the structure to build and describe (default bvh).
+    #[arg(long, value_enum)]
+    pub structure: Option<StructureArg>,
     /// Print everything as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -64,6 +74,16 @@ struct Bytes {
 pub fn run(args: &InspectArgs) -> Result<()> {
     let bytes = std::fs::read(&args.blob)
         .with_context(|| format!("cannot read {}", args.blob.display()))?;
+    if !bytes.starts_with(&MAGIC) {
+        drop(bytes);
+        return inspect_mesh(args);
+    }
+    if args.structure.is_some_and(|s| s != StructureArg::Bvh) {
+        bail!(
+            "{} is a blob, which holds a BVH; --structure applies to mesh files",
+            args.blob.display()
+        );
+    }
     let (header, tree) = BlobTree::parse(&bytes)
         .with_context(|| format!("{}: invalid blob", args.blob.display()))?;
     let report = report(&header, &tree, bytes.len());
@@ -158,4 +178,83 @@ fn print(r: &Report) {
         b.total, b.per_triangle, b.header, b.nodes, b.order, b.mesh
     );
     println!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);
+}
+
+/// The shape of a structure built over a mesh file.
+#[derive(Serialize)]
+struct StructureReport {
+    structure: String,
+    triangles: usize,
+    build_seconds: f64,
+    /// Nodes (BVH: binary nodes; grid: 0).
+    nodes: usize,
+    /// Leaf cells (k-d tree, octree, grid) or leaves (BVH).
+    cells: usize,
+    empty_cells: usize,
+    references: usize,
+    references_per_triangle: f64,
+    max_depth: usize,
+    max_cell_references: usize,
+}
+
+fn inspect_mesh(args: &InspectArgs) -> Result<()> {
+    let data = read_mesh(&args.blob)?;
+    let mesh = MeshRef::new(&data.positions, &data.triangles)
+        .validate()
+        .with_context(|| format!("{}: invalid mesh", args.blob.display()))?;
+    let kind = args.structure.unwrap_or_default().kind();
+    let start = Instant::now();
+    let index = MeshIndex::build(&mesh, kind)?;
+    let build_seconds = start.elapsed().as_secs_f64();
+    let n = mesh.triangle_count();
+    let report = match (&index, index.cell_stats()) {
+        (MeshIndex::Bvh(s), _) => {
+            let stats = TreeStats::of(&s.bvh(), s.config());
+            StructureReport {
+                structure: kind.to_string(),
+                triangles: n,
+                build_seconds,
+                nodes: stats.nodes,
+                cells: stats.leaves,
+                empty_cells: 0,
+                references: n,
+                references_per_triangle: if n > 0 { 1.0 } else { 0.0 },
+                max_depth: s.bvh().depth() as usize,
+                max_cell_references: stats.leaf_sizes.iter().rposition(|&c| c > 0).unwrap_or(0),
+            }
+        }
+        (_, Some(c)) => StructureReport {
+            structure: kind.to_string(),
+            triangles: n,
+            build_seconds,
+            nodes: c.nodes,
+            cells: c.cells,
+            empty_cells: c.empty_cells,
+            references: c.references,
+            references_per_triangle: c.references_per_triangle(),
+            max_depth: c.max_depth,
+            max_cell_references: c.max_cell_references,
+        },
+        (_, None) => bail!("no figures for {kind}"),
+    };
+    if args.json {
+        return output::json(&report);
+    }
+    let r = &report;
+    println!(
+        "{} over {} ({} triangles), built in {:.1} ms",
+        r.structure,
+        args.blob.display(),
+        r.triangles,
+        r.build_seconds * 1e3
+    );
+    println!(
+        "  {} nodes, {} cells ({} empty), depth {}",
+        r.nodes, r.cells, r.empty_cells, r.max_depth
+    );
+    println!(
+        "  {} references ({:.2} per triangle), at most {} in one cell",
+        r.references, r.references_per_triangle, r.max_cell_references
+    );
+    Ok(())
 }

@@ -11,6 +11,7 @@ mod quality;
 mod raycast;
 mod records;
 mod structure;
+mod structure_arg;
 mod workload;
 
 use std::process::ExitCode;

@@ -1,6 +1,6 @@
-//! The structure a query command runs on: built from a mesh file, or loaded from a blob. Either
-//! way queries run on the owned [`MeshBvh`] (the wide tree over packed triangles, the fastest
-//! path).
+//! The structure a query command runs on: built from a mesh file (a BVH, k-d tree, octree or
+//! grid, as `--structure` says), or loaded from a blob (a BVH). Either way queries run on the
+//! owned structure over packed triangles, the fastest path.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -12,14 +12,16 @@ use meshq::blob::MAGIC;
 use meshq::bvh::BuildConfig;
 use meshq::error::BlobError;
 use meshq::mesh::MeshRef;
+use meshq::owned::{MeshIndex, StructureKind};
 
 use crate::mesh_file::{MeshData, read_mesh};
 use crate::quality::Quality;
+use crate::structure_arg::StructureArg;
 
 /// What a query command gets: the mesh with its trees, and how long preparing them took
 /// (building from a mesh, or validating and decoding a blob; file reading excluded).
 pub struct Prepared {
-    pub scene: MeshBvh,
+    pub scene: MeshIndex,
     pub prepare_seconds: f64,
 }
 /// The input of a query command: what to query and how to prepare it.
@@ -30,9 +32,12 @@ pub struct QueryInput {
     /// The mesh of a blob baked with --no-mesh.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
-    /// Build quality when INPUT is a mesh.
+    /// Build quality when INPUT is a mesh (BVH only).
     #[arg(long, value_enum, default_value_t = Quality::Balanced)]
     pub quality: Quality,
+    /// The structure to build when INPUT is a mesh (blobs hold a BVH).
+    #[arg(long, value_enum, default_value_t = StructureArg::Bvh)]
+    pub structure: StructureArg,
 }
 
 /// Loads the input — a blob when the file starts with the blob magic, otherwise a mesh file
@@ -47,7 +52,14 @@ pub fn with_structure<R>(
         &args.quality.config(),
     );
     let bytes = std::fs::read(input).with_context(|| format!("cannot read {}", input.display()))?;
+    let kind = args.structure.kind();
     if bytes.starts_with(&MAGIC) {
+        if kind != StructureKind::Bvh {
+            bail!(
+                "{} is a blob, which holds a BVH; --structure {kind} applies to mesh files",
+                input.display()
+            );
+        }
         let external = mesh.map(read_mesh).transpose()?;
         with_blob(&bytes, external.as_ref(), query)
             .with_context(|| format!("{}: cannot use blob", input.display()))
@@ -60,19 +72,24 @@ pub fn with_structure<R>(
         }
         drop(bytes);
         let data = read_mesh(input)?;
-        with_built(&data, config, query)
+        with_built(&data, kind, config, query)
     }
 }
 
-/// Builds a BVH of `data` and runs `query`.
+/// Builds a structure of `kind` over `data` (a BVH with `config`, the others with their default
+/// configs) and runs `query`.
 pub fn with_built<R>(
     data: &MeshData,
+    kind: StructureKind,
     config: &BuildConfig,
     query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
     let mesh = MeshRef::new(&data.positions, &data.triangles).validate()?;
     let start = Instant::now();
-    let scene = MeshBvh::build(&mesh, config)?;
+    let scene = match kind {
+        StructureKind::Bvh => MeshIndex::Bvh(MeshBvh::build(&mesh, config)?),
+        other => MeshIndex::build(&mesh, other)?,
+    };
     let prepare_seconds = start.elapsed().as_secs_f64();
     query(Prepared {
         scene,
@@ -99,7 +116,7 @@ fn with_blob<R>(
     };
     let prepare_seconds = start.elapsed().as_secs_f64();
     query(Prepared {
-        scene,
+        scene: MeshIndex::Bvh(scene),
         prepare_seconds,
     })
 }

@@ -365,3 +365,79 @@ fn errors_are_one_line_and_a_status_never_a_panic() {
         "cannot be used",
     );
 }
+
+/// `--structure` builds each of the four structures over a mesh file; raycast and closest write
+/// the same records for all of them, `inspect` describes each, and a blob (a BVH) refuses any
+/// other structure.
+#[test]
+fn every_structure_gives_the_same_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("spot");
+    let obj = asset("spot.obj");
+    let rays = workload::random_rays(&loaded.positions, 500, 11);
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let points = workload::closest_points(&loaded.positions, 200, 12);
+    let point_file = dir.path().join("points.bin");
+    write_f32s(&point_file, points.iter().flat_map(|p| p.to_array()));
+    let mut outputs = Vec::new();
+    for structure in ["bvh", "kdtree", "octree", "grid"] {
+        let hits = dir.path().join(format!("hits-{structure}.bin"));
+        ok(&[
+            &"raycast",
+            &obj,
+            &"--structure",
+            &structure,
+            &"--rays",
+            &ray_file,
+            &"--out",
+            &hits,
+        ]);
+        let closest = dir.path().join(format!("closest-{structure}.bin"));
+        ok(&[
+            &"closest",
+            &obj,
+            &"--structure",
+            &structure,
+            &"--points",
+            &point_file,
+            &"--out",
+            &closest,
+        ]);
+        outputs.push((
+            structure,
+            std::fs::read(&hits).unwrap(),
+            std::fs::read(&closest).unwrap(),
+        ));
+        let text = ok(&[&"inspect", &obj, &"--structure", &structure]);
+        assert!(text.starts_with(structure), "{text}");
+        assert!(text.contains("references"), "{text}");
+    }
+    let (_, bvh_hits, bvh_closest) = &outputs[0];
+    assert!(
+        read_records(&dir.path().join("hits-bvh.bin"))
+            .iter()
+            .any(|&(t, _)| t.is_finite())
+    );
+    for (structure, hits, closest) in &outputs[1..] {
+        assert_eq!(hits, bvh_hits, "{structure}: raycast records");
+        assert_eq!(closest, bvh_closest, "{structure}: closest records");
+    }
+    let blob = dir.path().join("spot.meshq");
+    ok(&[&"bake", &obj, &"-o", &blob]);
+    let out = dir.path().join("out.bin");
+    fails(
+        &[
+            &"raycast",
+            &blob,
+            &"--structure",
+            &"grid",
+            &"--rays",
+            &ray_file,
+            &"--out",
+            &out,
+        ],
+        1,
+        "holds a BVH",
+    );
+}

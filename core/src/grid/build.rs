@@ -29,6 +29,11 @@ fn for_each_cell(
         return;
     };
     let (lo, hi) = layout.cells_touching(&pad.grow(&t.bounds()));
+    if lo == hi {
+        // The padded bounds lie in one cell, which the triangle therefore touches.
+        each(layout.index(lo));
+        return;
+    }
     for k in lo[2]..=hi[2] {
         for j in lo[1]..=hi[1] {
             for i in lo[0]..=hi[0] {
@@ -104,7 +109,12 @@ impl<'a> Grid<&'a [u32]> {
             let cells = layout.cell_count().unwrap_or(usize::MAX);
             let single = layout.resolution == [1, 1, 1];
             if cells < offsets.len() {
-                let refs = count_references(&layout, mesh, budget);
+                let refs = count_into(
+                    &layout,
+                    mesh,
+                    offsets.get_mut(..=cells).unwrap_or_default(),
+                    budget,
+                );
                 if refs <= budget {
                     return Ok(fill(layout, mesh, offsets, items, cells, refs));
                 }
@@ -127,8 +137,34 @@ impl<'a> Grid<&'a [u32]> {
     }
 }
 
+/// Counts each cell's references into `offsets[cell + 1]` (`offsets[0] = 0`), stopping once the
+/// total passes `limit`; returns the total.
+fn count_into(
+    layout: &GridLayout,
+    mesh: &ValidMesh<'_>,
+    offsets: &mut [u32],
+    limit: usize,
+) -> usize {
+    let pad = ReferencePad::of(&layout.bounds);
+    offsets.fill(0);
+    let mut total = 0usize;
+    for tri in 0..mesh.triangle_count() as u32 {
+        for_each_cell(layout, pad, mesh, tri, |c| {
+            if let Some(o) = offsets.get_mut(c + 1) {
+                *o += 1;
+            }
+            total += 1;
+        });
+        if total > limit {
+            break;
+        }
+    }
+    total
+}
+
 /// Writes the cell lists of `layout` (which needs `cells` cells and `refs` references, both
-/// fitting) by a counting sort, and returns the grid over the used prefixes.
+/// fitting, with the counts already in `offsets` by [`count_into`]) by a counting sort, and
+/// returns the grid over the used prefixes.
 fn fill<'a>(
     layout: GridLayout,
     mesh: &ValidMesh<'_>,
@@ -140,15 +176,7 @@ fn fill<'a>(
     let pad = ReferencePad::of(&layout.bounds);
     let offsets = offsets.get_mut(..=cells).unwrap_or_default();
     let items = items.get_mut(..refs).unwrap_or_default();
-    offsets.fill(0);
-    // Counts land one cell up, so the running sum below leaves each cell's start in place.
-    for tri in 0..mesh.triangle_count() as u32 {
-        for_each_cell(&layout, pad, mesh, tri, |c| {
-            if let Some(o) = offsets.get_mut(c + 1) {
-                *o += 1;
-            }
-        });
-    }
+    // Counts sit one cell up, so the running sum below leaves each cell's start in place.
     let mut sum = 0u32;
     for o in offsets.iter_mut() {
         sum += *o;

@@ -129,21 +129,37 @@ impl GridLayout {
         c.min(n - 1)
     }
 
-    /// The cells whose boxes may touch `aabb`: per axis, `lo..=hi` (widened by one cell each
-    /// way for rounding, clamped into the grid).
+    /// The cells whose boxes touch `aabb` (faces included): per axis, `lo..=hi`, clamped into
+    /// the grid. Exact against [`boundary`](Self::boundary): the first guess from the
+    /// coordinate is corrected by comparing with the boundaries themselves.
     #[must_use]
     pub fn cells_touching(&self, aabb: &Aabb) -> ([u32; 3], [u32; 3]) {
         let (mut lo, mut hi) = ([0u32; 3], [0u32; 3]);
+        let (a, b) = (aabb.min.to_array(), aabb.max.to_array());
         for axis in 0..3 {
             let n = self.resolution.get(axis).copied().unwrap_or(1);
-            let (a, b) = (aabb.min.to_array(), aabb.max.to_array());
-            let (Some(&a), Some(&b)) = (a.get(axis), b.get(axis)) else {
+            let (Some(&a), Some(&b), Some(l), Some(h)) =
+                (a.get(axis), b.get(axis), lo.get_mut(axis), hi.get_mut(axis))
+            else {
                 continue;
             };
-            if let (Some(l), Some(h)) = (lo.get_mut(axis), hi.get_mut(axis)) {
-                *l = self.coordinate_cell(axis, a).saturating_sub(1);
-                *h = (self.coordinate_cell(axis, b) + 1).min(n - 1);
+            // Lowest cell whose box reaches `a`: its upper boundary is at least `a`.
+            let mut first = self.coordinate_cell(axis, a);
+            while first > 0 && self.boundary(axis, first) >= a {
+                first -= 1;
             }
+            while first + 1 < n && self.boundary(axis, first + 1) < a {
+                first += 1;
+            }
+            // Highest cell whose box starts at or below `b`.
+            let mut last = self.coordinate_cell(axis, b).max(first);
+            while last + 1 < n && self.boundary(axis, last + 1) <= b {
+                last += 1;
+            }
+            while last > first && self.boundary(axis, last) > b {
+                last -= 1;
+            }
+            (*l, *h) = (first, last);
         }
         (lo, hi)
     }
