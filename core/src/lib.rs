@@ -40,6 +40,9 @@
 //!   [`MeshQuery`] (every query), leaf access and batches.
 //! - [`bvh`]: the binned-SAH BVH, its builder, traversal, refit and validator.
 //! - [`wide`]: [`WideBvh`], the same tree collapsed four-wide.
+//! - [`kdtree`], [`octree`], [`grid`]: the structures that cut space into cells, on what they
+//!   share in [`cells`] (reference padding, the depth-first build inside one references
+//!   buffer, packed references, figures).
 //! - [`error`]: [`MeshError`](error::MeshError), [`BuildError`](error::BuildError),
 //!   [`StructureError`](error::StructureError), [`BatchError`](error::BatchError).
 //! - [`prelude`]: the names most code needs, in one `use`.
@@ -55,8 +58,9 @@
 //! ## Features
 //! - `blob`: prebuilt blobs (module `blob`): encode a BVH and its mesh with postcard and query them
 //!   in place from bytes. Adds `postcard` and `crc` (both `no_std`, no allocation).
-//! - `alloc`: `MeshBvh` (module `owned`), one value that sizes, owns and builds every buffer
-//!   (mesh, tree, packed triangles, wide nodes) and answers every query; with `blob`, it
+//! - `alloc`: `MeshBvh`, `MeshKdTree`, `MeshOctree`, `MeshGrid` and `MeshIndex` (module
+//!   `owned`), each one value that sizes, owns and builds every buffer
+//!   of its structure and answers every query; with `blob`, `MeshBvh`
 //!   round-trips blobs too. Links the `alloc` crate; without this feature the crate links no
 //!   allocator.
 //!

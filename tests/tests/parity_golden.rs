@@ -12,6 +12,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use meshq::MeshBvh;
+use meshq::owned::{MeshIndex, StructureKind};
 use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::math::{ClosestPoint, Ray, RayHit};
@@ -31,6 +32,20 @@ impl ParityTarget for Brute {
     }
     fn raycast_any(&mut self, ray: &Ray) -> bool {
         self.0.raycast(ray, &RayOptions::default()).is_some()
+    }
+    fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
+        self.0.closest_point(point, f32::INFINITY)
+    }
+}
+
+struct Owned(MeshIndex);
+
+impl ParityTarget for Owned {
+    fn raycast(&mut self, ray: &Ray) -> Option<RayHit> {
+        self.0.raycast(ray)
+    }
+    fn raycast_any(&mut self, ray: &Ray) -> bool {
+        self.0.raycast_any(ray)
     }
     fn closest_point(&mut self, point: Vec3) -> Option<ClosestPoint> {
         self.0.closest_point(point, f32::INFINITY)
@@ -125,6 +140,13 @@ fn computed_line(name: &str) -> String {
     assert!(bounds.contains_aabb(&wide.bounds()), "{name}: wide bounds");
     let from_wide = run_parity(&spec, bounds, &mut Wide { wide, mesh });
     assert_eq!(from_wide, expected, "{name}: wide BVH against brute force");
+
+    // Every structure gives the same digest: the k-d tree, the octree and the grid too.
+    for kind in StructureKind::ALL {
+        let index = MeshIndex::build(&mesh, kind).unwrap();
+        let from_index = run_parity(&spec, bounds, &mut Owned(index));
+        assert_eq!(from_index, expected, "{name}: {kind} against brute force");
+    }
 
     let layouts = [MeshLayout::Indexed, MeshLayout::Packed, MeshLayout::Omitted];
     for layout in layouts {
