@@ -12,11 +12,11 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use meshq::MeshBvh;
-use meshq::owned::{MeshIndex, StructureKind};
 use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq::mesh::ValidMesh;
+use meshq::owned::{MeshIndex, StructureKind};
 use meshq::query::RayOptions;
 use meshq::wide::{WideBvh, WideNode};
 use meshq::{MeshQuery, Traverse};
