@@ -105,8 +105,8 @@ impl KdSplitter<'_> {
                 }
             }
         }
-        best.sort_by(|a, b| match (a, b) {
-            (Some(a), Some(b)) => a.cost.total_cmp(&b.cost),
+        best.sort_unstable_by(|a, b| match (a, b) {
+            (Some(a), Some(b)) => a.cost.total_cmp(&b.cost).then(a.axis.cmp(&b.axis)),
             (a, b) => b.is_some().cmp(&a.is_some()),
         });
         best
