@@ -428,3 +428,116 @@ fn owned_structures_of_every_kind_answer_as_brute_force() {
     }
     assert!("quadtree".parse::<StructureKind>().is_err());
 }
+
+type KdEdit = dyn Fn(&mut Vec<KdNode>, &mut Vec<u32>);
+type OctEdit = dyn Fn(&mut Vec<OctreeNode>, &mut Vec<u32>);
+type GridEdit = dyn Fn(&mut meshq::grid::GridLayout, &mut Vec<u32>, &mut Vec<u32>);
+
+/// Arrays that do not form a structure are refused with a typed error, never a panic: each
+/// corruption below breaks one rule the walks rely on.
+#[test]
+fn corrupted_arrays_are_refused() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let n = mesh.triangle_count();
+    let built = Built::new(&mesh);
+
+    let (bounds, nodes, items) = &built.kd;
+    let inner = nodes.iter().position(|x| x.b & 3 != 3).unwrap();
+    let leaf = nodes.iter().position(|x| x.b & 3 == 3).unwrap();
+    let corrupt = |f: &KdEdit| {
+        let (mut nodes, mut items) = (nodes.clone(), items.clone());
+        f(&mut nodes, &mut items);
+        KdTree::from_parts(*bounds, &nodes[..], &items[..], n).map(|_| ())
+    };
+    assert!(corrupt(&|_, _| {}).is_ok());
+    let kd_cases: [(&str, &KdEdit); 6] = [
+        ("child before parent", &|v, _| v[inner].b &= 3),
+        ("child out of range", &|v, _| {
+            v[inner].b = (u32::MAX >> 2) << 2
+        }),
+        ("plane not finite", &|v, _| v[inner].a = f32::NAN.to_bits()),
+        ("plane outside cell", &|v, _| v[inner].a = 1e30f32.to_bits()),
+        ("leaf past the references", &|v, i| {
+            v[leaf] = KdNode::leaf(i.len() as u32, 5)
+        }),
+        ("reference past the mesh", &|_, i| i[0] = u32::MAX - 1),
+    ];
+    for (what, f) in kd_cases {
+        assert!(corrupt(f).is_err(), "k-d tree: {what}");
+    }
+
+    let (root, onodes, oitems) = &built.oct;
+    let inner = onodes
+        .iter()
+        .position(|x| x.first_child().is_some())
+        .unwrap();
+    let ocorrupt = |f: &OctEdit| {
+        let (mut nodes, mut items) = (onodes.clone(), oitems.clone());
+        f(&mut nodes, &mut items);
+        Octree::from_parts(*root, &nodes[..], &items[..], n).map(|_| ())
+    };
+    assert!(ocorrupt(&|_, _| {}).is_ok());
+    let last = onodes.len() as u32;
+    let oct_cases: [(&str, &OctEdit); 4] = [
+        ("child before parent", &|v, _| {
+            v[inner] = OctreeNode::inner(0)
+        }),
+        ("children out of range", &|v, _| {
+            v[inner] = OctreeNode::inner(last - 3)
+        }),
+        ("one node dropped", &|v, _| {
+            v.pop();
+        }),
+        ("reference past the mesh", &|_, i| i[0] = n as u32),
+    ];
+    for (what, f) in oct_cases {
+        assert!(ocorrupt(f).is_err(), "octree: {what}");
+    }
+
+    let (layout, offsets, items) = &built.grid;
+    let gcorrupt = |f: &GridEdit| {
+        let (mut l, mut o, mut i) = (*layout, offsets.clone(), items.clone());
+        f(&mut l, &mut o, &mut i);
+        Grid::from_parts(l, &o[..], &i[..], n).map(|_| ())
+    };
+    assert!(gcorrupt(&|_, _, _| {}).is_ok());
+    let grid_cases: [(&str, &GridEdit); 5] = [
+        ("resolution zero", &|l, _, _| l.resolution[0] = 0),
+        ("resolution not matching offsets", &|l, _, _| {
+            l.resolution[1] += 1
+        }),
+        ("offsets decreasing", &|_, o, _| o[1] = u32::MAX),
+        ("offsets past the references", &|_, _, i| {
+            i.pop();
+        }),
+        ("bounds not finite", &|l, _, _| {
+            l.bounds.max.x = f32::INFINITY
+        }),
+    ];
+    for (what, f) in grid_cases {
+        assert!(gcorrupt(f).is_err(), "grid: {what}");
+    }
+}
+
+/// A mesh without triangles builds every structure, and every query finds nothing.
+#[test]
+fn an_empty_mesh_builds_and_answers_nothing() {
+    let positions = [[0.0f32, 0.0, 0.0]];
+    let mesh = meshq::mesh::MeshRef::new(&positions, &[])
+        .validate()
+        .unwrap();
+    for kind in StructureKind::ALL {
+        let index = MeshIndex::build(&mesh, kind).unwrap();
+        assert_eq!(
+            index.raycast(&Ray::new(Vec3::new(0.0, 0.0, 1.0), -Vec3::Z)),
+            None,
+            "{kind}"
+        );
+        assert_eq!(
+            index.closest_point(Vec3::ONE, f32::INFINITY),
+            None,
+            "{kind}"
+        );
+    }
+}

@@ -7,6 +7,7 @@
 //! their count is only known once the cells are cut. Each structure therefore gives an exact
 //! sizing pass and a builder that stays within the buffers it is handed.
 
+mod check;
 mod offer;
 mod pack;
 mod reference;
@@ -15,6 +16,7 @@ mod stats;
 mod tree_build;
 mod words;
 
+pub(crate) use check::{Visits, first_bad_reference};
 pub(crate) use offer::Offer;
 pub use pack::pack_references;
 pub(crate) use reference::ReferencePad;

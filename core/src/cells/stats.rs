@@ -20,6 +20,14 @@ pub struct CellStats {
 }
 
 impl CellStats {
+    /// Counts one leaf cell at `depth` holding `references`.
+    pub(crate) fn add_cell(&mut self, depth: u32, references: usize) {
+        self.cells += 1;
+        self.empty_cells += usize::from(references == 0);
+        self.max_depth = self.max_depth.max(depth as usize);
+        self.max_cell_references = self.max_cell_references.max(references);
+    }
+
     /// References per triangle (0 without triangles).
     #[must_use]
     pub fn references_per_triangle(&self) -> f64 {

@@ -1,7 +1,7 @@
 //! Checking that arrays form a grid.
 
 use super::{GridConfig, GridLayout};
-use crate::cells::Words;
+use crate::cells::{Words, first_bad_reference};
 use crate::error::StructureError;
 
 /// Checks `offsets` and `items` against `layout` (see [`Grid::from_parts`](super::Grid::from_parts)).
@@ -35,17 +35,14 @@ pub(super) fn check<W: Words>(
         }
         prev = o;
     }
-    for i in 0..items.len() {
-        let tri = items.word(i).unwrap_or(u32::MAX);
-        if tri as usize >= triangle_count {
-            let cell = (0..cells)
-                .find(|&c| offsets.word(c + 1).is_some_and(|e| e as usize > i))
-                .unwrap_or(0);
-            return Err(StructureError::TriangleOutOfRange {
-                node: cell as u32,
-                tri,
-            });
-        }
-    }
-    Ok(())
+    let Some((i, tri)) = first_bad_reference(items, triangle_count) else {
+        return Ok(());
+    };
+    let cell = (0..cells)
+        .find(|&c| offsets.word(c + 1).is_some_and(|e| e as usize > i))
+        .unwrap_or(0);
+    Err(StructureError::TriangleOutOfRange {
+        node: cell as u32,
+        tri,
+    })
 }

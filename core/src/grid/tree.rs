@@ -86,15 +86,12 @@ impl<W: Words> Grid<W> {
     pub fn stats(&self, triangles: usize) -> CellStats {
         let cells = self.offsets.len().saturating_sub(1);
         let mut stats = CellStats {
-            cells,
             references: self.items.len(),
             triangles,
             ..CellStats::default()
         };
         for c in 0..cells {
-            let n = self.cell_range(c).map_or(0, |(_, n)| n);
-            stats.empty_cells += usize::from(n == 0);
-            stats.max_cell_references = stats.max_cell_references.max(n);
+            stats.add_cell(0, self.cell_range(c).map_or(0, |(_, n)| n));
         }
         stats
     }

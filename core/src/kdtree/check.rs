@@ -1,7 +1,7 @@
 //! Checking that arrays form a k-d tree.
 
 use super::{KdConfig, KdKind, KdTree};
-use crate::cells::Words;
+use crate::cells::{Visits, Words, first_bad_reference};
 use crate::error::StructureError;
 use crate::query::Cell;
 
@@ -22,16 +22,10 @@ pub(super) fn check<N: Words, W: Words>(
     }
     let mut stack = [(0u32, Cell::root(tree.bounds), 0u32); KdConfig::MAX_DEPTH as usize + 2];
     let mut top = 1usize;
-    let mut visits = 0usize;
+    let mut visits = Visits::new(count);
     while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied()) {
         top -= 1;
-        visits += 1;
-        if visits > count {
-            return Err(StructureError::UnreachableNodes {
-                reached: visits as u32,
-                total: count as u32,
-            });
-        }
+        visits.visit()?;
         let Some(n) = tree.node(node as usize) else {
             return Err(StructureError::ChildOutOfRange { node });
         };
@@ -71,17 +65,9 @@ pub(super) fn check<N: Words, W: Words>(
             }
         }
     }
-    if visits != count {
-        return Err(StructureError::UnreachableNodes {
-            reached: visits as u32,
-            total: count as u32,
-        });
+    visits.finish()?;
+    match first_bad_reference(tree.items, triangle_count) {
+        Some((_, tri)) => Err(StructureError::TriangleOutOfRange { node: 0, tri }),
+        None => Ok(()),
     }
-    for i in 0..tree.items.len() {
-        let tri = tree.items.word(i).unwrap_or(u32::MAX);
-        if tri as usize >= triangle_count {
-            return Err(StructureError::TriangleOutOfRange { node: 0, tri });
-        }
-    }
-    Ok(())
 }

@@ -207,12 +207,7 @@ impl<N: Words, W: Words> KdTree<N, W> {
             triangles,
             ..CellStats::default()
         };
-        self.for_each_leaf(|_, depth, _, count| {
-            stats.cells += 1;
-            stats.empty_cells += usize::from(count == 0);
-            stats.max_depth = stats.max_depth.max(depth as usize);
-            stats.max_cell_references = stats.max_cell_references.max(count as usize);
-        });
+        self.for_each_leaf(|_, depth, _, count| stats.add_cell(depth, count as usize));
         stats
     }
 }

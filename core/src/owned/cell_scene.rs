@@ -34,6 +34,11 @@ impl CellScene {
         ValidMesh::new_unchecked_by_validate(&self.positions, &self.triangles)
     }
 
+    /// Bytes of the packed triangles.
+    pub(super) fn packed_bytes(&self) -> usize {
+        core::mem::size_of_val(self.packed.as_slice())
+    }
+
     /// Packs the triangles of `items`, in their order.
     pub(super) fn pack(&mut self, items: &[u32]) -> Result<(), BuildError> {
         let mut packed = vec![PackedTriangle::EMPTY; items.len()];

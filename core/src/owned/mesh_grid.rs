@@ -78,7 +78,7 @@ impl MeshGrid {
     /// Bytes of the packed triangles (36 per reference).
     #[must_use]
     pub fn packed_bytes(&self) -> usize {
-        core::mem::size_of::<PackedTriangle>() * self.scene.packed.len()
+        self.scene.packed_bytes()
     }
 }
 

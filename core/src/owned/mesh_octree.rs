@@ -82,7 +82,7 @@ impl MeshOctree {
     /// Bytes of the packed triangles (36 per reference).
     #[must_use]
     pub fn packed_bytes(&self) -> usize {
-        core::mem::size_of::<PackedTriangle>() * self.scene.packed.len()
+        self.scene.packed_bytes()
     }
 }
 
