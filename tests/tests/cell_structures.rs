@@ -429,9 +429,9 @@ fn owned_structures_of_every_kind_answer_as_brute_force() {
     assert!("quadtree".parse::<StructureKind>().is_err());
 }
 
-type KdEdit = dyn Fn(&mut Vec<KdNode>, &mut Vec<u32>);
-type OctEdit = dyn Fn(&mut Vec<OctreeNode>, &mut Vec<u32>);
-type GridEdit = dyn Fn(&mut meshq::grid::GridLayout, &mut Vec<u32>, &mut Vec<u32>);
+type KdEdit<'a> = dyn Fn(&mut Vec<KdNode>, &mut Vec<u32>) + 'a;
+type OctEdit<'a> = dyn Fn(&mut Vec<OctreeNode>, &mut Vec<u32>) + 'a;
+type GridEdit<'a> = dyn Fn(&mut meshq::grid::GridLayout, &mut Vec<u32>, &mut Vec<u32>) + 'a;
 
 /// Arrays that do not form a structure are refused with a typed error, never a panic: each
 /// corruption below breaks one rule the walks rely on.
@@ -451,7 +451,7 @@ fn corrupted_arrays_are_refused() {
         KdTree::from_parts(*bounds, &nodes[..], &items[..], n).map(|_| ())
     };
     assert!(corrupt(&|_, _| {}).is_ok());
-    let kd_cases: [(&str, &KdEdit); 6] = [
+    let kd_cases: [(&str, &KdEdit<'_>); 6] = [
         ("child before parent", &|v, _| v[inner].b &= 3),
         ("child out of range", &|v, _| {
             v[inner].b = (u32::MAX >> 2) << 2
@@ -479,7 +479,7 @@ fn corrupted_arrays_are_refused() {
     };
     assert!(ocorrupt(&|_, _| {}).is_ok());
     let last = onodes.len() as u32;
-    let oct_cases: [(&str, &OctEdit); 4] = [
+    let oct_cases: [(&str, &OctEdit<'_>); 4] = [
         ("child before parent", &|v, _| {
             v[inner] = OctreeNode::inner(0)
         }),
@@ -502,7 +502,7 @@ fn corrupted_arrays_are_refused() {
         Grid::from_parts(l, &o[..], &i[..], n).map(|_| ())
     };
     assert!(gcorrupt(&|_, _, _| {}).is_ok());
-    let grid_cases: [(&str, &GridEdit); 5] = [
+    let grid_cases: [(&str, &GridEdit<'_>); 5] = [
         ("resolution zero", &|l, _, _| l.resolution[0] = 0),
         ("resolution not matching offsets", &|l, _, _| {
             l.resolution[1] += 1
