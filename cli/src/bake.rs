@@ -4,22 +4,17 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use meshq::MeshBvh;
 use meshq::blob::MeshLayout;
 use meshq::mesh::MeshRef;
+use meshq::owned::{MeshIndex, StructureKind};
 use serde::Serialize;
 
 use crate::mesh_file::read_mesh;
 use crate::quality::Quality;
+use crate::structure_arg::StructureArg;
 use crate::{output, progress};
-
-/// `--structure`: which acceleration structure to bake.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum StructureArg {
-    /// Binned-SAH bounding volume hierarchy.
-    Bvh,
-}
 
 #[derive(Args, Debug)]
 pub struct BakeArgs {
@@ -31,14 +26,14 @@ pub struct BakeArgs {
     /// The acceleration structure.
     #[arg(long, value_enum, default_value_t = StructureArg::Bvh)]
     pub structure: StructureArg,
-    /// Build quality.
+    /// Build quality (BVH only; the others use their default configs).
     #[arg(long, value_enum, default_value_t = Quality::Balanced)]
     pub quality: Quality,
     /// Leave the mesh out (the reader supplies it; it is matched by checksum).
     #[arg(long, conflicts_with = "packed")]
     pub no_mesh: bool,
-    /// Store triangles as corners in leaf order (36 bytes per triangle) for the fastest queries
-    /// in place, instead of positions and indices.
+    /// Store triangles as corners in leaf order (36 bytes per triangle; per reference for the
+    /// cell structures) for the fastest queries in place, instead of positions and indices.
     #[arg(long)]
     pub packed: bool,
     /// Print the figures as one JSON object.
@@ -48,9 +43,13 @@ pub struct BakeArgs {
 
 #[derive(Serialize)]
 struct Summary {
+    structure: &'static str,
     triangles: usize,
     vertices: usize,
     nodes: usize,
+    /// Triangle references in leaves (a BVH references each triangle once).
+    references: usize,
+    /// BVH: levels; k-d tree and octree: the deepest leaf (root 0); grid: 0.
     depth: u32,
     mesh_layout: &'static str,
     build_seconds: f64,
@@ -67,9 +66,13 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
     let config = args.quality.config();
     let n = mesh.triangle_count();
-    spinner.set_message(format!("building a BVH over {n} triangles"));
+    let kind = args.structure.kind();
+    spinner.set_message(format!("building a {kind} over {n} triangles"));
     let start = Instant::now();
-    let scene = MeshBvh::build(&mesh, &config)?;
+    let scene = match kind {
+        StructureKind::Bvh => MeshIndex::Bvh(MeshBvh::build(&mesh, &config)?),
+        other => MeshIndex::build(&mesh, other)?,
+    };
     let build_seconds = start.elapsed().as_secs_f64();
 
     spinner.set_message("encoding");
@@ -87,11 +90,22 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         .with_context(|| format!("cannot write {}", args.output.display()))?;
     spinner.finish_and_clear();
 
+    let (nodes, references, depth) = match (&scene, scene.cell_stats()) {
+        (MeshIndex::Bvh(s), _) => (s.bvh().nodes().len(), n, s.bvh().depth()),
+        (_, Some(c)) => (
+            c.nodes,
+            c.references,
+            u32::try_from(c.max_depth).unwrap_or(u32::MAX),
+        ),
+        (_, None) => (0, 0, 0),
+    };
     let summary = Summary {
+        structure: kind.name(),
         triangles: n,
         vertices: mesh.vertex_count(),
-        nodes: scene.bvh().nodes().len(),
-        depth: scene.bvh().depth(),
+        nodes,
+        references,
+        depth,
         mesh_layout: layout.name(),
         build_seconds,
         encode_seconds,
@@ -103,8 +117,14 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     }
     println!("baked {} -> {}", args.mesh.display(), args.output.display());
     println!(
-        "  {} triangles, {} vertices, {} nodes, depth {}, mesh {}",
-        summary.triangles, summary.vertices, summary.nodes, summary.depth, summary.mesh_layout
+        "  {}: {} triangles, {} vertices, {} nodes, {} references, depth {}, mesh {}",
+        summary.structure,
+        summary.triangles,
+        summary.vertices,
+        summary.nodes,
+        summary.references,
+        summary.depth,
+        summary.mesh_layout
     );
     println!(
         "  build {:.1} ms, encode {:.1} ms, {} bytes ({:.1} bytes/triangle)",

@@ -1,5 +1,5 @@
-//! `meshq inspect`: what a blob holds, after full validation of its tree; or, for a mesh file,
-//! the shape of the structure `--structure` builds over it.
+//! `meshq inspect`: what a blob holds, after full validation of its structure; or, for a mesh
+//! file, the shape of the structure `--structure` builds over it.
 
 use std::path::PathBuf;
 
@@ -7,21 +7,25 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use meshq::blob::{BlobHeader, BlobTree, MAGIC};
+use meshq::blob::{BlobHeader, BlobStructure, BlobTree, MAGIC};
+use meshq::bvh::BuildConfig;
 use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
 use meshq::mesh::MeshRef;
 use meshq::owned::MeshIndex;
 use serde::Serialize;
 
+use crate::inspect_cells::{cell_blob_report, print_cell_blob};
 use crate::mesh_file::read_mesh;
 use crate::output;
+use crate::structure::check_blob_kind;
 use crate::structure_arg::StructureArg;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {
     /// The blob, or a mesh file (OBJ, PLY, STL) to build a structure over.
     pub blob: PathBuf,
-    /// For a mesh file: the structure to build and describe (default bvh).
+    /// For a mesh file: the structure to build and describe (default bvh). For a blob: the
+    /// structure it must hold.
     #[arg(long, value_enum)]
     pub structure: Option<StructureArg>,
     /// Print everything as one JSON object.
@@ -78,15 +82,18 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         drop(bytes);
         return inspect_mesh(args);
     }
-    if args.structure.is_some_and(|s| s != StructureArg::Bvh) {
-        bail!(
-            "{} is a blob, which holds a BVH; --structure applies to mesh files",
-            args.blob.display()
-        );
-    }
-    let (header, tree) = BlobTree::parse(&bytes)
+    check_blob_kind(&bytes, args.structure, &args.blob)?;
+    let (header, structure) = BlobStructure::parse(&bytes)
         .with_context(|| format!("{}: invalid blob", args.blob.display()))?;
-    let report = report(&header, &tree, bytes.len());
+    let (BlobStructure::Bvh(tree), Some(config)) = (structure, header.config.bvh()) else {
+        let report = cell_blob_report(&header, &structure, bytes.len());
+        if args.json {
+            return output::json(&report);
+        }
+        print_cell_blob(&report);
+        return Ok(());
+    };
+    let report = report(&header, &tree, config, bytes.len());
     if args.json {
         return output::json(&report);
     }
@@ -94,8 +101,8 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     Ok(())
 }
 
-fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
-    let stats = TreeStats::of(tree, &h.config);
+fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usize) -> Report {
+    let stats = TreeStats::of(tree, config);
     let nodes = 32 * h.node_count as usize;
     let order = 4 * h.triangle_count as usize;
     let leaf_sizes = (0..LEAF_HISTOGRAM_LEN)
@@ -106,7 +113,7 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
         .collect();
     Report {
         format_version: h.version,
-        structure: format!("{:?}", h.kind).to_lowercase(),
+        structure: h.kind.to_string(),
         mesh_layout: h.mesh.name().to_owned(),
         triangles: h.triangle_count,
         vertices: h.vertex_count,
@@ -116,12 +123,12 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, total: usize) -> Report {
         bounds_min: h.bounds.min.to_array(),
         bounds_max: h.bounds.max.to_array(),
         config: Config {
-            split: h.config.split.name(),
-            bins: h.config.bins,
-            max_leaf_size: h.config.max_leaf_size,
-            max_depth: h.config.max_depth,
-            traversal_cost: h.config.traversal_cost,
-            triangle_cost: h.config.triangle_cost,
+            split: config.split.name(),
+            bins: config.bins,
+            max_leaf_size: config.max_leaf_size,
+            max_depth: config.max_depth,
+            traversal_cost: config.traversal_cost,
+            triangle_cost: config.triangle_cost,
         },
         sah_cost: stats.sah_cost,
         leaf_sizes,

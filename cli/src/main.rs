@@ -4,6 +4,7 @@
 mod bake;
 mod closest;
 mod inspect;
+mod inspect_cells;
 mod mesh_file;
 mod output;
 mod progress;

@@ -1,6 +1,6 @@
 //! The structure a query command runs on: built from a mesh file (a BVH, k-d tree, octree or
-//! grid, as `--structure` says), or loaded from a blob (a BVH). Either way queries run on the
-//! owned structure over packed triangles, the fastest path.
+//! grid, as `--structure` says), or loaded from a blob (whichever structure it holds). Either
+//! way queries run on the owned structure over packed triangles, the fastest path.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use meshq::MeshBvh;
-use meshq::blob::MAGIC;
+use meshq::blob::{BlobHeader, MAGIC};
 use meshq::bvh::BuildConfig;
 use meshq::error::BlobError;
 use meshq::mesh::MeshRef;
@@ -35,9 +35,10 @@ pub struct QueryInput {
     /// Build quality when INPUT is a mesh (BVH only).
     #[arg(long, value_enum, default_value_t = Quality::Balanced)]
     pub quality: Quality,
-    /// The structure to build when INPUT is a mesh (blobs hold a BVH).
-    #[arg(long, value_enum, default_value_t = StructureArg::Bvh)]
-    pub structure: StructureArg,
+    /// The structure to build when INPUT is a mesh (default bvh). For a blob, the structure
+    /// it must hold.
+    #[arg(long, value_enum)]
+    pub structure: Option<StructureArg>,
 }
 
 /// Loads the input — a blob when the file starts with the blob magic, otherwise a mesh file
@@ -52,14 +53,8 @@ pub fn with_structure<R>(
         &args.quality.config(),
     );
     let bytes = std::fs::read(input).with_context(|| format!("cannot read {}", input.display()))?;
-    let kind = args.structure.kind();
     if bytes.starts_with(&MAGIC) {
-        if kind != StructureKind::Bvh {
-            bail!(
-                "{} is a blob, which holds a BVH; --structure {kind} applies to mesh files",
-                input.display()
-            );
-        }
+        check_blob_kind(&bytes, args.structure, input)?;
         let external = mesh.map(read_mesh).transpose()?;
         with_blob(&bytes, external.as_ref(), query)
             .with_context(|| format!("{}: cannot use blob", input.display()))
@@ -72,8 +67,34 @@ pub fn with_structure<R>(
         }
         drop(bytes);
         let data = read_mesh(input)?;
-        with_built(&data, kind, config, query)
+        with_built(
+            &data,
+            args.structure.unwrap_or_default().kind(),
+            config,
+            query,
+        )
     }
+}
+
+/// Refuses a blob that holds another structure than `--structure` names.
+pub fn check_blob_kind(
+    bytes: &[u8],
+    wanted: Option<StructureArg>,
+    input: &std::path::Path,
+) -> Result<()> {
+    let Some(wanted) = wanted.map(StructureArg::kind) else {
+        return Ok(());
+    };
+    let header =
+        BlobHeader::read(bytes).with_context(|| format!("{}: invalid blob", input.display()))?;
+    if header.kind != wanted {
+        bail!(
+            "{} is a blob holding a {}, not a {wanted}; bake it with --structure {wanted}",
+            input.display(),
+            header.kind
+        );
+    }
+    Ok(())
 }
 
 /// Builds a structure of `kind` over `data` (a BVH with `config`, the others with their default
@@ -107,16 +128,16 @@ fn with_blob<R>(
     let scene = match external {
         Some(data) => {
             let mesh = MeshRef::new(&data.positions, &data.triangles).validate()?;
-            MeshBvh::from_blob_with_mesh(bytes, &mesh)?
+            MeshIndex::from_blob_with_mesh(bytes, &mesh)?
         }
-        None => MeshBvh::from_blob(bytes).map_err(|e| match e {
+        None => MeshIndex::from_blob(bytes).map_err(|e| match e {
             BlobError::MeshNotIncluded => anyhow!("{e} (pass it with --mesh)"),
             e => e.into(),
         })?,
     };
     let prepare_seconds = start.elapsed().as_secs_f64();
     query(Prepared {
-        scene: MeshIndex::Bvh(scene),
+        scene,
         prepare_seconds,
     })
 }

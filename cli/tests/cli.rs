@@ -366,9 +366,9 @@ fn errors_are_one_line_and_a_status_never_a_panic() {
     );
 }
 
-/// `--structure` builds each of the four structures over a mesh file; raycast and closest write
-/// the same records for all of them, `inspect` describes each, and a blob (a BVH) refuses any
-/// other structure.
+/// `--structure` builds each of the four structures over a mesh file, or bakes it into a blob;
+/// raycast and closest write the same records for all of them, from the mesh and from the blob
+/// (indexed and packed), `inspect` describes each, and a blob refuses another structure.
 #[test]
 fn every_structure_gives_the_same_records() {
     let dir = tempfile::tempdir().unwrap();
@@ -405,13 +405,41 @@ fn every_structure_gives_the_same_records() {
             &closest,
         ]);
         outputs.push((
-            structure,
+            structure.to_owned(),
             std::fs::read(&hits).unwrap(),
             std::fs::read(&closest).unwrap(),
         ));
         let text = ok(&[&"inspect", &obj, &"--structure", &structure]);
         assert!(text.starts_with(structure), "{text}");
         assert!(text.contains("references"), "{text}");
+        for packed in [false, true] {
+            let blob = dir.path().join(format!("spot-{structure}-{packed}.meshq"));
+            let mut bake: Vec<&dyn AsRef<std::ffi::OsStr>> =
+                vec![&"bake", &obj, &"-o", &blob, &"--structure", &structure];
+            if packed {
+                bake.push(&"--packed");
+            }
+            ok(&bake);
+            let text = ok(&[&"inspect", &blob]);
+            assert!(text.contains(&format!(": {structure} with mesh")), "{text}");
+            let name = format!("{structure} blob, packed {packed}");
+            let hits = dir.path().join(format!("blob-hits-{structure}.bin"));
+            ok(&[&"raycast", &blob, &"--rays", &ray_file, &"--out", &hits]);
+            let closest = dir.path().join(format!("blob-closest-{structure}.bin"));
+            ok(&[
+                &"closest",
+                &blob,
+                &"--points",
+                &point_file,
+                &"--out",
+                &closest,
+            ]);
+            outputs.push((
+                name,
+                std::fs::read(&hits).unwrap(),
+                std::fs::read(&closest).unwrap(),
+            ));
+        }
     }
     let (_, bvh_hits, bvh_closest) = &outputs[0];
     assert!(
@@ -423,8 +451,7 @@ fn every_structure_gives_the_same_records() {
         assert_eq!(hits, bvh_hits, "{structure}: raycast records");
         assert_eq!(closest, bvh_closest, "{structure}: closest records");
     }
-    let blob = dir.path().join("spot.meshq");
-    ok(&[&"bake", &obj, &"-o", &blob]);
+    let blob = dir.path().join("spot-bvh-false.meshq");
     let out = dir.path().join("out.bin");
     fails(
         &[
@@ -438,6 +465,6 @@ fn every_structure_gives_the_same_records() {
             &out,
         ],
         1,
-        "holds a BVH",
+        "holding a bvh, not a grid",
     );
 }

@@ -97,6 +97,7 @@ pub mod octree;
 pub mod owned;
 pub mod prelude;
 pub mod query;
+mod structure_kind;
 pub mod wide;
 
 #[cfg(feature = "blob")]
@@ -107,4 +108,5 @@ pub use mesh::{MeshRef, ValidMesh};
 #[cfg(feature = "alloc")]
 pub use owned::MeshBvh;
 pub use query::{MeshQuery, RayOptions, Traverse};
+pub use structure_kind::{StructureKind, UnknownStructure};
 pub use wide::WideBvh;

@@ -109,3 +109,30 @@ pub fn in_stadium(mesh: &LoadedMesh) -> LoadedMesh {
     out.triangles.extend([[v, v + 2, v + 1], [v, v + 3, v + 2]]);
     out
 }
+
+/// A small real mesh: the triangles of spot within 0.15 of its first vertex, re-indexed
+/// (about a hundred triangles; small enough to damage every byte of its blobs).
+#[must_use]
+pub fn spot_patch() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let spot = load_mesh("spot");
+    let centre = glam::Vec3::from_array(spot.positions[0]);
+    let mut remap = vec![u32::MAX; spot.positions.len()];
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in &spot.triangles {
+        let near = t
+            .iter()
+            .all(|&i| glam::Vec3::from_array(spot.positions[i as usize]).distance(centre) < 0.15);
+        if !near {
+            continue;
+        }
+        triangles.push(t.map(|i| {
+            if remap[i as usize] == u32::MAX {
+                remap[i as usize] = u32::try_from(positions.len()).unwrap_or(u32::MAX);
+                positions.push(spot.positions[i as usize]);
+            }
+            remap[i as usize]
+        }));
+    }
+    (positions, triangles)
+}

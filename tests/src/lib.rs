@@ -8,7 +8,7 @@ pub mod oracle;
 pub mod suite;
 pub mod workload;
 
-pub use assets::{LoadedMesh, MESHES, in_stadium, load_mesh, load_obj};
+pub use assets::{LoadedMesh, MESHES, in_stadium, load_mesh, load_obj, spot_patch};
 pub use meshq_workload::SplitMix64;
 
 use meshq::MeshBvh;

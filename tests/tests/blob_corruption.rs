@@ -11,31 +11,6 @@ use meshq::mesh::MeshRef;
 use meshq::{MeshBvh, MeshQuery};
 use meshq_tests::{bake, load_mesh};
 
-/// A small real blob: the triangles of spot within a radius of one of its vertices, re-indexed.
-fn small_patch() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let spot = load_mesh("spot");
-    let centre = Vec3::from_array(spot.positions[0]);
-    let mut remap = vec![u32::MAX; spot.positions.len()];
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for t in &spot.triangles {
-        let near = t
-            .iter()
-            .all(|&i| Vec3::from_array(spot.positions[i as usize]).distance(centre) < 0.15);
-        if !near {
-            continue;
-        }
-        triangles.push(t.map(|i| {
-            if remap[i as usize] == u32::MAX {
-                remap[i as usize] = positions.len() as u32;
-                positions.push(spot.positions[i as usize]);
-            }
-            remap[i as usize]
-        }));
-    }
-    (positions, triangles)
-}
-
 /// Runs every kind of query on a view; the point is that none of them panics or hangs.
 fn exercise(view: &BlobView<'_>) -> usize {
     let b = view.bounds();
@@ -63,7 +38,7 @@ fn exercise(view: &BlobView<'_>) -> usize {
 
 #[test]
 fn every_single_byte_corruption_and_truncation_is_handled() {
-    let (positions, triangles) = small_patch();
+    let (positions, triangles) = meshq_tests::spot_patch();
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     assert!((40..200).contains(&triangles.len()), "{}", triangles.len());
     for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
@@ -125,19 +100,19 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
     let bytes = bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap();
 
     let mut future = bytes.clone();
-    assert_eq!(future[4], 2, "the version varint follows the magic");
-    future[4] = 3;
-    blob::reseal(&mut future).unwrap_err(); // the header of version 3 is not read at all
+    assert_eq!(future[4], 3, "the version varint follows the magic");
+    future[4] = 4;
+    blob::reseal(&mut future).unwrap_err(); // the header of version 4 is not read at all
     let err = BlobView::parse(&future).unwrap_err();
     assert_eq!(
         err,
         BlobError::UnsupportedVersion {
-            found: 3,
+            found: 4,
             oldest: 1,
-            newest: 2
+            newest: 3
         }
     );
-    assert!(err.to_string().contains("versions 1 to 2"), "{err}");
+    assert!(err.to_string().contains("versions 1 to 3"), "{err}");
     let mut past = bytes.clone();
     past[4] = 0;
     assert!(matches!(
@@ -237,7 +212,7 @@ fn an_order_naming_a_triangle_twice_is_refused_by_the_owned_copy() {
     );
 
     // The same damage made on purpose to a real blob: one order entry repeated.
-    let (positions, triangles) = small_patch();
+    let (positions, triangles) = meshq_tests::spot_patch();
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     let good = bake(&mesh, &BuildConfig::default(), MeshLayout::Packed).unwrap();
     let scene = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();

@@ -60,7 +60,8 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
             assert_eq!(h.vertex_count as usize, mesh.vertex_count());
             assert_eq!(h.node_count as usize, bvh.nodes().len());
             assert_eq!(h.depth, bvh.depth());
-            assert_eq!(h.config, config);
+            assert_eq!(h.config, meshq::blob::StructureConfig::Bvh(config));
+            assert_eq!(h.reference_count, h.triangle_count);
             assert_eq!(h.total_len, bytes.len());
             assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
             assert_eq!(view.bounds(), bvh.bounds());
@@ -122,6 +123,7 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
             assert_eq!(
                 hit_key(
                     view.tree()
+                        .unwrap()
                         .with(&mesh)
                         .raycast_with(&ray, &RayOptions::default())
                 ),
@@ -366,14 +368,14 @@ fn format_1_blobs_still_load_and_answer_exactly() {
     // The balanced preset of the day it was baked.
     assert_eq!(
         h.config,
-        BuildConfig {
+        meshq::blob::StructureConfig::Bvh(BuildConfig {
             split: meshq::bvh::SplitStrategy::Sah,
             bins: 32,
             max_leaf_size: 4,
             max_depth: meshq::bvh::MAX_DEPTH,
             traversal_cost: 1.0,
             triangle_cost: 1.0,
-        }
+        })
     );
     assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
     assert_eq!(h.triangle_count as usize, mesh.triangle_count());

@@ -8,6 +8,13 @@ use crate::math::PackedTriangle;
 use crate::mesh::{MeshRef, ValidMesh};
 use crate::query::{LeafTriangles, PackedTriangles};
 
+/// The BVH of a BVH view; other kinds have no order to decode.
+fn bvh_tree<'v, 'a>(view: &'v BlobView<'a>) -> Result<&'v super::BlobTree<'a>, BlobError> {
+    view.tree().ok_or(BlobError::UnsupportedStructure {
+        kind: view.header.kind.tag(),
+    })
+}
+
 fn too_small(section: BlobSection, needed: usize, got: usize) -> BlobError {
     BlobError::BufferTooSmall {
         section,
@@ -23,23 +30,25 @@ impl BlobView<'_> {
     /// validated at load and the copy is exact.
     ///
     /// # Errors
-    /// [`BlobError::BufferTooSmall`] (nothing written).
+    /// [`BlobError::BufferTooSmall`] (nothing written); [`BlobError::UnsupportedStructure`]
+    /// for a blob of another kind.
     pub fn decode_tree<'n>(
         &self,
         nodes: &'n mut [BvhNode],
         order: &'n mut [u32],
     ) -> Result<Bvh<'n>, BlobError> {
-        let (n, m) = (self.tree.nodes.len(), self.tree.order.len());
+        let tree = bvh_tree(self)?;
+        let (n, m) = (tree.nodes.len(), tree.order.len());
         if nodes.len() < n {
             return Err(too_small(BlobSection::Nodes, n, nodes.len()));
         }
         if order.len() < m {
             return Err(too_small(BlobSection::Order, m, order.len()));
         }
-        for (out, b) in nodes.iter_mut().zip(self.tree.nodes) {
+        for (out, b) in nodes.iter_mut().zip(tree.nodes) {
             *out = node_from_bytes(b);
         }
-        for (out, b) in order.iter_mut().zip(self.tree.order) {
+        for (out, b) in order.iter_mut().zip(tree.order) {
             *out = u32::from_le_bytes(*b);
         }
         let nodes: &'n [BvhNode] = nodes;
@@ -47,7 +56,7 @@ impl BlobView<'_> {
         Ok(Bvh::from_validated(
             nodes.get(..n).unwrap_or_default(),
             order.get(..m).unwrap_or_default(),
-            self.tree.depth,
+            tree.depth,
         ))
     }
 
@@ -111,16 +120,18 @@ impl BlobView<'_> {
     /// [`decode_tree`](Self::decode_tree) result.
     ///
     /// # Errors
-    /// [`BlobError::BufferTooSmall`] (nothing written).
+    /// [`BlobError::BufferTooSmall`] (nothing written); [`BlobError::UnsupportedStructure`]
+    /// for a blob of another kind.
     pub fn decode_packed<'p>(
         &self,
         out: &'p mut [PackedTriangle],
     ) -> Result<PackedTriangles<'p>, BlobError> {
-        let n = self.tree.slot_count();
+        let tree = bvh_tree(self)?;
+        let n = tree.slot_count();
         if out.len() < n {
             return Err(too_small(BlobSection::PackedTriangles, n, out.len()));
         }
-        for (slot, (dst, id)) in out.iter_mut().zip(self.tree.order).enumerate() {
+        for (slot, (dst, id)) in out.iter_mut().zip(tree.order).enumerate() {
             if let Some(t) = self.mesh.corners(slot, u32::from_le_bytes(*id)) {
                 *dst = PackedTriangle::new(&t);
             }

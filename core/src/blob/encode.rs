@@ -5,10 +5,13 @@ use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
 
 use super::checksum::{digest, mesh_checksum};
 use super::format::{
-    CHECKSUM_BYTES, ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC,
-    MeshLayout, NodeRecord, StructureKind, TriangleRecord,
+    CHECKSUM_BYTES, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
+    NodeRecord, TriangleRecord,
 };
-use crate::bvh::{BuildConfig, Bvh, SplitStrategy};
+use super::source::BlobSource;
+use super::structure_config::WireConfig;
+use crate::bvh::{BuildConfig, Bvh};
+use crate::cells::TwoWordNode;
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
@@ -33,39 +36,81 @@ pub fn encoded_len(
     mesh: &ValidMesh<'_>,
     options: &EncodeOptions,
 ) -> Result<usize, BlobError> {
-    let payload = Payload::new(bvh, mesh, options.mesh);
-    let payload_len = size_of_value(&payload)?;
-    let header = header(bvh, mesh, options, payload_len, 0)?;
-    size_of_value(&header)?
-        .checked_add(payload_len)
-        .ok_or(BlobError::TooLarge)
+    structure_encoded_len(&BlobSource::Bvh(bvh, options.config), mesh, options.mesh)
 }
 
 /// Encodes `bvh`, built from `mesh`, into the front of `out` and returns the number of bytes
-/// written ([`encoded_len`]).
-///
-/// The bytes depend only on the tree, the mesh and the options, never on the host: every
-/// number is little-endian, so a deterministic build gives the same blob on every target. The
-/// tree is validated against the mesh first, so an invalid blob is never written.
+/// written ([`encoded_len`]): [`encode_structure_into`] for a BVH.
 ///
 /// # Errors
-/// [`BlobError::BufferTooSmall`] (nothing written) when `out` is shorter than
-/// [`encoded_len`]; [`BlobError::InvalidNode`] when `bvh` does not validate against `mesh`;
-/// [`BlobError::HeaderMismatch`] for an out-of-range config; [`BlobError::TooLarge`].
+/// As [`encode_structure_into`].
 pub fn encode_into(
     bvh: &Bvh<'_>,
     mesh: &ValidMesh<'_>,
     options: &EncodeOptions,
     out: &mut [u8],
 ) -> Result<usize, BlobError> {
-    options
-        .config
-        .check()
-        .map_err(|_| BlobError::HeaderMismatch { field: "config" })?;
-    bvh.check(mesh)?;
-    let payload = Payload::new(bvh, mesh, options.mesh);
+    encode_structure_into(
+        &BlobSource::Bvh(bvh, options.config),
+        mesh,
+        options.mesh,
+        out,
+    )
+}
+
+/// The exact number of bytes [`encode_structure_into`] writes for this structure, mesh and
+/// layout.
+///
+/// # Errors
+/// [`BlobError::TooLarge`] when a count does not fit the format.
+pub fn structure_encoded_len(
+    source: &BlobSource<'_>,
+    mesh: &ValidMesh<'_>,
+    layout: MeshLayout,
+) -> Result<usize, BlobError> {
+    let payload = Payload {
+        source,
+        mesh,
+        layout,
+    };
     let payload_len = size_of_value(&payload)?;
-    let header = header(bvh, mesh, options, payload_len, 0)?;
+    let header = header(source, mesh, layout, payload_len)?;
+    size_of_value(&header)?
+        .checked_add(payload_len)
+        .ok_or(BlobError::TooLarge)
+}
+
+/// Encodes a structure of any kind, built from `mesh`, with the mesh stored as `layout` says,
+/// into the front of `out`; returns the number of bytes written
+/// ([`structure_encoded_len`]).
+///
+/// The bytes depend only on the structure, its config, the mesh and the layout, never on the
+/// host: every number is little-endian, so a deterministic build gives the same blob on every
+/// target. The structure is validated against the mesh first, so an invalid blob is never
+/// written.
+///
+/// # Errors
+/// [`BlobError::BufferTooSmall`] (nothing written) when `out` is shorter than
+/// [`structure_encoded_len`]; [`BlobError::InvalidNode`] when the structure does not validate
+/// against `mesh`; [`BlobError::HeaderMismatch`] for an out-of-range config;
+/// [`BlobError::TooLarge`].
+pub fn encode_structure_into(
+    source: &BlobSource<'_>,
+    mesh: &ValidMesh<'_>,
+    layout: MeshLayout,
+    out: &mut [u8],
+) -> Result<usize, BlobError> {
+    if !source.config().is_valid() {
+        return Err(BlobError::HeaderMismatch { field: "config" });
+    }
+    source.check(mesh)?;
+    let payload = Payload {
+        source,
+        mesh,
+        layout,
+    };
+    let payload_len = size_of_value(&payload)?;
+    let header = header(source, mesh, layout, payload_len)?;
     let header_len = size_of_value(&header)?;
     let total = header_len
         .checked_add(payload_len)
@@ -114,65 +159,70 @@ struct Header {
     magic: [u8; 4],
     version: u16,
     counts: HeaderCounts,
-    split: SplitStrategy,
-    costs: ConfigCosts,
+    config: WireConfig,
     seal: HeaderSeal,
     checksum: FixedU32,
 }
 
 fn header(
-    bvh: &Bvh<'_>,
+    source: &BlobSource<'_>,
     mesh: &ValidMesh<'_>,
-    options: &EncodeOptions,
+    layout: MeshLayout,
     payload_len: usize,
-    checksum: u32,
 ) -> Result<Header, BlobError> {
     let count = |n: usize| u32::try_from(n).map_err(|_| BlobError::TooLarge);
-    let bounds = bvh.bounds();
+    let bounds = source.bounds();
     Ok(Header {
         magic: MAGIC,
         version: FORMAT_VERSION,
         counts: HeaderCounts {
-            kind: StructureKind::Bvh.tag(),
-            mesh: options.mesh.tag(),
+            kind: source.kind().tag(),
+            mesh: layout.tag(),
             triangle_count: count(mesh.triangle_count())?,
             vertex_count: count(mesh.vertex_count())?,
-            node_count: count(bvh.nodes().len())?,
-            depth: bvh.depth(),
+            node_count: count(source.node_count())?,
+            depth: source.depth(mesh.triangle_count()),
             bounds_min: bounds.min.to_array(),
             bounds_max: bounds.max.to_array(),
         },
-        split: options.config.split,
-        costs: ConfigCosts::of(&options.config),
+        config: WireConfig {
+            config: source.config(),
+            references: count(source.order().len())?,
+        },
         seal: HeaderSeal {
             mesh_checksum: mesh_checksum(mesh),
             payload_len: u64::try_from(payload_len).map_err(|_| BlobError::TooLarge)?,
         },
-        checksum: FixedU32(checksum),
+        checksum: FixedU32(0),
     })
 }
 
-/// Everything after the header: nodes, order, then the mesh section.
+/// Everything after the header: a BVH's nodes and order, or a cell structure's words and
+/// references; then the mesh section.
 struct Payload<'q, 'a> {
-    bvh: &'q Bvh<'a>,
+    source: &'q BlobSource<'q>,
     mesh: &'q ValidMesh<'a>,
     layout: MeshLayout,
-}
-
-impl<'q, 'a> Payload<'q, 'a> {
-    fn new(bvh: &'q Bvh<'a>, mesh: &'q ValidMesh<'a>, layout: MeshLayout) -> Self {
-        Self { bvh, mesh, layout }
-    }
 }
 
 impl Serialize for Payload<'_, '_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeTuple;
         let mut t = s.serialize_tuple(3)?;
-        t.serialize_element(&Seq(self.bvh.nodes().iter().map(NodeRecord::from)))?;
-        t.serialize_element(&Seq(self.bvh.order().iter().map(|&i| FixedU32(i))))?;
+        match self.source {
+            BlobSource::Bvh(bvh, _) => {
+                t.serialize_element(&Seq(bvh.nodes().iter().map(NodeRecord::from)))?;
+            }
+            BlobSource::KdTree(tree, _) => t.serialize_element(&node_words(tree.nodes()))?,
+            BlobSource::Octree(tree, _) => t.serialize_element(&node_words(tree.nodes()))?,
+            BlobSource::Grid(grid, _) => {
+                t.serialize_element(&Seq(grid.offsets().iter().map(|&w| FixedU32(w))))?;
+            }
+        }
+        let order = self.source.order();
+        t.serialize_element(&Seq(order.iter().map(|&i| FixedU32(i))))?;
         t.serialize_element(&MeshSection {
-            bvh: self.bvh,
+            order,
             mesh: self.mesh,
             layout: self.layout,
         })?;
@@ -180,9 +230,16 @@ impl Serialize for Payload<'_, '_> {
     }
 }
 
-/// The mesh section: an enum whose variant index is the [`MeshLayout`] tag.
+/// Two-word nodes as a sequence of fixed-width words.
+fn node_words<N: TwoWordNode>(nodes: &[N]) -> Seq<impl Iterator<Item = FixedU32> + Clone + '_> {
+    Seq(nodes.iter().flat_map(|n| n.words()).map(FixedU32))
+}
+
+/// The mesh section: an enum whose variant index is the [`MeshLayout`] tag. A packed mesh
+/// holds one corner triple per entry of `order` (a BVH's leaf slots, a cell structure's
+/// references).
 struct MeshSection<'q, 'a> {
-    bvh: &'q Bvh<'a>,
+    order: &'q [u32],
     mesh: &'q ValidMesh<'a>,
     layout: MeshLayout,
 }
@@ -204,7 +261,7 @@ impl Serialize for MeshSection<'_, '_> {
             MeshLayout::Packed => {
                 let mesh = self.mesh;
                 let mut v = s.serialize_tuple_variant(NAME, 1, "Packed", 1)?;
-                v.serialize_field(&Seq(self.bvh.order().iter().map(|&tri| {
+                v.serialize_field(&Seq(self.order.iter().map(|&tri| {
                     mesh.triangle(tri)
                         .map_or(PackedTriangle::EMPTY, |t| PackedTriangle {
                             a: t.a.to_array(),

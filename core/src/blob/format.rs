@@ -8,13 +8,15 @@
 use serde::{Deserialize, Serialize};
 
 use crate::bvh::{BuildConfig, BvhNode, SplitStrategy};
+pub use crate::structure_kind::StructureKind;
 
 /// The first four bytes of every blob.
 pub const MAGIC: [u8; 4] = *b"MSHQ";
 
-/// The format version this build writes. Version 2 added the split strategy to the config;
-/// version 1 blobs (always binned SAH) are still read.
-pub const FORMAT_VERSION: u16 = 2;
+/// The format version this build writes. Version 3 added the k-d tree, octree and grid kinds
+/// (a BVH blob is laid out as in version 2); version 2 added the split strategy to the config;
+/// version 1 and 2 blobs (always a BVH) are still read.
+pub const FORMAT_VERSION: u16 = 3;
 
 /// The oldest format version this build reads.
 pub const OLDEST_READABLE_VERSION: u16 = 1;
@@ -29,16 +31,10 @@ pub(crate) const POSITION_BYTES: usize = 12;
 pub(crate) const TRIANGLE_BYTES: usize = 12;
 /// Bytes of one packed triangle.
 pub(crate) const PACKED_BYTES: usize = 36;
+/// Bytes of one word of a cell structure's arrays (node halves, cell offsets, references).
+pub(crate) const WORD_BYTES: usize = 4;
 /// Bytes of the trailing header checksum.
 pub(crate) const CHECKSUM_BYTES: usize = 4;
-
-/// Which acceleration structure a blob holds.
-#[non_exhaustive]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum StructureKind {
-    /// A binned-SAH BVH ([`Bvh`](crate::bvh::Bvh)), wire tag 0.
-    Bvh,
-}
 
 /// How a blob stores the mesh its structure was built from.
 #[non_exhaustive]
@@ -66,25 +62,6 @@ impl MeshLayout {
             Self::Indexed => "indexed",
             Self::Packed => "packed",
             Self::Omitted => "omitted",
-        }
-    }
-}
-
-impl StructureKind {
-    /// The wire tag.
-    #[must_use]
-    pub const fn tag(self) -> u32 {
-        match self {
-            Self::Bvh => 0,
-        }
-    }
-
-    /// The kind with wire tag `tag`, if this build knows it.
-    #[must_use]
-    pub const fn from_tag(tag: u32) -> Option<Self> {
-        match tag {
-            0 => Some(Self::Bvh),
-            _ => None,
         }
     }
 }
@@ -137,6 +114,34 @@ pub(crate) struct ConfigCosts {
     pub max_depth: u32,
     pub traversal_cost: f32,
     pub triangle_cost: f32,
+}
+
+/// A k-d tree's config and reference count, after the header counts (version 3).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct KdWire {
+    pub max_depth: u32,
+    pub leaf_size: u32,
+    pub traversal_cost: f32,
+    pub triangle_cost: f32,
+    pub empty_bonus: f32,
+    pub references: u32,
+}
+
+/// An octree's config and reference count, after the header counts (version 3).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct OctreeWire {
+    pub max_depth: u32,
+    pub max_items: u32,
+    pub references: u32,
+}
+
+/// A grid's config, resolution and reference count, after the header counts (version 3).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct GridWire {
+    pub cells_per_triangle: f32,
+    pub max_resolution: u32,
+    pub resolution: [u32; 3],
+    pub references: u32,
 }
 
 /// The header fields after the config, before the header checksum.

@@ -3,11 +3,12 @@
 use glam::Vec3;
 
 use super::format::{
-    ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
-    OLDEST_READABLE_VERSION, StructureKind,
+    ConfigCosts, FORMAT_VERSION, FixedU32, GridWire, HeaderCounts, HeaderSeal, KdWire, MAGIC,
+    MeshLayout, OLDEST_READABLE_VERSION, OctreeWire, StructureKind,
 };
 use super::reader::Reader;
-use crate::bvh::{BuildConfig, SplitStrategy};
+use super::structure_config::{StructureConfig, WireConfig, bvh_config};
+use crate::bvh::SplitStrategy;
 use crate::error::{BlobError, BlobSection};
 use crate::math::Aabb;
 
@@ -25,17 +26,20 @@ pub struct BlobHeader {
     pub triangle_count: u32,
     /// Vertices in that mesh.
     pub vertex_count: u32,
-    /// Nodes in the tree.
+    /// Nodes in the tree; a grid's cell count.
     pub node_count: u32,
-    /// Levels in the tree (0 when empty, 1 for a lone leaf).
+    /// Entries of the leaf-slot → triangle array: the triangle count for a BVH (its order),
+    /// the reference count of a k-d tree, octree or grid (a triangle in several cells counts
+    /// once per cell).
+    pub reference_count: u32,
+    /// A BVH's levels (0 when empty, 1 for a lone leaf); the depth of the deepest leaf of a
+    /// k-d tree or octree (the root is depth 0); 0 for a grid.
     pub depth: u32,
-    /// The root's padded box ([`Aabb::EMPTY`] when empty).
+    /// The root's box: a BVH's padded root box ([`Aabb::EMPTY`] when empty), a k-d tree's or
+    /// grid's mesh bounds, an octree's root cube.
     pub bounds: Aabb,
-    /// The config the tree was built with (informational; [`SplitStrategy::Sah`] for version 1
-    /// blobs, which had no other).
-    ///
-    /// [`SplitStrategy::Sah`]: crate::bvh::SplitStrategy::Sah
-    pub config: BuildConfig,
+    /// The config the structure was built with (informational, except a grid's resolution).
+    pub config: StructureConfig,
     /// [`mesh_checksum`](super::mesh_checksum) of the mesh the blob was baked from.
     pub mesh_checksum: u32,
     /// The blob checksum stored in the header.
@@ -70,17 +74,12 @@ impl BlobHeader {
             });
         }
         let f: HeaderCounts = r.value(BlobSection::Header)?;
-        // Version 1 had no split tag: every tree was binned SAH.
-        let split = if version == 1 {
-            SplitStrategy::Sah
-        } else {
-            r.value(BlobSection::Header)?
-        };
-        let costs: ConfigCosts = r.value(BlobSection::Header)?;
+        let kind = StructureKind::from_tag(f.kind)
+            .filter(|&k| version >= 3 || k == StructureKind::Bvh)
+            .ok_or(BlobError::UnsupportedStructure { kind: f.kind })?;
+        let wire = read_config(&mut r, version, kind, f.triangle_count)?;
         let seal: HeaderSeal = r.value(BlobSection::Header)?;
         let FixedU32(checksum) = r.value(BlobSection::Header)?;
-        let kind = StructureKind::from_tag(f.kind)
-            .ok_or(BlobError::UnsupportedStructure { kind: f.kind })?;
         let mesh = MeshLayout::from_tag(f.mesh).ok_or(BlobError::Malformed {
             offset: 0,
             section: BlobSection::MeshLayout,
@@ -97,16 +96,45 @@ impl BlobHeader {
             triangle_count: f.triangle_count,
             vertex_count: f.vertex_count,
             node_count: f.node_count,
+            reference_count: wire.references,
             depth: f.depth,
             bounds: Aabb::new(
                 Vec3::from_array(f.bounds_min),
                 Vec3::from_array(f.bounds_max),
             ),
-            config: costs.with_split(split),
+            config: wire.config,
             mesh_checksum: seal.mesh_checksum,
             checksum,
             header_len,
             total_len,
         })
     }
+}
+
+/// The config part of the header for `kind` in `version`, with the reference count (a BVH's
+/// is its triangle count).
+fn read_config(
+    r: &mut Reader<'_>,
+    version: u16,
+    kind: StructureKind,
+    triangle_count: u32,
+) -> Result<WireConfig, BlobError> {
+    Ok(match kind {
+        StructureKind::Bvh => {
+            // Version 1 had no split tag: every tree was binned SAH.
+            let split = if version == 1 {
+                SplitStrategy::Sah
+            } else {
+                r.value(BlobSection::Header)?
+            };
+            let costs: ConfigCosts = r.value(BlobSection::Header)?;
+            WireConfig {
+                config: bvh_config(split, costs),
+                references: triangle_count,
+            }
+        }
+        StructureKind::KdTree => r.value::<KdWire>(BlobSection::Header)?.into(),
+        StructureKind::Octree => r.value::<OctreeWire>(BlobSection::Header)?.into(),
+        StructureKind::Grid => r.value::<GridWire>(BlobSection::Header)?.into(),
+    })
 }

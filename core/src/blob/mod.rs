@@ -1,5 +1,6 @@
-//! Prebuilt blobs (feature `blob`): a BVH (and, by default, its mesh) encoded once, offline, and
-//! queried in place from the bytes — in RAM, from a `fetch`, or in flash.
+//! Prebuilt blobs (feature `blob`): a BVH, k-d tree, octree or grid (and, by default, its mesh)
+//! encoded once, offline, and queried in place from the bytes — in RAM, from a `fetch`, or in
+//! flash.
 //!
 //! ```
 //! use meshq::blob::{self, EncodeOptions};
@@ -20,7 +21,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! # Format (version 2)
+//! # Format (version 3)
 //!
 //! One [postcard](https://docs.rs/postcard) message, fields back to back. *varint* is postcard's
 //! LEB128-style unsigned varint; *fixed* integers are little-endian of the stated width; every
@@ -31,17 +32,23 @@
 //! |---|---|---|
 //! | magic | 4 bytes | `MSHQ` |
 //! | version | varint `u16` | [`FORMAT_VERSION`]; read before anything else |
-//! | kind | varint `u32` | [`StructureKind`] tag: 0 = BVH |
+//! | kind | varint `u32` | [`StructureKind`] tag: 0 BVH, 1 k-d tree, 2 octree, 3 grid |
 //! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
-//! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and tree |
-//! | bounds | 6 × `f32` | root box min xyz, max xyz (padded) |
-//! | config | varint `u32` × 4, `f32` × 2 | [`BuildConfig`](crate::bvh::BuildConfig): split (tag: 0 SAH, 1 centre), bins, max_leaf_size, max_depth, traversal_cost, triangle_cost |
+//! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and structure (node_count: a grid's cells; depth: see [`BlobHeader::depth`]) |
+//! | bounds | 6 × `f32` | root box min xyz, max xyz ([`BlobHeader::bounds`]) |
+//! | config | by kind, see below | [`StructureConfig`] |
 //! | mesh_checksum | fixed `u32` | [`mesh_checksum`] of the mesh baked from |
 //! | payload_len | fixed `u64` | bytes after the header |
 //! | checksum | fixed `u32` | CRC-32/ISO-HDLC of every blob byte except these four |
-//! | nodes | sequence of 32-byte records | [`BvhNode`](crate::bvh::BvhNode): min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32` |
-//! | order | sequence of fixed `u32` | leaf slot → input triangle index |
-//! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples in leaf order; omitted: nothing |
+//! | nodes | BVH: sequence of 32-byte records; others: sequence of fixed `u32` | BVH: [`BvhNode`](crate::bvh::BvhNode) (min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32`); k-d tree and octree: two words per node ([`KdNode`](crate::kdtree::KdNode), [`OctreeNode`](crate::octree::OctreeNode) `a`, `b`); grid: the cell offsets (cells + 1) |
+//! | order | sequence of fixed `u32` | leaf slot → input triangle index: a BVH's order (one per triangle), the references of the others (header `config`'s count) |
+//! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples, one per order entry; omitted: nothing |
+//!
+//! The config by kind: BVH: split tag (0 SAH, 1 centre), then varint `u32` × 3 (bins,
+//! max_leaf_size, max_depth) and `f32` × 2 (traversal_cost, triangle_cost). k-d tree:
+//! varint max_depth, leaf_size, `f32` traversal_cost, triangle_cost, empty_bonus, varint
+//! reference count. Octree: varint max_depth, max_items, reference count. Grid: `f32`
+//! cells_per_triangle, varint max_resolution, resolution × 3, reference count.
 //!
 //! Fixed-width records let a view index node `i` at a known offset without decoding the ones
 //! before it. Nothing is aligned; reads go through `from_le_bytes`, so the bytes can sit anywhere.
@@ -51,8 +58,9 @@
 //! record increments [`FORMAT_VERSION`]; a reader refuses versions outside
 //! [`OLDEST_READABLE_VERSION`]`..=`[`FORMAT_VERSION`] with
 //! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
-//! Version 1 differs only in the config, which lacks the split tag (it was always SAH); this
-//! build reads it as SAH.
+//! Version 3 added the k-d tree, octree and grid kinds; its BVH blobs are laid out as in
+//! version 2. Version 1 differs from 2 only in the config, which lacks the split tag (it was
+//! always SAH); this build reads it as SAH. Versions 1 and 2 hold BVHs only.
 //!
 //! Within a version the bytes are stable: the same mesh and config give the same blob on every
 //! target and every release that writes that version.
@@ -64,13 +72,21 @@ mod format;
 mod header;
 mod mesh;
 mod reader;
+mod source;
+mod structure;
+mod structure_config;
 mod tree;
 mod view;
 
 pub use checksum::mesh_checksum;
-pub use encode::{EncodeOptions, encode_into, encoded_len, reseal};
+pub use encode::{
+    EncodeOptions, encode_into, encode_structure_into, encoded_len, reseal, structure_encoded_len,
+};
 pub use format::{FORMAT_VERSION, MAGIC, MeshLayout, OLDEST_READABLE_VERSION, StructureKind};
 pub use header::BlobHeader;
 pub use mesh::BlobMesh;
+pub use source::BlobSource;
+pub use structure::BlobStructure;
+pub use structure_config::StructureConfig;
 pub use tree::BlobTree;
 pub use view::BlobView;

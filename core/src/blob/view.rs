@@ -5,20 +5,27 @@ use glam::Vec3;
 use super::checksum::mesh_checksum;
 use super::encode::blob_checksum;
 use super::format::{
-    MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES,
+    MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES, WORD_BYTES,
 };
 use super::mesh::{check_indexed, check_packed};
 use super::reader::Reader;
-use super::{BlobHeader, BlobMesh, BlobTree};
+use super::structure_config::StructureConfig;
+use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
 use crate::bvh::TreeArrays;
 use crate::bvh::check::{CheckLevel, Extent, check};
-use crate::error::{BlobError, BlobSection};
+use crate::cells::LeWords;
+use crate::error::{BlobError, BlobSection, StructureError};
+use crate::grid::{Grid, GridLayout};
+use crate::kdtree::KdTree;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
+use crate::octree::Octree;
 use crate::query::{LeafTriangles, Traverse, Visitor};
+use crate::structure_kind::StructureKind;
 
-/// A validated blob, queried in place: nodes, order and (unless omitted) the mesh are read from
-/// the byte slice on demand — a blob in flash is never copied into RAM.
+/// A validated blob of any structure kind, queried in place: nodes, references and (unless
+/// omitted) the mesh are read from the byte slice on demand — a blob in flash is never copied
+/// into RAM.
 ///
 /// Made only by [`BlobView::parse`] or [`BlobView::parse_with_mesh`], which check everything
 /// once (magic, version, structure kind, every count against the byte length, the checksum,
@@ -27,19 +34,26 @@ use crate::query::{LeafTriangles, Traverse, Visitor};
 ///
 /// A view is a structure and its triangles at once, so it answers every query of
 /// [`MeshQuery`](crate::query::MeshQuery) (`view.raycast(&ray)`, batches, overlaps) and runs
-/// custom visitors ([`Traverse`]), exactly as the in-memory [`Bvh`](crate::bvh::Bvh) it was
-/// encoded from does with its mesh, bit for bit.
+/// custom visitors ([`Traverse`]), exactly as the in-memory structure it was encoded from
+/// does with its mesh, bit for bit.
 #[derive(Clone, Copy, Debug)]
 pub struct BlobView<'a> {
     pub(super) header: BlobHeader,
-    pub(super) tree: BlobTree<'a>,
+    pub(super) structure: BlobStructure<'a>,
     pub(super) mesh: BlobMesh<'a>,
+}
+
+/// A structure's arrays, cut out of the bytes and counted but not yet validated.
+enum RawStructure<'a> {
+    Bvh(BlobTree<'a>),
+    /// Node words (k-d tree, octree) or cell offsets (grid), then references.
+    Cells(LeWords<'a>, LeWords<'a>),
 }
 
 /// The arrays of a blob, split out and counted but not yet validated.
 struct Sections<'a> {
     header: BlobHeader,
-    tree: BlobTree<'a>,
+    structure: RawStructure<'a>,
     mesh: Option<BlobMesh<'a>>,
 }
 
@@ -53,7 +67,7 @@ impl<'a> BlobView<'a> {
     pub fn parse(bytes: &'a [u8]) -> Result<Self, BlobError> {
         let s = sections(bytes)?;
         let mesh = s.mesh.ok_or(BlobError::MeshNotIncluded)?;
-        finish(s.header, s.tree, mesh)
+        finish(s.header, s.structure, mesh)
     }
 
     /// Validates a blob against `mesh`, the mesh it was baked from, and returns a view whose
@@ -71,7 +85,7 @@ impl<'a> BlobView<'a> {
         if !same {
             return Err(BlobError::MeshMismatch);
         }
-        finish(s.header, s.tree, BlobMesh::External(mesh))
+        finish(s.header, s.structure, BlobMesh::External(mesh))
     }
 
     /// The header.
@@ -80,10 +94,20 @@ impl<'a> BlobView<'a> {
         &self.header
     }
 
-    /// The tree, read in place (a [`TreeArrays`] structure).
+    /// The structure, read in place.
     #[must_use]
-    pub const fn tree(&self) -> &BlobTree<'a> {
-        &self.tree
+    pub const fn structure(&self) -> &BlobStructure<'a> {
+        &self.structure
+    }
+
+    /// The BVH of a BVH blob, read in place (a [`TreeArrays`] structure); `None` for another
+    /// kind.
+    #[must_use]
+    pub const fn tree(&self) -> Option<&BlobTree<'a>> {
+        match &self.structure {
+            BlobStructure::Bvh(t) => Some(t),
+            _ => None,
+        }
     }
 
     /// The triangles queries read.
@@ -92,7 +116,7 @@ impl<'a> BlobView<'a> {
         &self.mesh
     }
 
-    /// The root's padded box ([`Aabb::EMPTY`] for an empty mesh).
+    /// The root's box ([`BlobHeader::bounds`]).
     #[must_use]
     pub const fn bounds(&self) -> Aabb {
         self.header.bounds
@@ -100,10 +124,10 @@ impl<'a> BlobView<'a> {
 }
 
 impl Traverse for BlobView<'_> {
-    /// Walks the tree in place, as [`Bvh`](crate::bvh::Bvh) walks its slices.
+    /// Walks the structure in place, as the in-memory one walks its slices.
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        self.tree.traverse(visitor);
+        self.structure.traverse(visitor);
     }
 }
 
@@ -142,8 +166,24 @@ fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
     }
     let mut r = Reader::new(bytes);
     r.bytes(header.header_len, BlobSection::Header)?;
-    let nodes = r.records::<NODE_BYTES>(header.node_count, BlobSection::Nodes)?;
-    let order = r.records::<ORDER_BYTES>(header.triangle_count, BlobSection::Order)?;
+    let structure = if header.kind == StructureKind::Bvh {
+        RawStructure::Bvh(BlobTree {
+            nodes: r.records::<NODE_BYTES>(header.node_count, BlobSection::Nodes)?,
+            order: r.records::<ORDER_BYTES>(header.triangle_count, BlobSection::Order)?,
+            depth: 0,
+        })
+    } else {
+        let words = if header.kind == StructureKind::Grid {
+            header.node_count.checked_add(1)
+        } else {
+            header.node_count.checked_mul(2)
+        }
+        .ok_or(BlobError::TooLarge)?;
+        RawStructure::Cells(
+            LeWords::new(r.records::<WORD_BYTES>(words, BlobSection::Nodes)?),
+            LeWords::new(r.records::<WORD_BYTES>(header.reference_count, BlobSection::References)?),
+        )
+    };
     let layout_at = r.offset();
     let tag: u32 = r.value(BlobSection::MeshLayout)?;
     if tag != header.mesh.tag() {
@@ -160,7 +200,7 @@ fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
         }),
         MeshLayout::Packed => Some(BlobMesh::Packed {
             corners: r
-                .records::<PACKED_BYTES>(header.triangle_count, BlobSection::PackedTriangles)?,
+                .records::<PACKED_BYTES>(header.reference_count, BlobSection::PackedTriangles)?,
         }),
         MeshLayout::Omitted => None,
     };
@@ -169,19 +209,15 @@ fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
     }
     Ok(Sections {
         header,
-        tree: BlobTree {
-            nodes,
-            order,
-            depth: 0,
-        },
+        structure,
         mesh,
     })
 }
 
-/// Validates the mesh, then the tree against it and the header; returns the view.
+/// Validates the mesh, then the structure against it and the header; returns the view.
 fn finish<'a>(
     header: BlobHeader,
-    mut tree: BlobTree<'a>,
+    raw: RawStructure<'a>,
     mesh: BlobMesh<'a>,
 ) -> Result<BlobView<'a>, BlobError> {
     match mesh {
@@ -192,53 +228,109 @@ fn finish<'a>(
         BlobMesh::Packed { corners } => check_packed(corners)?,
         BlobMesh::External(_) => {}
     }
-    tree.depth = check_tree(&header, &tree, Some(&mesh))?;
-    Ok(BlobView { header, tree, mesh })
+    let structure = check_structure(&header, raw, Some(&mesh))?;
+    Ok(BlobView {
+        header,
+        structure,
+        mesh,
+    })
 }
 
-/// Checks the tree (against `mesh` when given: triangle indices and containment) and that the
-/// header's config, depth and bounds agree with it; returns the depth.
-fn check_tree(
+/// Checks the structure (a BVH against `mesh` when given: triangle indices and containment;
+/// a cell structure's references against the triangle count) and that the header's config,
+/// depth and bounds agree with it.
+fn check_structure<'a>(
     header: &BlobHeader,
-    tree: &BlobTree<'_>,
+    raw: RawStructure<'a>,
     mesh: Option<&BlobMesh<'_>>,
-) -> Result<u32, BlobError> {
-    header
-        .config
-        .check()
-        .map_err(|_| BlobError::HeaderMismatch { field: "config" })?;
-    let depth = check(tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
+) -> Result<BlobStructure<'a>, BlobError> {
+    if !header.config.is_valid() || header.config.kind() != header.kind {
+        return Err(BlobError::HeaderMismatch { field: "config" });
+    }
+    let n = header.triangle_count as usize;
+    let (structure, depth) = match raw {
+        RawStructure::Bvh(mut tree) => {
+            tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
+            let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
+            same_bounds(&root, &header.bounds)?;
+            (BlobStructure::Bvh(tree), tree.depth)
+        }
+        RawStructure::Cells(words, items) => {
+            let b = header.bounds;
+            let structure = match header.config {
+                StructureConfig::KdTree(_) => {
+                    BlobStructure::KdTree(KdTree::from_parts(b, words, items, n)?)
+                }
+                StructureConfig::Octree(_) => {
+                    BlobStructure::Octree(Octree::from_parts(b, words, items, n)?)
+                }
+                StructureConfig::Grid { resolution, .. } => {
+                    let layout = GridLayout {
+                        bounds: b,
+                        resolution,
+                    };
+                    BlobStructure::Grid(Grid::from_parts(layout, words, items, n)?)
+                }
+                StructureConfig::Bvh(_) => {
+                    return Err(BlobError::InvalidNode(StructureError::BadNode { node: 0 }));
+                }
+            };
+            let deepest = structure.cell_stats(n).map_or(0, |s| s.max_depth);
+            (structure, u32::try_from(deepest).unwrap_or(u32::MAX))
+        }
+    };
     if depth != header.depth {
         return Err(BlobError::HeaderMismatch { field: "depth" });
     }
-    let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
-    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
-    if bits(root.min) != bits(header.bounds.min) || bits(root.max) != bits(header.bounds.max) {
-        return Err(BlobError::HeaderMismatch { field: "bounds" });
-    }
-    Ok(depth)
+    Ok(structure)
 }
 
-impl<'a> BlobTree<'a> {
-    /// Validates the tree of any blob without its mesh — topology, leaf ranges, depth, finite
-    /// nested boxes, every order entry below the triangle count, the checksum — and returns
-    /// it with the header. For tools that inspect a blob, and for queries with a mesh held
-    /// elsewhere (`tree.with(&mesh)`, which, as with a [`Bvh`](crate::bvh::Bvh), must be the
-    /// mesh it was built from: another mesh gives meaningless answers, never a panic). Prefer
-    /// [`BlobView::parse_with_mesh`], which checks the mesh too.
+/// Refuses a header box that differs from the structure's, bit for bit.
+fn same_bounds(found: &Aabb, header: &Aabb) -> Result<(), BlobError> {
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    if bits(found.min) != bits(header.min) || bits(found.max) != bits(header.max) {
+        return Err(BlobError::HeaderMismatch { field: "bounds" });
+    }
+    Ok(())
+}
+
+impl<'a> BlobStructure<'a> {
+    /// Validates the structure of any blob without its mesh — topology, leaf ranges, depth,
+    /// bounds, every reference below the triangle count, the checksum — and returns it with
+    /// the header. For tools that inspect a blob, and for queries with a mesh held elsewhere,
+    /// which must be the mesh it was built from: another mesh gives meaningless answers, never
+    /// a panic. Prefer [`BlobView::parse_with_mesh`], which checks the mesh too.
     ///
     /// # Errors
     /// As [`BlobView::parse`], except that a missing mesh is not an error.
     pub fn parse(bytes: &'a [u8]) -> Result<(BlobHeader, Self), BlobError> {
         let s = sections(bytes)?;
-        let mut tree = s.tree;
-        for (slot, id) in (0u32..).zip(tree.order) {
-            let tri = u32::from_le_bytes(*id);
-            if tri >= s.header.triangle_count {
-                return Err(BlobError::OrderOutOfRange { slot, tri });
+        if let RawStructure::Bvh(tree) = &s.structure {
+            for (slot, id) in (0u32..).zip(tree.order) {
+                let tri = u32::from_le_bytes(*id);
+                if tri >= s.header.triangle_count {
+                    return Err(BlobError::OrderOutOfRange { slot, tri });
+                }
             }
         }
-        tree.depth = check_tree(&s.header, &tree, None::<&BlobMesh<'_>>)?;
-        Ok((s.header, tree))
+        let structure = check_structure(&s.header, s.structure, None)?;
+        Ok((s.header, structure))
+    }
+}
+
+impl<'a> BlobTree<'a> {
+    /// [`BlobStructure::parse`] for a BVH blob: validates the tree of the blob without its
+    /// mesh, for queries with a mesh held elsewhere (`tree.with(&mesh)`, which, as with a
+    /// [`Bvh`](crate::bvh::Bvh), must be the mesh it was built from).
+    ///
+    /// # Errors
+    /// As [`BlobStructure::parse`]; [`BlobError::UnsupportedStructure`] for another kind.
+    pub fn parse(bytes: &'a [u8]) -> Result<(BlobHeader, Self), BlobError> {
+        match BlobStructure::parse(bytes)? {
+            (header, BlobStructure::Bvh(tree)) => Ok((header, tree)),
+            (header, _) => Err(BlobError::UnsupportedStructure {
+                kind: header.kind.tag(),
+            }),
+        }
     }
 }

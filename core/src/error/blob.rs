@@ -23,6 +23,8 @@ pub enum BlobSection {
     PackedTriangles,
     /// The tag saying how (or whether) the mesh is stored.
     MeshLayout,
+    /// A k-d tree's, octree's or grid's references (leaf slot → input triangle index).
+    References,
 }
 
 impl fmt::Display for BlobSection {
@@ -35,6 +37,7 @@ impl fmt::Display for BlobSection {
             Self::Triangles => "triangles",
             Self::PackedTriangles => "packed triangles",
             Self::MeshLayout => "mesh layout",
+            Self::References => "references",
         })
     }
 }

@@ -36,8 +36,11 @@ impl MeshBvh {
         Self::decode(&BlobView::parse_with_mesh(bytes, *mesh)?)
     }
 
-    fn decode(view: &BlobView<'_>) -> Result<Self, BlobError> {
+    pub(super) fn decode(view: &BlobView<'_>) -> Result<Self, BlobError> {
         let header = *view.header();
+        let config = *header.config.bvh().ok_or(BlobError::UnsupportedStructure {
+            kind: header.kind.tag(),
+        })?;
         let (n, v) = (header.triangle_count as usize, header.vertex_count as usize);
         let mut nodes = vec![BvhNode::EMPTY; header.node_count as usize];
         let mut order = vec![0u32; n];
@@ -50,14 +53,14 @@ impl MeshBvh {
             }
             let mut packed = vec![PackedTriangle::EMPTY; n];
             view.decode_packed(&mut packed)?;
-            unshared_mesh(&order, &packed)
+            unshared_mesh(n, &order, &packed)
         } else {
             let mut positions = vec![[0.0f32; 3]; v];
             let mut triangles = vec![[0u32; 3]; n];
             view.decode_mesh(&mut positions, &mut triangles)?;
             (positions, triangles)
         };
-        Self::assemble(positions, triangles, nodes, order, depth, header.config).map_err(|_| {
+        Self::assemble(positions, triangles, nodes, order, depth, config).map_err(|_| {
             // Unreachable: the buffers are sized from the validated blob's own counts.
             BlobError::BufferTooSmall {
                 section: BlobSection::PackedTriangles,
@@ -111,11 +114,17 @@ fn check_permutation(order: &[u32]) -> Result<(), BlobError> {
     Ok(())
 }
 
-/// Positions and triangles of triangles given in leaf order (`packed[slot]` is triangle
-/// `order[slot]`): three vertices of their own per triangle, in triangle order. The caller
-/// makes sure `3 · packed.len()` fits in `u32`.
-fn unshared_mesh(order: &[u32], packed: &[PackedTriangle]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let mut positions = vec![[0.0f32; 3]; 3 * packed.len()];
+/// Positions and triangles of `triangles` triangles given by slot (`packed[slot]` is triangle
+/// `order[slot]`; a BVH's leaf order, or a cell structure's references, where a triangle may
+/// appear several times with the same corners): three vertices of their own per triangle, in
+/// triangle order. A triangle no slot names (none does in a validated structure) sits at the
+/// origin. The caller makes sure `3 · triangles` fits in `u32`.
+pub(super) fn unshared_mesh(
+    triangles: usize,
+    order: &[u32],
+    packed: &[PackedTriangle],
+) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let mut positions = vec![[0.0f32; 3]; 3 * triangles];
     for (&tri, corners) in order.iter().zip(packed) {
         let at = 3 * tri as usize;
         if let Some(out) = positions.get_mut(at..at + 3) {
@@ -124,7 +133,7 @@ fn unshared_mesh(order: &[u32], packed: &[PackedTriangle]) -> (Vec<[f32; 3]>, Ve
     }
     let triangles = (0u32..)
         .step_by(3)
-        .take(packed.len())
+        .take(triangles)
         .map(|v| [v, v + 1, v + 2])
         .collect();
     (positions, triangles)

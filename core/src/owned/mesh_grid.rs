@@ -17,11 +17,11 @@ use crate::query::{LeafTriangles, Traverse, Visitor};
 /// grid over the mesh does.
 #[derive(Clone, Debug)]
 pub struct MeshGrid {
-    scene: CellScene,
-    layout: GridLayout,
-    offsets: Vec<u32>,
-    items: Vec<u32>,
-    config: GridConfig,
+    pub(super) scene: CellScene,
+    pub(super) layout: GridLayout,
+    pub(super) offsets: Vec<u32>,
+    pub(super) items: Vec<u32>,
+    pub(super) config: GridConfig,
 }
 
 impl MeshGrid {

@@ -1,8 +1,5 @@
 //! [`MeshIndex`]: any of the four structures over a mesh, picked at run time.
 
-use core::fmt;
-use core::str::FromStr;
-
 use super::{MeshBvh, MeshGrid, MeshKdTree, MeshOctree};
 use crate::bvh::BuildConfig;
 use crate::cells::CellStats;
@@ -13,66 +10,7 @@ use crate::math::{PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::octree::OctreeConfig;
 use crate::query::{LeafTriangles, Traverse, Visitor};
-
-/// The four structures meshq builds. All answer every query identically; they differ in build
-/// time, memory and speed by scene.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum StructureKind {
-    /// Bounding volume hierarchy (binned SAH, walked four-wide): the default.
-    #[default]
-    Bvh,
-    /// k-d tree (SAH over clipped triangles).
-    KdTree,
-    /// Adaptive octree.
-    Octree,
-    /// Uniform grid.
-    Grid,
-}
-
-impl StructureKind {
-    /// Every kind, in documentation order.
-    pub const ALL: [Self; 4] = [Self::Bvh, Self::KdTree, Self::Octree, Self::Grid];
-
-    /// The name the CLI and the wasm package use: `bvh`, `kdtree`, `octree`, `grid`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Bvh => "bvh",
-            Self::KdTree => "kdtree",
-            Self::Octree => "octree",
-            Self::Grid => "grid",
-        }
-    }
-}
-
-impl fmt::Display for StructureKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// A name that is not one of [`StructureKind::name`]'s.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct UnknownStructure;
-
-impl fmt::Display for UnknownStructure {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("unknown structure: expected bvh, kdtree, octree or grid")
-    }
-}
-
-impl core::error::Error for UnknownStructure {}
-
-impl FromStr for StructureKind {
-    type Err = UnknownStructure;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or(UnknownStructure)
-    }
-}
+use crate::structure_kind::StructureKind;
 
 /// A mesh with one structure of any kind, owning every buffer; it answers every query of
 /// [`MeshQuery`](crate::query::MeshQuery) through whichever structure it holds.

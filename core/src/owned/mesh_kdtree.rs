@@ -17,11 +17,11 @@ use crate::query::{LeafTriangles, Traverse, Visitor};
 /// as the tree over the mesh does.
 #[derive(Clone, Debug)]
 pub struct MeshKdTree {
-    scene: CellScene,
-    bounds: Aabb,
-    nodes: Vec<KdNode>,
-    items: Vec<u32>,
-    config: KdConfig,
+    pub(super) scene: CellScene,
+    pub(super) bounds: Aabb,
+    pub(super) nodes: Vec<KdNode>,
+    pub(super) items: Vec<u32>,
+    pub(super) config: KdConfig,
 }
 
 impl MeshKdTree {

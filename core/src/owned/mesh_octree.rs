@@ -17,11 +17,11 @@ use crate::query::{LeafTriangles, Traverse, Visitor};
 /// as the tree over the mesh does.
 #[derive(Clone, Debug)]
 pub struct MeshOctree {
-    scene: CellScene,
-    root: Aabb,
-    nodes: Vec<OctreeNode>,
-    items: Vec<u32>,
-    config: OctreeConfig,
+    pub(super) scene: CellScene,
+    pub(super) root: Aabb,
+    pub(super) nodes: Vec<OctreeNode>,
+    pub(super) items: Vec<u32>,
+    pub(super) config: OctreeConfig,
 }
 
 impl MeshOctree {

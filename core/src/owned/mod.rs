@@ -16,14 +16,17 @@
 #[cfg(feature = "blob")]
 mod blob;
 mod cell_scene;
+#[cfg(feature = "blob")]
+mod index_blob;
 mod mesh_bvh;
 mod mesh_grid;
 mod mesh_index;
 mod mesh_kdtree;
 mod mesh_octree;
 
+pub use crate::structure_kind::{StructureKind, UnknownStructure};
 pub use mesh_bvh::MeshBvh;
 pub use mesh_grid::MeshGrid;
-pub use mesh_index::{MeshIndex, StructureKind, UnknownStructure};
+pub use mesh_index::MeshIndex;
 pub use mesh_kdtree::MeshKdTree;
 pub use mesh_octree::MeshOctree;

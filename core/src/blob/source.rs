@@ -1,0 +1,110 @@
+//! [`BlobSource`]: a built structure of any kind, with its config, ready to encode.
+
+use super::structure_config::StructureConfig;
+use crate::bvh::{BuildConfig, Bvh};
+use crate::error::BlobError;
+use crate::grid::{Grid, GridConfig};
+use crate::kdtree::{KdConfig, KdNode, KdTree};
+use crate::math::Aabb;
+use crate::mesh::ValidMesh;
+use crate::octree::{Octree, OctreeConfig, OctreeNode};
+use crate::structure_kind::StructureKind;
+
+/// A structure built in memory, with the config it was built with, as
+/// [`encode_structure_into`](super::encode_structure_into) writes it.
+#[derive(Clone, Copy, Debug)]
+pub enum BlobSource<'q> {
+    /// A BVH.
+    Bvh(&'q Bvh<'q>, BuildConfig),
+    /// A k-d tree.
+    KdTree(&'q KdTree<&'q [KdNode], &'q [u32]>, KdConfig),
+    /// An octree.
+    Octree(&'q Octree<&'q [OctreeNode], &'q [u32]>, OctreeConfig),
+    /// A uniform grid (its resolution is recorded with the config).
+    Grid(&'q Grid<&'q [u32]>, GridConfig),
+}
+
+impl BlobSource<'_> {
+    /// Which structure it is.
+    #[must_use]
+    pub const fn kind(&self) -> StructureKind {
+        match self {
+            Self::Bvh(..) => StructureKind::Bvh,
+            Self::KdTree(..) => StructureKind::KdTree,
+            Self::Octree(..) => StructureKind::Octree,
+            Self::Grid(..) => StructureKind::Grid,
+        }
+    }
+
+    /// The config the header records.
+    pub(super) fn config(&self) -> StructureConfig {
+        match self {
+            Self::Bvh(_, c) => StructureConfig::Bvh(*c),
+            Self::KdTree(_, c) => StructureConfig::KdTree(*c),
+            Self::Octree(_, c) => StructureConfig::Octree(*c),
+            Self::Grid(g, c) => StructureConfig::Grid {
+                config: *c,
+                resolution: g.layout().resolution,
+            },
+        }
+    }
+
+    /// The box the header records (see [`BlobHeader::bounds`](super::BlobHeader::bounds)).
+    pub(super) fn bounds(&self) -> Aabb {
+        match self {
+            Self::Bvh(b, _) => b.bounds(),
+            Self::KdTree(t, _) => *t.bounds(),
+            Self::Octree(t, _) => *t.root(),
+            Self::Grid(g, _) => g.layout().bounds,
+        }
+    }
+
+    /// Nodes of a tree; cells of a grid.
+    pub(super) fn node_count(&self) -> usize {
+        match self {
+            Self::Bvh(b, _) => b.nodes().len(),
+            Self::KdTree(t, _) => t.node_count(),
+            Self::Octree(t, _) => t.node_count(),
+            Self::Grid(g, _) => g.offsets().len().saturating_sub(1),
+        }
+    }
+
+    /// The depth the header records (see [`BlobHeader::depth`](super::BlobHeader::depth)).
+    pub(super) fn depth(&self, triangles: usize) -> u32 {
+        let deepest = |d: usize| u32::try_from(d).unwrap_or(u32::MAX);
+        match self {
+            Self::Bvh(b, _) => b.depth(),
+            Self::KdTree(t, _) => deepest(t.stats(triangles).max_depth),
+            Self::Octree(t, _) => deepest(t.stats(triangles).max_depth),
+            Self::Grid(..) => 0,
+        }
+    }
+
+    /// The leaf-slot → triangle array: a BVH's order, a cell structure's references.
+    pub(super) fn order(&self) -> &[u32] {
+        match self {
+            Self::Bvh(b, _) => b.order(),
+            Self::KdTree(t, _) => t.items(),
+            Self::Octree(t, _) => t.items(),
+            Self::Grid(g, _) => g.items(),
+        }
+    }
+
+    /// Validates the structure against `mesh`, as a reader will.
+    pub(super) fn check(&self, mesh: &ValidMesh<'_>) -> Result<(), BlobError> {
+        let n = mesh.triangle_count();
+        match self {
+            Self::Bvh(b, _) => b.check(mesh)?,
+            Self::KdTree(t, _) => {
+                KdTree::from_parts(*t.bounds(), t.nodes(), t.items(), n)?;
+            }
+            Self::Octree(t, _) => {
+                Octree::from_parts(*t.root(), t.nodes(), t.items(), n)?;
+            }
+            Self::Grid(g, _) => {
+                Grid::from_parts(*g.layout(), g.offsets(), g.items(), n)?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,369 @@
+//! Blobs of k-d trees, octrees and grids: queried in place and loaded, they answer as a scan of
+//! every triangle does; their bytes follow the documented wire format (read here by an
+//! independent serde mirror); damage is refused or harmless, never a panic.
+
+use std::ops::ControlFlow;
+
+use meshq::blob::{self, BlobStructure, BlobView, FORMAT_VERSION, MeshLayout, mesh_checksum};
+use meshq::error::BlobError;
+use meshq::math::{Aabb, Ray, Vec3};
+use meshq::mesh::{MeshRef, ValidMesh};
+use meshq::owned::{MeshIndex, StructureKind};
+use meshq::{MeshBvh, MeshQuery};
+use meshq_tests::oracle::BruteForce;
+use meshq_tests::suite::check_all;
+use meshq_tests::{LoadedMesh, in_stadium, load_mesh, spot_patch};
+use serde::Deserialize;
+
+const CELL_KINDS: [StructureKind; 3] = [
+    StructureKind::KdTree,
+    StructureKind::Octree,
+    StructureKind::Grid,
+];
+const LAYOUTS: [MeshLayout; 3] = [MeshLayout::Indexed, MeshLayout::Packed, MeshLayout::Omitted];
+
+/// A view over `bytes`, with the caller's mesh when the blob has none.
+fn view<'a>(bytes: &'a [u8], mesh: ValidMesh<'a>, layout: MeshLayout) -> BlobView<'a> {
+    if layout == MeshLayout::Omitted {
+        assert_eq!(
+            BlobView::parse(bytes).unwrap_err(),
+            BlobError::MeshNotIncluded
+        );
+        BlobView::parse_with_mesh(bytes, mesh).unwrap()
+    } else {
+        BlobView::parse(bytes).unwrap()
+    }
+}
+
+fn check_mesh(loaded: &LoadedMesh) {
+    let mesh = loaded.valid();
+    let brute = BruteForce::new(&mesh);
+    for kind in CELL_KINDS {
+        let built = MeshIndex::build(&mesh, kind).unwrap();
+        let stats = built.cell_stats().unwrap();
+        for layout in LAYOUTS {
+            let what = format!("{} {kind} blob, mesh {}", loaded.name, layout.name());
+            let bytes = built.to_blob(layout).unwrap();
+            assert_eq!(bytes.len(), built.encoded_len(layout).unwrap(), "{what}");
+            assert_eq!(
+                bytes,
+                built.to_blob(layout).unwrap(),
+                "{what}: deterministic"
+            );
+            let v = view(&bytes, mesh, layout);
+            let h = v.header();
+            assert_eq!((h.version, h.kind, h.mesh), (FORMAT_VERSION, kind, layout));
+            assert_eq!(h.reference_count as usize, stats.references, "{what}");
+            assert_eq!(h.depth as usize, stats.max_depth, "{what}");
+            assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
+            assert!(v.tree().is_none(), "{what}: not a BVH");
+            assert_eq!(v.structure().kind(), kind);
+            assert_eq!(v.structure().cell_stats(mesh.triangle_count()), Some(stats));
+            check_all(&v, &brute, loaded, &format!("{what}, in place"));
+
+            let (header, structure) = BlobStructure::parse(&bytes).unwrap();
+            assert_eq!((header, structure.kind()), (*h, kind));
+
+            let loaded_index = if layout == MeshLayout::Omitted {
+                MeshIndex::from_blob_with_mesh(&bytes, &mesh).unwrap()
+            } else {
+                MeshIndex::from_blob(&bytes).unwrap()
+            };
+            assert_eq!(loaded_index.kind(), kind);
+            assert_eq!(loaded_index.cell_stats(), Some(stats), "{what}");
+            check_all(&loaded_index, &brute, loaded, &format!("{what}, loaded"));
+            if layout != MeshLayout::Packed {
+                // The indexed mesh comes back exactly, so the blob does too.
+                assert_eq!(loaded_index.to_blob(layout).unwrap(), bytes, "{what}");
+            }
+        }
+    }
+}
+
+#[test]
+fn cell_blobs_answer_as_brute_force_in_place_and_loaded() {
+    for name in ["cow", "fandisk"] {
+        check_mesh(&load_mesh(name));
+    }
+    check_mesh(&in_stadium(&load_mesh("teapot")));
+}
+
+#[derive(Deserialize, Debug)]
+struct CountsMirror {
+    kind: u32,
+    mesh: u32,
+    triangle_count: u32,
+    vertex_count: u32,
+    node_count: u32,
+    depth: u32,
+    bounds_min: [f32; 3],
+    bounds_max: [f32; 3],
+}
+
+#[derive(Deserialize, Debug, PartialEq)]
+struct Fixed(#[serde(with = "postcard::fixint::le")] u32);
+
+#[derive(Deserialize, Debug)]
+struct SealMirror {
+    #[serde(with = "postcard::fixint::le")]
+    mesh_checksum: u32,
+    #[serde(with = "postcard::fixint::le")]
+    payload_len: u64,
+    checksum: Fixed,
+}
+
+#[derive(Deserialize, Debug)]
+enum SectionMirror {
+    Indexed(Vec<[f32; 3]>, Vec<(Fixed, Fixed, Fixed)>),
+    Packed(Vec<[[f32; 3]; 3]>),
+    Omitted,
+}
+
+#[derive(Deserialize, Debug)]
+struct PayloadMirror {
+    words: Vec<Fixed>,
+    references: Vec<Fixed>,
+    section: SectionMirror,
+}
+
+/// Reads one postcard value off the front of `rest`.
+fn take<'a, T: Deserialize<'a>>(rest: &mut &'a [u8]) -> T {
+    let (value, tail) = postcard::take_from_bytes::<T>(rest).unwrap();
+    *rest = tail;
+    value
+}
+
+/// The wire format as the module docs describe it, decoded field by field with serde, and
+/// compared with the structure in memory.
+#[test]
+fn a_cell_blob_is_one_postcard_message() {
+    let loaded = load_mesh("teapot");
+    let mesh = loaded.valid();
+    for kind in CELL_KINDS {
+        for layout in LAYOUTS {
+            let built = MeshIndex::build(&mesh, kind).unwrap();
+            let bytes = built.to_blob(layout).unwrap();
+            let mut rest = &bytes[..];
+            assert_eq!(take::<[u8; 4]>(&mut rest), *b"MSHQ");
+            assert_eq!(take::<u16>(&mut rest), FORMAT_VERSION);
+            let c: CountsMirror = take(&mut rest);
+            assert_eq!((c.kind, c.mesh), (kind.tag(), layout.tag()));
+            assert_eq!(c.triangle_count as usize, mesh.triangle_count());
+            assert_eq!(c.vertex_count as usize, mesh.vertex_count());
+            let (words, items, bounds, references, depth): (Vec<u32>, Vec<u32>, Aabb, u32, u32) =
+                match &built {
+                    MeshIndex::KdTree(s) => {
+                        let t = s.tree();
+                        let w: (u32, u32, f32, f32, f32, u32) = take(&mut rest);
+                        let k = s.config();
+                        assert_eq!(
+                            (w.0, w.1, w.2, w.3, w.4),
+                            (
+                                k.max_depth,
+                                k.leaf_size,
+                                k.traversal_cost,
+                                k.triangle_cost,
+                                k.empty_bonus
+                            )
+                        );
+                        assert_eq!(c.node_count as usize, t.node_count());
+                        let words = t.nodes().iter().flat_map(|n| [n.a, n.b]).collect();
+                        let depth = s.stats().max_depth as u32;
+                        (words, t.items().to_vec(), *t.bounds(), w.5, depth)
+                    }
+                    MeshIndex::Octree(s) => {
+                        let t = s.tree();
+                        let w: (u32, u32, u32) = take(&mut rest);
+                        assert_eq!((w.0, w.1), (s.config().max_depth, s.config().max_items));
+                        assert_eq!(c.node_count as usize, t.node_count());
+                        let words = t.nodes().iter().flat_map(|n| [n.a, n.b]).collect();
+                        let depth = s.stats().max_depth as u32;
+                        (words, t.items().to_vec(), *t.root(), w.2, depth)
+                    }
+                    MeshIndex::Grid(s) => {
+                        let g = s.grid();
+                        let w: (f32, u32, [u32; 3], u32) = take(&mut rest);
+                        assert_eq!(
+                            (w.0, w.1, w.2),
+                            (
+                                s.config().cells_per_triangle,
+                                s.config().max_resolution,
+                                g.layout().resolution
+                            )
+                        );
+                        assert_eq!(c.node_count as usize, g.offsets().len() - 1);
+                        (
+                            g.offsets().to_vec(),
+                            g.items().to_vec(),
+                            g.layout().bounds,
+                            w.3,
+                            0,
+                        )
+                    }
+                    MeshIndex::Bvh(_) => unreachable!(),
+                };
+            assert_eq!(c.depth, depth, "{kind}");
+            assert_eq!(
+                (c.bounds_min, c.bounds_max),
+                (bounds.min.to_array(), bounds.max.to_array())
+            );
+            assert_eq!(references as usize, items.len());
+            let seal: SealMirror = take(&mut rest);
+            assert_eq!(seal.mesh_checksum, mesh_checksum(&mesh));
+            assert_eq!(seal.payload_len as usize, rest.len());
+            assert_ne!(seal.checksum.0, 0);
+            let (p, tail) = postcard::take_from_bytes::<PayloadMirror>(rest).unwrap();
+            assert!(
+                tail.is_empty(),
+                "{kind} {layout:?}: one message, every byte used"
+            );
+            assert_eq!(p.words.into_iter().map(|f| f.0).collect::<Vec<_>>(), words);
+            assert_eq!(
+                p.references.iter().map(|f| f.0).collect::<Vec<_>>(),
+                items,
+                "{kind}"
+            );
+            match (layout, p.section) {
+                (MeshLayout::Indexed, SectionMirror::Indexed(pos, tris)) => {
+                    assert_eq!(pos, mesh.positions());
+                    let tris: Vec<[u32; 3]> =
+                        tris.into_iter().map(|(a, b, c)| [a.0, b.0, c.0]).collect();
+                    assert_eq!(tris, mesh.triangles());
+                }
+                (MeshLayout::Packed, SectionMirror::Packed(corners)) => {
+                    assert_eq!(corners.len(), items.len());
+                    for (corners, &tri) in corners.iter().zip(&items) {
+                        let t = mesh.triangle(tri).unwrap();
+                        assert_eq!(*corners, [t.a.to_array(), t.b.to_array(), t.c.to_array()]);
+                    }
+                }
+                (MeshLayout::Omitted, SectionMirror::Omitted) => {}
+                (l, s) => panic!("{l:?} decoded as {s:?}"),
+            }
+        }
+    }
+}
+
+/// Every kind of query on a view; the point is that none panics or hangs.
+fn exercise(view: &BlobView<'_>) -> usize {
+    let b = view.bounds();
+    let (c, r) = if b.is_empty() || !b.is_finite() {
+        (Vec3::ZERO, 1.0)
+    } else {
+        (b.center(), (0.5 * b.extent().length()).max(1e-3))
+    };
+    let mut found = 0;
+    for k in 0..12u32 {
+        let angle = k as f32 * 0.53;
+        let origin = c + Vec3::new(angle.cos(), angle.sin(), 0.5) * (2.0 * r);
+        let ray = Ray::new(origin, c - origin);
+        found += usize::from(view.raycast(&ray).is_some());
+        found += usize::from(view.raycast_any(&ray));
+        found += usize::from(view.closest_point(origin, f32::INFINITY).is_some());
+    }
+    let mut out = [0u32; 8];
+    found += view
+        .overlap_aabb_into(&Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r)), &mut out)
+        .total;
+    view.overlap_sphere(c, 0.5 * r, |_| ControlFlow::Continue(()));
+    found
+}
+
+/// Raw damage to any byte is refused (the checksum); damage with the checksum recomputed is
+/// refused by validation or gives a view that queries safely; every truncation is refused.
+#[test]
+fn damaged_cell_blobs_are_refused_or_harmless() {
+    let (positions, triangles) = spot_patch();
+    let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+    for kind in CELL_KINDS {
+        for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
+            let bytes = MeshIndex::build(&mesh, kind)
+                .unwrap()
+                .to_blob(layout)
+                .unwrap();
+            assert!(exercise(&BlobView::parse(&bytes).unwrap()) > 0);
+            let (mut refused, mut accepted) = (0, 0);
+            for i in 0..bytes.len() {
+                for flip in [0x01u8, 0x80, 0xFF] {
+                    let mut damaged = bytes.clone();
+                    damaged[i] ^= flip;
+                    assert!(
+                        BlobView::parse(&damaged).is_err(),
+                        "{kind} {layout:?} byte {i} ^ {flip:#x}"
+                    );
+                    if blob::reseal(&mut damaged).is_ok() {
+                        match BlobView::parse(&damaged) {
+                            Ok(view) => {
+                                exercise(&view);
+                                accepted += 1;
+                            }
+                            Err(_) => refused += 1,
+                        }
+                    }
+                }
+            }
+            for n in 0..bytes.len() {
+                let err = BlobView::parse(&bytes[..n]).unwrap_err();
+                assert!(
+                    matches!(err, BlobError::Truncated { .. } | BlobError::BadMagic),
+                    "{kind} {layout:?} cut at {n}: {err:?}"
+                );
+            }
+            println!(
+                "{kind} {layout:?}: {} bytes; resealed damage: {refused} refused, {accepted} accepted and queried",
+                bytes.len()
+            );
+            assert!(refused > 0, "{kind} {layout:?}");
+        }
+    }
+}
+
+/// Headers that contradict the arrays are refused with the field named.
+#[test]
+fn headers_that_contradict_the_structure_are_refused() {
+    let (positions, triangles) = spot_patch();
+    let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+    for kind in CELL_KINDS {
+        let bytes = MeshIndex::build(&mesh, kind)
+            .unwrap()
+            .to_blob(MeshLayout::Indexed)
+            .unwrap();
+        // Byte 5 starts the header counts: kind, mesh, triangles, vertices, nodes, then depth.
+        assert_eq!(bytes[5], kind.tag() as u8);
+        let mut rest = &bytes[5..];
+        for _ in 0..5 {
+            take::<u32>(&mut rest);
+        }
+        let depth_at = bytes.len() - rest.len();
+        assert!(bytes[depth_at] < 0x7f, "a one-byte varint");
+        let mut deeper = bytes.clone();
+        deeper[depth_at] += 1;
+        blob::reseal(&mut deeper).unwrap();
+        let err = BlobView::parse(&deeper).unwrap_err();
+        assert_eq!(err, BlobError::HeaderMismatch { field: "depth" }, "{kind}");
+        // A cell-structure kind tag in a version-2 blob is refused: version 2 knew only BVHs.
+        let mut old = bytes.clone();
+        old[4] = 2;
+        blob::reseal(&mut old).unwrap_err();
+        assert_eq!(
+            BlobView::parse(&old).unwrap_err(),
+            BlobError::UnsupportedStructure { kind: kind.tag() }
+        );
+    }
+}
+
+/// Version 3 lays a BVH blob out as version 2 did: a BVH blob relabelled as version 2 loads
+/// and answers the same.
+#[test]
+fn version_2_bvh_blobs_still_load() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let owned = MeshBvh::build(&mesh, &meshq::BuildConfig::default()).unwrap();
+    let mut bytes = owned.to_blob(MeshLayout::Indexed).unwrap();
+    assert_eq!(bytes[4], 3);
+    bytes[4] = 2;
+    blob::reseal(&mut bytes).unwrap();
+    let view = BlobView::parse(&bytes).unwrap();
+    assert_eq!(view.header().version, 2);
+    check_all(&view, &BruteForce::new(&mesh), &loaded, "cow as version 2");
+}
