@@ -142,8 +142,15 @@ fn computed_line(name: &str) -> String {
     assert_eq!(from_wide, expected, "{name}: wide BVH against brute force");
 
     // Every structure gives the same digest: the k-d tree, the octree and the grid too.
+    // Their blobs, queried in place, give it as well.
     for kind in StructureKind::ALL {
         let index = MeshIndex::build(&mesh, kind).unwrap();
+        for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
+            let blob = index.to_blob(layout).unwrap();
+            let view = BlobView::parse(&blob).unwrap();
+            let from_blob = run_parity(&spec, bounds, &mut FromBlob(view));
+            assert_eq!(from_blob, expected, "{name}: {kind} blob ({layout:?})");
+        }
         let from_index = run_parity(&spec, bounds, &mut Owned(index));
         assert_eq!(from_index, expected, "{name}: {kind} against brute force");
     }
@@ -207,7 +214,8 @@ fn every_structure_and_the_golden_file_agree_with_brute_force() {
 const BLOBS_HEADER: &str = "\
 # meshq blob golden file: length and header checksum (CRC-32 over every other byte) of each
 # bundled mesh's blob with the indexed mesh layout, built with the default config (binned SAH)
-# and, as `<mesh>-fast`, with the fast preset (centre splits). Builds are deterministic, so
+# and, as `<mesh>-fast`, with the fast preset (centre splits); `<mesh>-kdtree`, `-octree` and
+# `-grid` hold the other structures with their default configs. Builds are deterministic, so
 # the WebAssembly build must produce these exact bytes too.
 ";
 
@@ -229,6 +237,21 @@ fn default_and_fast_blobs_match_the_golden_blob_file() {
             writeln!(
                 file,
                 "{name}{suffix} bytes={} checksum={:#010x}",
+                blob.len(),
+                header.checksum
+            )
+            .unwrap();
+        }
+    }
+    for kind in &StructureKind::ALL[1..] {
+        for name in MESHES {
+            let loaded = load_mesh(name);
+            let index = MeshIndex::build(&loaded.valid(), *kind).unwrap();
+            let blob = index.to_blob(MeshLayout::Indexed).unwrap();
+            let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+            writeln!(
+                file,
+                "{name}-{kind} bytes={} checksum={:#010x}",
                 blob.len(),
                 header.checksum
             )

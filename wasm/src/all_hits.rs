@@ -11,7 +11,8 @@ use crate::mesh_bvh::xyz_ray;
 use crate::options::ray_options;
 use crate::storage::Storage;
 
-/// Collects every hit in the ray's range: boxes the ray misses are skipped, nothing else.
+/// Collects every hit in the ray's range: boxes the ray misses are skipped, nothing else (a
+/// triangle in several cells is met, and collected, once per cell).
 struct AllHits<'v> {
     views: &'v Storage,
     ray: Ray,
@@ -74,6 +75,8 @@ impl MeshBvh {
         views.traverse(&mut visitor);
         let mut hits = visitor.hits;
         hits.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+        // A cell structure offers a triangle once per cell it lies in: the same hit, repeated.
+        hits.dedup();
         Ok(hits.into_iter().flatten().collect())
     }
 }

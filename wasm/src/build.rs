@@ -3,12 +3,11 @@
 use js_sys::{Array, Uint16Array, Uint32Array};
 use meshq::bvh::BuildConfig;
 use meshq::mesh::MeshRef;
+use meshq::owned::{MeshIndex, StructureKind};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use crate::storage::Storage;
-
-type OwnedMesh = meshq::MeshBvh;
 
 fn error(e: impl core::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
@@ -43,10 +42,12 @@ pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsError> {
     ))
 }
 
-/// Validates the mesh and builds its BVH (and the copies queries read) into owned buffers.
+/// Validates the mesh and builds its structure of `kind` (a BVH with `config`, the others with
+/// their default configs) and the copies queries read, into owned buffers.
 pub fn build(
     positions: Vec<f32>,
     indices: Option<Vec<u32>>,
+    kind: StructureKind,
     config: &BuildConfig,
 ) -> Result<Storage, JsError> {
     if !positions.len().is_multiple_of(3) {
@@ -72,17 +73,18 @@ pub fn build(
     let mesh = MeshRef::from_flat(&positions, &indices)
         .and_then(MeshRef::validate)
         .map_err(error)?;
-    Ok(Storage {
-        scene: OwnedMesh::build(&mesh, config).map_err(error)?,
-        blob: None,
-    })
+    let scene = match kind {
+        StructureKind::Bvh => MeshIndex::Bvh(meshq::MeshBvh::build(&mesh, config).map_err(error)?),
+        other => MeshIndex::build(&mesh, other).map_err(error)?,
+    };
+    Ok(Storage { scene, blob: None })
 }
 
-/// Validates a blob once and decodes it into the buffers a build makes, so a loaded mesh is
+/// Validates a blob of any structure once and decodes it into the buffers a build makes, so a loaded mesh is
 /// queried exactly as fast as a built one (and answers the same, bit for bit); keeps the bytes
 /// for `toBlob`.
 pub fn from_blob(bytes: Vec<u8>) -> Result<Storage, JsError> {
-    let scene = OwnedMesh::from_blob(&bytes).map_err(error)?;
+    let scene = MeshIndex::from_blob(&bytes).map_err(error)?;
     Ok(Storage {
         scene,
         blob: Some(bytes),

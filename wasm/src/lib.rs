@@ -10,6 +10,7 @@ mod all_hits;
 mod batch;
 mod build;
 mod js_objects;
+mod levels;
 mod mesh_bvh;
 mod options;
 mod storage;

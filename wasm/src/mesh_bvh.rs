@@ -1,4 +1,5 @@
-//! The `MeshBvh` class: one mesh with its BVH, built here or loaded from a blob.
+//! The `MeshBvh` class: one mesh with its structure (a BVH by default), built here or loaded
+//! from a blob.
 
 use glam::Vec3;
 use meshq::blob::MeshLayout;
@@ -6,10 +7,12 @@ use meshq::math::{ClosestPoint, Ray, RayHit};
 use wasm_bindgen::prelude::*;
 
 use crate::js_objects::meshq_result;
-use crate::options::{build_config, ray_options};
+use crate::options::{build_config, ray_options, structure_kind};
 use crate::storage::Storage;
 
-/// A triangle mesh and its BVH, ready for ray and closest-point queries.
+/// A triangle mesh and its acceleration structure (a BVH unless `structure` picks a k-d tree,
+/// octree or grid), ready for ray and closest-point queries. Every structure gives the same
+/// answers, bit for bit.
 ///
 /// Conventions: positions are `x, y, z` triples; triangles are counter-clockwise when seen from
 /// their front (as in three.js). Ray directions are used as given, not normalized: distances,
@@ -83,26 +86,29 @@ fn closest_object(views: &Storage, c: ClosestPoint) -> JsValue {
 
 #[wasm_bindgen]
 impl MeshBvh {
-    /// Builds a BVH from the arrays of a three.js `BufferGeometry`: `positions` (a
+    /// Builds a structure from the arrays of a three.js `BufferGeometry`: `positions` (a
     /// `Float32Array`, 3 numbers per vertex) and `indices` (`Uint32Array`, `Uint16Array`, array,
-    /// or `null` for non-indexed geometry). `options`: `{ quality: "fast" | "balanced" | "high",
-    /// maxLeafSize, bins }`, all optional; `"balanced"` (binned SAH) by default, `"fast"` builds
-    /// with centre splits (like three-mesh-bvh's default) about four times sooner for somewhat
-    /// slower rays. Throws on an invalid mesh (index out of range,
-    /// non-finite position…) with the core error's message.
+    /// or `null` for non-indexed geometry). `options`: `{ structure: "bvh" | "kdtree" |
+    /// "octree" | "grid", quality: "fast" | "balanced" | "high", maxLeafSize, bins }`, all
+    /// optional. `structure` is `"bvh"` by default; `quality`, `maxLeafSize` and `bins` tune the
+    /// BVH (the others use their default configs): `"balanced"` (binned SAH) by default,
+    /// `"fast"` builds with centre splits (like three-mesh-bvh's default) about four times
+    /// sooner for somewhat slower rays. Throws on an invalid mesh (index out of range,
+    /// non-finite position…) or an unknown option value with the core error's message.
     pub fn build(
         positions: Vec<f32>,
         indices: JsValue,
         options: JsValue,
     ) -> Result<MeshBvh, JsError> {
         let config = build_config(&options)?;
+        let kind = structure_kind(&options)?;
         let indices = crate::build::read_indices(&indices)?;
-        let storage = crate::build::build(positions, indices, &config)?;
+        let storage = crate::build::build(positions, indices, kind, &config)?;
         Ok(Self { storage })
     }
 
-    /// Loads a blob baked by `meshq bake` (or `toBlob`), e.g. the bytes of a fetched file. The
-    /// blob is validated once (checksum, every count, index and range), then decoded into the
+    /// Loads a blob baked by `meshq bake` (or `toBlob`) holding any structure, e.g. the bytes
+    /// of a fetched file. The blob is validated once (checksum, every count, index and range), then decoded into the
     /// buffers a build makes, so queries run as fast as on a built mesh; the bytes are kept for
     /// `toBlob`. Throws on a damaged blob, another format version, or a blob baked
     /// without its mesh.
@@ -112,7 +118,7 @@ impl MeshBvh {
         Ok(Self { storage })
     }
 
-    /// The blob of this mesh and BVH, to save and load later with `fromBlob`. `layout`:
+    /// The blob of this mesh and structure, to save and load later with `fromBlob`. `layout`:
     /// `"indexed"` (default: positions and indices), `"packed"` (larger, fastest to query),
     /// or `"omitted"` (no mesh; only for readers that have it). A loaded blob is returned as
     /// it was loaded when no layout is asked for.
@@ -147,13 +153,20 @@ impl MeshBvh {
         self.storage.triangle_count()
     }
 
-    /// Number of BVH nodes.
+    /// Which structure answers: `"bvh"`, `"kdtree"`, `"octree"` or `"grid"`.
+    #[wasm_bindgen(getter)]
+    pub fn structure(&self) -> String {
+        self.storage.scene.kind().name().to_owned()
+    }
+
+    /// Nodes of the BVH, k-d tree or octree; cells of a grid.
     #[wasm_bindgen(getter, js_name = nodeCount)]
     pub fn node_count(&self) -> u32 {
         u32::try_from(self.storage.node_count()).unwrap_or(u32::MAX)
     }
 
-    /// Levels in the BVH (the root is level 0 in `levelBoxes`, so levels `0..depth`).
+    /// Levels `levelBoxes` shows, `0..depth` (the root is level 0): a BVH's depth, one more
+    /// than a k-d tree's or octree's deepest leaf, 1 for a grid.
     #[wasm_bindgen(getter)]
     pub fn depth(&self) -> u32 {
         self.storage.depth()
@@ -253,33 +266,13 @@ impl MeshBvh {
         out
     }
 
-    /// The boxes of the BVH nodes at depth `level` (the root is level 0): 6 numbers per box,
-    /// `minX, minY, minZ, maxX, maxY, maxZ`.
+    /// Boxes to draw at depth `level` (the root is level 0), 6 numbers per box: `minX, minY,
+    /// minZ, maxX, maxY, maxZ`. A BVH: its node boxes at that depth. A k-d tree or octree: the
+    /// cells its splits have cut space into by that depth (the nodes at that depth and the
+    /// non-empty leaves above it). A grid: its non-empty cells.
     #[wasm_bindgen(js_name = levelBoxes)]
     pub fn level_boxes(&self, level: u32) -> Vec<f32> {
-        let views = &self.storage;
-        let mut out = Vec::new();
-        let mut stack = vec![(0usize, 0u32)];
-        while let Some((index, depth)) = stack.pop() {
-            let Some(node) = views.node(index) else {
-                continue;
-            };
-            if depth == level {
-                out.extend_from_slice(&[
-                    node.min[0],
-                    node.min[1],
-                    node.min[2],
-                    node.max[0],
-                    node.max[1],
-                    node.max[2],
-                ]);
-            } else if !node.is_leaf() {
-                let first = node.first as usize;
-                stack.push((first + 1, depth + 1));
-                stack.push((first, depth + 1));
-            }
-        }
-        out
+        self.storage.level_boxes(level)
     }
 }
 

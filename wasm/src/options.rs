@@ -3,6 +3,7 @@
 use js_sys::Reflect;
 use meshq::bvh::BuildConfig;
 use meshq::geom::CullMode;
+use meshq::owned::StructureKind;
 use meshq::query::RayOptions;
 use wasm_bindgen::prelude::*;
 
@@ -42,6 +43,22 @@ pub fn build_config(options: &JsValue) -> Result<BuildConfig, JsError> {
     }
     config.check().map_err(|e| JsError::new(&e.to_string()))?;
     Ok(config)
+}
+
+/// Reads `{ structure?: "bvh" | "kdtree" | "octree" | "grid" }` (`"bvh"` when absent).
+pub fn structure_kind(options: &JsValue) -> Result<StructureKind, JsError> {
+    if options.is_undefined() || options.is_null() {
+        return Ok(StructureKind::Bvh);
+    }
+    match Reflect::get(options, &JsValue::from_str("structure"))
+        .ok()
+        .and_then(|v| v.as_string())
+    {
+        None => Ok(StructureKind::Bvh),
+        Some(name) => name
+            .parse()
+            .map_err(|e| JsError::new(&format!("{e}, got {name:?}"))),
+    }
 }
 
 /// Ray options for a three.js material side: `0` (`THREE.FrontSide`) hits front faces only,

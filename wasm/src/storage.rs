@@ -1,16 +1,16 @@
-//! What a [`crate::MeshBvh`] holds: the core's owned [`MeshBvh`](meshq::MeshBvh) (mesh, tree,
-//! packed triangles, wide tree) and, for a loaded blob, its bytes.
+//! What a [`crate::MeshBvh`] holds: the core's owned [`MeshIndex`] (mesh, structure of any kind,
+//! packed triangles) and, for a loaded blob, its bytes.
 
-use meshq::bvh::BvhNode;
 use meshq::math::{ClosestPoint, Ray, RayHit, Triangle};
+use meshq::owned::MeshIndex;
 use meshq::query::{RayOptions, Visitor};
 use meshq::{MeshQuery, Traverse};
 use wasm_bindgen::JsError;
 
-/// A mesh with its trees, and the blob it was loaded from (handed back as is by `toBlob`).
+/// A mesh with its structure, and the blob it was loaded from (handed back as is by `toBlob`).
 pub struct Storage {
     /// The mesh and every buffer its queries read.
-    pub scene: meshq::MeshBvh,
+    pub scene: MeshIndex,
     /// The blob this was loaded from.
     pub blob: Option<Vec<u8>>,
 }
@@ -66,9 +66,10 @@ impl Storage {
             .map_err(batch_error)
     }
 
-    /// Runs `visitor` over the binary tree (whose boxes `levelBoxes` draws).
+    /// Runs `visitor` over the structure. A cell structure may offer a triangle once per cell
+    /// it lies in.
     pub fn traverse<V: Visitor>(&self, visitor: &mut V) {
-        self.scene.bvh().traverse(visitor);
+        self.scene.traverse(visitor);
     }
 
     pub fn triangle(&self, index: u32) -> Option<Triangle> {
@@ -76,23 +77,16 @@ impl Storage {
     }
 
     pub fn triangle_count(&self) -> u32 {
-        u32::try_from(self.scene.triangle_count()).unwrap_or(u32::MAX)
-    }
-
-    pub fn node_count(&self) -> usize {
-        self.scene.bvh().nodes().len()
-    }
-
-    pub fn node(&self, index: usize) -> Option<BvhNode> {
-        self.scene.bvh().nodes().get(index).copied()
-    }
-
-    pub fn depth(&self) -> u32 {
-        self.scene.bvh().depth()
+        u32::try_from(self.scene.mesh().triangle_count()).unwrap_or(u32::MAX)
     }
 
     pub fn bounds(&self) -> meshq::math::Aabb {
-        self.scene.bounds()
+        match &self.scene {
+            MeshIndex::Bvh(s) => s.bounds(),
+            MeshIndex::KdTree(s) => *s.tree().bounds(),
+            MeshIndex::Octree(s) => *s.tree().root(),
+            MeshIndex::Grid(s) => s.grid().layout().bounds,
+        }
     }
 }
 

@@ -59,8 +59,13 @@ fn build(obj: &str, options: &JsValue) -> MeshBvh {
 
 /// `{ quality: "fast" }`.
 fn fast() -> JsValue {
+    option("quality", "fast")
+}
+
+/// `{ key: value }`.
+fn option(key: &str, value: &str) -> JsValue {
     let options = js_sys::Object::new();
-    Reflect::set(&options, &"quality".into(), &"fast".into()).unwrap();
+    Reflect::set(&options, &key.into(), &value.into()).unwrap();
     options.into()
 }
 
@@ -156,6 +161,55 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
             .unwrap();
         assert!(MeshBvh::from_blob(&omitted).is_err(), "{name}: no mesh");
     }
+}
+
+/// The k-d tree, octree and grid, built here in WebAssembly, give the golden digest and the
+/// golden blob bytes, in place of the BVH; so do their blobs once loaded (indexed and packed).
+#[wasm_bindgen_test]
+fn every_structure_matches_the_golden_digest_and_blob() {
+    for (name, obj) in MESHES {
+        let golden = find_golden(GOLDEN, name).unwrap();
+        // The queries are placed around the BVH's root box, as the golden run placed them.
+        let bounds = build(obj, &JsValue::UNDEFINED).root_bounds();
+        for kind in ["kdtree", "octree", "grid"] {
+            let built = build(obj, &option("structure", kind));
+            assert_eq!(built.structure(), kind);
+            let report = run_parity(&golden.spec, bounds, &mut Wasm(&built));
+            assert_eq!(report, golden.report, "{name}: {kind} built in WebAssembly");
+
+            let blob = built.to_blob(None).map_err(JsValue::from).unwrap();
+            let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+            assert_eq!(
+                (blob.len(), header.checksum),
+                golden_blob(&format!("{name}-{kind}")),
+                "{name} {kind}: blob bytes"
+            );
+            for layout in [None, Some("packed".to_owned())] {
+                let bytes = match &layout {
+                    None => blob.clone(),
+                    Some(_) => built
+                        .to_blob(layout.clone())
+                        .map_err(JsValue::from)
+                        .unwrap(),
+                };
+                let loaded = MeshBvh::from_blob(&bytes).map_err(JsValue::from).unwrap();
+                assert_eq!(loaded.structure(), kind);
+                let report = run_parity(&golden.spec, bounds, &mut Wasm(&loaded));
+                assert_eq!(report, golden.report, "{name}: {kind} blob {layout:?}");
+                assert_eq!(loaded.depth(), built.depth(), "{name} {kind}: depth");
+                assert_eq!(
+                    loaded.level_boxes(loaded.depth() / 2),
+                    built.level_boxes(built.depth() / 2),
+                    "{name} {kind}: cells"
+                );
+            }
+        }
+    }
+    let positions = vec![0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    assert!(
+        MeshBvh::build(positions, JsValue::NULL, option("structure", "quadtree")).is_err(),
+        "unknown structure"
+    );
 }
 
 fn number(object: &JsValue, path: &[&str]) -> f64 {

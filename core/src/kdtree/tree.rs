@@ -173,13 +173,30 @@ impl<N: Words, W: Words> KdTree<N, W> {
 
     /// Every leaf with its cell and depth, depth first, below to above.
     pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
+        self.for_each_cell(u32::MAX, |cell, depth, leaf| {
+            if let Some((first, count)) = leaf {
+                each(cell, depth, first, count);
+            }
+        });
+    }
+
+    /// The cells the tree has cut its bounds into after `stop_depth` levels of splits, with
+    /// their depth (the root is 0): every leaf at depth `stop_depth` or less, with its
+    /// `(first, count)` range of references, and every inner node at depth `stop_depth`, with
+    /// `None`. Together they tile the root; depth first, lower child first.
+    pub fn for_each_cell(
+        &self,
+        stop_depth: u32,
+        mut each: impl FnMut(Cell, u32, Option<(u32, u32)>),
+    ) {
         let mut stack = [(0u32, Cell::root(self.bounds), 0u32); KdConfig::MAX_DEPTH as usize + 2];
         let mut top = 1usize;
         while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied())
         {
             top -= 1;
             match self.node(node as usize).map(|n| n.kind()) {
-                Some(KdKind::Leaf { first, count }) => each(cell, depth, first, count),
+                Some(KdKind::Leaf { first, count }) => each(cell, depth, Some((first, count))),
+                Some(KdKind::Inner { .. }) if depth >= stop_depth => each(cell, depth, None),
                 Some(KdKind::Inner {
                     axis,
                     split,

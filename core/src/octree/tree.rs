@@ -160,6 +160,22 @@ impl<N: Words, W: Words> Octree<N, W> {
 
     /// Every leaf with its cell and depth, depth first, octant 0 first.
     pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
+        self.for_each_cell(u32::MAX, |cell, depth, leaf| {
+            if let Some((first, count)) = leaf {
+                each(cell, depth, first, count);
+            }
+        });
+    }
+
+    /// The cells the tree has cut its bounds into after `stop_depth` levels of splits, with
+    /// their depth (the root is 0): every leaf at depth `stop_depth` or less, with its
+    /// `(first, count)` range of references, and every inner node at depth `stop_depth`, with
+    /// `None`. Together they tile the root; depth first, lower child first.
+    pub fn for_each_cell(
+        &self,
+        stop_depth: u32,
+        mut each: impl FnMut(Cell, u32, Option<(u32, u32)>),
+    ) {
         let mut stack = [(0u32, Cell::root(self.root), 0u32); STACK];
         let mut top = 1usize;
         while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied())
@@ -169,7 +185,8 @@ impl<N: Words, W: Words> Octree<N, W> {
                 continue;
             };
             match n.first_child() {
-                None => each(cell, depth, n.a, n.b),
+                None => each(cell, depth, Some((n.a, n.b))),
+                Some(_) if depth >= stop_depth => each(cell, depth, None),
                 Some(first) if depth < OctreeConfig::MAX_DEPTH => {
                     for (k, c) in octants(&cell).into_iter().enumerate().rev() {
                         if let Some(slot) = stack.get_mut(top) {
