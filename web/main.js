@@ -1,5 +1,6 @@
 // The meshq demo: the bundled bunny loaded as a prebuilt blob, click-to-pick, a closest-point
-// probe, BVH levels, and a batched benchmark. Everything geometric is answered by meshq
+// probe, a structure selector (BVH, k-d tree, octree, grid) drawing its levels and cells, and a
+// batched benchmark. Everything geometric is answered by meshq
 // (WebAssembly); three.js only draws.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -82,6 +83,8 @@ function show(bvh, source, timeLabel, ms, blobBytes) {
   slider.max = String(Math.max(bvh.depth - 1, 0));
   slider.value = String(Math.min(10, bvh.depth - 1));
   updateBoxes();
+  $('structure').value = bvh.structure;
+  $('stat-structure').textContent = $('structure').selectedOptions[0]?.textContent ?? bvh.structure;
   $('stat-source').textContent = source;
   $('stat-triangles').textContent = bvh.triangleCount.toLocaleString('en');
   $('stat-nodes').textContent = bvh.nodeCount.toLocaleString('en');
@@ -89,7 +92,7 @@ function show(bvh, source, timeLabel, ms, blobBytes) {
   $('stat-time').textContent = `${ms.toFixed(1)} ms`;
   $('stat-blob').textContent = `${(blobBytes ?? bvh.toBlob().length).toLocaleString('en')} bytes`;
   for (const id of ['hit-triangle', 'hit-distance', 'hit-normal', 'probe-distance', 'bench-result']) $(id).textContent = '—';
-  Object.assign(demo, { source, triangles: bvh.triangleCount, lastRay: null, lastHit: null, bench: null });
+  Object.assign(demo, { source, structure: bvh.structure, triangles: bvh.triangleCount, lastRay: null, lastHit: null, bench: null });
 }
 
 function updateBoxes() {
@@ -111,6 +114,20 @@ function updateBoxes() {
   $('bvh-level-text').textContent = `level ${level}: ${n} boxes`;
 }
 $('bvh-level').addEventListener('input', updateBoxes);
+
+// Another structure over the same triangles (in the same order, so triangle ids and every
+// answer stay the same); its cells are what "show level" draws.
+$('structure').addEventListener('change', () => {
+  if (!state) return;
+  const structure = $('structure').value;
+  $('status').textContent = `building a ${structure}…`;
+  setTimeout(() => {
+    const t0 = performance.now();
+    const bvh = MeshBvh.build(state.positions.slice(), null, { structure });
+    show(bvh, demo.source, `${structure} build time`, performance.now() - t0);
+    $('status').textContent = `${structure} ready`;
+  }, 20);
+});
 $('bvh-show').addEventListener('change', updateBoxes);
 
 const raycaster = new THREE.Raycaster();
@@ -231,7 +248,7 @@ async function loadFile(file) {
       const positions = geometry.getAttribute('position').array;
       const index = geometry.index ? geometry.index.array : null;
       const t0 = performance.now();
-      const bvh = MeshBvh.build(positions, index);
+      const bvh = MeshBvh.build(positions, index, { structure: $('structure').value });
       show(bvh, file.name, 'build time', performance.now() - t0);
     }
     $('status').textContent = `${file.name} loaded`;

@@ -73,11 +73,13 @@ try {
   // The native answer for the same f32 ray, from the same blob.
   const rays = join(scratch, 'ray.bin');
   const hits = join(scratch, 'hit.bin');
-  writeFileSync(rays, Buffer.from(Float32Array.from([...lastRay.origin, ...lastRay.direction]).buffer));
-  execFileSync(meshq, ['raycast', join(root, 'web/assets/bunny.meshq'), '--rays', rays, '--out', hits]);
-  const record = readFileSync(hits);
-  const nativeT = record.readFloatLE(0);
-  const nativeTriangle = record.readUInt32LE(4);
+  const native = (ray) => {
+    writeFileSync(rays, Buffer.from(Float32Array.from([...ray.origin, ...ray.direction]).buffer));
+    execFileSync(meshq, ['raycast', join(root, 'web/assets/bunny.meshq'), '--rays', rays, '--out', hits]);
+    const record = readFileSync(hits);
+    return [record.readFloatLE(0), record.readUInt32LE(4)];
+  };
+  const [nativeT, nativeTriangle] = native(lastRay);
   assert.equal(shownTriangle, nativeTriangle, 'displayed triangle = native');
   assert.equal(lastHit.triangle, nativeTriangle);
   assert.equal(Math.fround(lastHit.distance), nativeT, 'distance bits = native');
@@ -94,6 +96,22 @@ try {
   assert.ok(bench.hits > 300000, `benchmark hits: ${bench.hits}`);
   console.log(`benchmark button: ${(bench.raysPerSecond / 1e6).toFixed(2)} M rays/s in headless Chromium`);
   await page.screenshot({ path: join(out, 'demo-bunny.png') });
+
+  // The structure selector: each structure built in the page draws its cells and picks the
+  // triangle the native BVH picks, at the same distance bits.
+  for (const structure of ['kdtree', 'octree', 'grid']) {
+    await page.selectOption('#structure', structure);
+    await page.waitForFunction((s) => window.meshqDemo.structure === s, structure, { timeout: 120000 });
+    assert.match(await page.textContent('#bvh-level-text'), /level \d+: [1-9]\d* boxes/, structure);
+    await page.mouse.click(box.x + box.width / 2 + 7, box.y + box.height / 2 - 5);
+    await page.waitForFunction(() => window.meshqDemo.lastHit !== null);
+    const picked = await page.evaluate(() => window.meshqDemo);
+    const [t, triangle] = native(picked.lastRay);
+    assert.equal(picked.lastHit.triangle, triangle, `${structure}: triangle = native`);
+    assert.equal(Math.fround(picked.lastHit.distance), t, `${structure}: distance bits = native`);
+    await page.screenshot({ path: join(out, `demo-bunny-${structure}.png`) });
+    console.log(`${structure}: ${await page.textContent('#bvh-level-text')}, pick equal to native`);
+  }
 
   // Another blob through the file input: spot, baked by the command.
   const spot = join(scratch, 'spot.meshq');
