@@ -25,18 +25,29 @@ fn main() {
         panic!("enable exactly one mesh: --features bunny or --features spot");
     };
 
+    // `--features octree` places the mesh's octree blob in flash instead of its BVH blob.
+    let suffix = if env::var_os("CARGO_FEATURE_OCTREE").is_some() {
+        "-octree"
+    } else {
+        ""
+    };
     println!("cargo:rerun-if-env-changed=MESHQ_BLOB_DIR");
     let dir = env::var_os("MESHQ_BLOB_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| manifest.join("../target/firmware-blobs"));
-    let blob = dir.join(format!("{stem}.meshq"));
+    let blob = dir.join(format!("{stem}{suffix}.meshq"));
     println!("cargo:rerun-if-changed={}", blob.display());
     assert!(
         blob.is_file(),
-        "{} is missing: bake it first with `meshq bake assets/{stem}.obj -o {}` \
+        "{} is missing: bake it first with `meshq bake assets/{stem}.obj -o {}{}` \
          (scripts/firmware.sh does this), or point MESHQ_BLOB_DIR at a folder holding it",
         blob.display(),
-        blob.display()
+        blob.display(),
+        if suffix.is_empty() {
+            ""
+        } else {
+            " --structure octree"
+        }
     );
     println!("cargo:rustc-env=MESHQ_BLOB={}", blob.display());
     println!("cargo:rustc-env=MESHQ_MESH={stem}");

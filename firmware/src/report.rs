@@ -40,8 +40,8 @@ pub fn wrong_mesh(got: u32, expected: u32) {
 
 pub fn blob_loaded(header: &BlobHeader) {
     println!(
-        "validated in place: {} triangles, {} nodes, depth {}",
-        header.triangle_count, header.node_count, header.depth
+        "validated in place: {} over {} triangles, {} nodes or cells, {} references, depth {}",
+        header.kind, header.triangle_count, header.node_count, header.reference_count, header.depth
     );
 }
 

@@ -175,6 +175,7 @@ fn computed_line(name: &str) -> String {
         mesh: name,
         triangles: u32::try_from(mesh.triangle_count()).unwrap(),
         spec,
+        bounds_bits: GoldenEntry::bits_of(&bounds),
         report: expected,
     };
     entry.to_string()

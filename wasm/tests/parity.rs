@@ -110,7 +110,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let built = build(obj, options);
         let golden = find_golden(GOLDEN, name).unwrap();
         assert_eq!(built.triangle_count(), golden.triangles, "{name}");
-        let report = run_parity(&golden.spec, built.root_bounds(), &mut Wasm(&built));
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&built));
         assert_eq!(report, golden.report, "{name}: built in WebAssembly");
 
         let blob = built.to_blob(None).map_err(JsValue::from).unwrap();
@@ -123,7 +123,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         );
 
         let loaded = MeshBvh::from_blob(&blob).map_err(JsValue::from).unwrap();
-        let report = run_parity(&golden.spec, loaded.root_bounds(), &mut Wasm(&loaded));
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
         assert_eq!(loaded.to_blob(None).map_err(JsValue::from).unwrap(), blob);
 
@@ -133,11 +133,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
             .map_err(JsValue::from)
             .unwrap();
         let loaded_packed = MeshBvh::from_blob(&packed).map_err(JsValue::from).unwrap();
-        let report = run_parity(
-            &golden.spec,
-            loaded_packed.root_bounds(),
-            &mut Wasm(&loaded_packed),
-        );
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded_packed));
         assert_eq!(report, golden.report, "{name}: loaded from the packed blob");
         // Both loads give back the built mesh's triangles and tree, for display.
         for (layout, other) in [("indexed", &loaded), ("packed", &loaded_packed)] {
@@ -169,8 +165,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
 fn every_structure_matches_the_golden_digest_and_blob() {
     for (name, obj) in MESHES {
         let golden = find_golden(GOLDEN, name).unwrap();
-        // The queries are placed around the BVH's root box, as the golden run placed them.
-        let bounds = build(obj, &JsValue::UNDEFINED).root_bounds();
+        let bounds = golden.bounds();
         for kind in ["kdtree", "octree", "grid"] {
             let built = build(obj, &option("structure", kind));
             assert_eq!(built.structure(), kind);

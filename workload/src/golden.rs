@@ -4,13 +4,20 @@
 //! A line is the mesh name followed by `key=value` fields in any order:
 //!
 //! ```text
-//! spot triangles=5856 seed=0x6d657368715061 rays=1024 any_rays=1024 points=256 hits=… any_hits=… points_found=… digest=0x…
+//! spot triangles=5856 seed=0x6d657368715061 rays=1024 any_rays=1024 points=256 min_x=0x… min_y=0x… min_z=0x… max_x=0x… max_y=0x… max_z=0x… hits=… any_hits=… points_found=… digest=0x…
 //! ```
+//!
+//! `min_x` … `max_z` are the bit patterns of the box the queries are placed around (the
+//! mesh's BVH root box when the line was written), so every target and every structure runs
+//! the same queries whatever box its own structure records.
 //!
 //! Blank lines and lines starting with `#` are comments. Integers are decimal, or hexadecimal
 //! with a `0x` prefix.
 
 use core::fmt;
+
+use glam::Vec3;
+use meshq::math::Aabb;
 
 use crate::parity::{ParityReport, ParitySpec};
 
@@ -23,8 +30,26 @@ pub struct GoldenEntry<'a> {
     pub triangles: u32,
     /// The queries that were run.
     pub spec: ParitySpec,
+    /// The bit patterns of the box they are placed around: min x, y, z, max x, y, z.
+    pub bounds_bits: [u32; 6],
     /// What they must give.
     pub report: ParityReport,
+}
+
+impl GoldenEntry<'_> {
+    /// The box the queries are placed around.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        let [a, b, c, d, e, f] = self.bounds_bits.map(f32::from_bits);
+        Aabb::new(Vec3::new(a, b, c), Vec3::new(d, e, f))
+    }
+
+    /// The bit patterns of `bounds`, for a new entry.
+    #[must_use]
+    pub fn bits_of(bounds: &Aabb) -> [u32; 6] {
+        let (min, max) = (bounds.min, bounds.max);
+        [min.x, min.y, min.z, max.x, max.y, max.z].map(f32::to_bits)
+    }
 }
 
 /// Why a golden entry could not be read.
@@ -64,13 +89,19 @@ fn parse_fields<'a>(
     fields: core::str::SplitAsciiWhitespace<'_>,
 ) -> Option<GoldenEntry<'a>> {
     // Each field once: a slot per key, filled at most once.
-    let mut slots: [Option<u64>; 9] = [None; 9];
-    const KEYS: [&str; 9] = [
+    let mut slots: [Option<u64>; 15] = [None; 15];
+    const KEYS: [&str; 15] = [
         "triangles",
         "seed",
         "rays",
         "any_rays",
         "points",
+        "min_x",
+        "min_y",
+        "min_z",
+        "max_x",
+        "max_y",
+        "max_z",
         "hits",
         "any_hits",
         "points_found",
@@ -95,6 +126,12 @@ fn parse_fields<'a>(
         rays,
         any_rays,
         points,
+        min_x,
+        min_y,
+        min_z,
+        max_x,
+        max_y,
+        max_z,
         hits,
         any_hits,
         points_found,
@@ -110,6 +147,14 @@ fn parse_fields<'a>(
             any_rays: small(any_rays)?,
             points: small(points)?,
         },
+        bounds_bits: [
+            small(min_x)?,
+            small(min_y)?,
+            small(min_z)?,
+            small(max_x)?,
+            small(max_y)?,
+            small(max_z)?,
+        ],
         report: ParityReport {
             digest: digest?,
             hits: small(hits)?,
@@ -143,14 +188,21 @@ impl fmt::Display for GoldenEntry<'_> {
         let (s, r) = (&self.spec, &self.report);
         write!(
             f,
-            "{} triangles={} seed={:#x} rays={} any_rays={} points={} hits={} any_hits={} \
-             points_found={} digest={:#018x}",
+            "{} triangles={} seed={:#x} rays={} any_rays={} points={} min_x={:#010x} \
+             min_y={:#010x} min_z={:#010x} max_x={:#010x} max_y={:#010x} max_z={:#010x} hits={} \
+             any_hits={} points_found={} digest={:#018x}",
             self.mesh,
             self.triangles,
             s.seed,
             s.rays,
             s.any_rays,
             s.points,
+            self.bounds_bits[0],
+            self.bounds_bits[1],
+            self.bounds_bits[2],
+            self.bounds_bits[3],
+            self.bounds_bits[4],
+            self.bounds_bits[5],
             r.hits,
             r.any_hits,
             r.points_found,
@@ -164,6 +216,7 @@ mod tests {
     use super::*;
 
     const TEXT: &str = "# comment\n\nspot triangles=5856 seed=0x10 rays=3 any_rays=4 points=5 \
+        min_x=0xbf800000 min_y=0 min_z=0 max_x=0x3f800000 max_y=0x40000000 max_z=0x3f000000 \
         hits=1 any_hits=2 points_found=5 digest=0x00000000000000ff\n\
         bad triangles=1 seed=1\n";
 
@@ -174,6 +227,10 @@ mod tests {
         assert_eq!(entry.spec.seed, 16);
         assert_eq!(entry.spec.points, 5);
         assert_eq!(entry.report.digest, 255);
+        assert_eq!(
+            entry.bounds(),
+            Aabb::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.5))
+        );
         let line = std::format!("{entry}");
         assert_eq!(find_golden(&line, "spot"), Ok(entry));
     }
@@ -185,14 +242,14 @@ mod tests {
             find_golden(TEXT, "bad"),
             Err(GoldenError::Malformed { line: 4 })
         );
-        let repeated = "m triangles=1 triangles=1 seed=1 rays=1 any_rays=1 points=1 hits=1 \
-            any_hits=1 points_found=1 digest=1";
+        let repeated = "m triangles=1 triangles=1 seed=1 rays=1 any_rays=1 points=1 min_x=0 \
+            min_y=0 min_z=0 max_x=0 max_y=0 max_z=0 hits=1 any_hits=1 points_found=1 digest=1";
         assert_eq!(
             find_golden(repeated, "m"),
             Err(GoldenError::Malformed { line: 1 })
         );
-        let too_big = "m triangles=0x100000000 seed=1 rays=1 any_rays=1 points=1 hits=1 \
-            any_hits=1 points_found=1 digest=1";
+        let too_big = "m triangles=0x100000000 seed=1 rays=1 any_rays=1 points=1 min_x=0 \
+            min_y=0 min_z=0 max_x=0 max_y=0 max_z=0 hits=1 any_hits=1 points_found=1 digest=1";
         assert_eq!(
             find_golden(too_big, "m"),
             Err(GoldenError::Malformed { line: 1 })

@@ -32,6 +32,7 @@ pub(crate) const TRIANGLE_BYTES: usize = 12;
 /// Bytes of one packed triangle.
 pub(crate) const PACKED_BYTES: usize = 36;
 /// Bytes of one word of a cell structure's arrays (node halves, cell offsets, references).
+#[cfg(feature = "blob-cells")]
 pub(crate) const WORD_BYTES: usize = 4;
 /// Bytes of the trailing header checksum.
 pub(crate) const CHECKSUM_BYTES: usize = 4;

@@ -3,9 +3,11 @@
 use glam::Vec3;
 
 use super::format::{
-    ConfigCosts, FORMAT_VERSION, FixedU32, GridWire, HeaderCounts, HeaderSeal, KdWire, MAGIC,
-    MeshLayout, OLDEST_READABLE_VERSION, OctreeWire, StructureKind,
+    ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
+    OLDEST_READABLE_VERSION, StructureKind,
 };
+#[cfg(feature = "blob-cells")]
+use super::format::{GridWire, KdWire, OctreeWire};
 use super::reader::Reader;
 use super::structure_config::{StructureConfig, WireConfig, bvh_config};
 use crate::bvh::SplitStrategy;
@@ -133,8 +135,16 @@ fn read_config(
                 references: triangle_count,
             }
         }
+        #[cfg(feature = "blob-cells")]
         StructureKind::KdTree => r.value::<KdWire>(BlobSection::Header)?.into(),
+        #[cfg(feature = "blob-cells")]
         StructureKind::Octree => r.value::<OctreeWire>(BlobSection::Header)?.into(),
+        #[cfg(feature = "blob-cells")]
         StructureKind::Grid => r.value::<GridWire>(BlobSection::Header)?.into(),
+        // Without the feature, only BVH headers are read (`blob::reseal` and tools included).
+        #[cfg(not(feature = "blob-cells"))]
+        other => {
+            return Err(BlobError::UnsupportedStructure { kind: other.tag() });
+        }
     })
 }

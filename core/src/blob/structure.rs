@@ -1,9 +1,14 @@
 //! [`BlobStructure`]: the structure of a blob of any kind, read in place from its bytes.
 
 use super::BlobTree;
-use crate::cells::{CellStats, LeWords};
+use crate::cells::CellStats;
+#[cfg(feature = "blob-cells")]
+use crate::cells::LeWords;
+#[cfg(feature = "blob-cells")]
 use crate::grid::Grid;
+#[cfg(feature = "blob-cells")]
 use crate::kdtree::KdTree;
+#[cfg(feature = "blob-cells")]
 use crate::octree::Octree;
 use crate::query::{Traverse, Visitor};
 use crate::structure_kind::StructureKind;
@@ -16,11 +21,14 @@ use crate::structure_kind::StructureKind;
 pub enum BlobStructure<'a> {
     /// A BVH.
     Bvh(BlobTree<'a>),
-    /// A k-d tree.
+    /// A k-d tree (feature `blob-cells`).
+    #[cfg(feature = "blob-cells")]
     KdTree(KdTree<LeWords<'a>, LeWords<'a>>),
-    /// An octree.
+    /// An octree (feature `blob-cells`).
+    #[cfg(feature = "blob-cells")]
     Octree(Octree<LeWords<'a>, LeWords<'a>>),
-    /// A uniform grid.
+    /// A uniform grid (feature `blob-cells`).
+    #[cfg(feature = "blob-cells")]
     Grid(Grid<LeWords<'a>>),
 }
 
@@ -30,8 +38,11 @@ impl BlobStructure<'_> {
     pub const fn kind(&self) -> StructureKind {
         match self {
             Self::Bvh(_) => StructureKind::Bvh,
+            #[cfg(feature = "blob-cells")]
             Self::KdTree(_) => StructureKind::KdTree,
+            #[cfg(feature = "blob-cells")]
             Self::Octree(_) => StructureKind::Octree,
+            #[cfg(feature = "blob-cells")]
             Self::Grid(_) => StructureKind::Grid,
         }
     }
@@ -39,11 +50,15 @@ impl BlobStructure<'_> {
     /// Cell figures of a k-d tree, octree or grid over `triangles` triangles; `None` for a BVH
     /// (see [`TreeStats`](crate::bvh::TreeStats)).
     #[must_use]
+    #[cfg_attr(not(feature = "blob-cells"), allow(unused_variables))]
     pub fn cell_stats(&self, triangles: usize) -> Option<CellStats> {
         match self {
             Self::Bvh(_) => None,
+            #[cfg(feature = "blob-cells")]
             Self::KdTree(t) => Some(t.stats(triangles)),
+            #[cfg(feature = "blob-cells")]
             Self::Octree(t) => Some(t.stats(triangles)),
+            #[cfg(feature = "blob-cells")]
             Self::Grid(g) => Some(g.stats(triangles)),
         }
     }
@@ -54,9 +69,21 @@ impl Traverse for BlobStructure<'_> {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         match self {
             Self::Bvh(t) => t.traverse(visitor),
-            Self::KdTree(t) => t.traverse(visitor),
-            Self::Octree(t) => t.traverse(visitor),
-            Self::Grid(g) => g.traverse(visitor),
+            #[cfg(feature = "blob-cells")]
+            Self::KdTree(t) => walk_apart(t, visitor),
+            #[cfg(feature = "blob-cells")]
+            Self::Octree(t) => walk_apart(t, visitor),
+            #[cfg(feature = "blob-cells")]
+            Self::Grid(g) => walk_apart(g, visitor),
         }
     }
+}
+
+#[cfg(feature = "blob-cells")]
+/// A cell structure's walk in a frame of its own. Inlined, its traversal stack would join the
+/// caller's frame, and a BVH walk would reserve the stack an octree's needs (kilobytes, on a
+/// microcontroller) without using it.
+#[inline(never)]
+fn walk_apart<T: Traverse, V: Visitor + ?Sized>(structure: &T, visitor: &mut V) {
+    structure.traverse(visitor);
 }

@@ -5,20 +5,26 @@ use glam::Vec3;
 use super::checksum::mesh_checksum;
 use super::encode::blob_checksum;
 use super::format::{
-    MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES, WORD_BYTES,
+    MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES,
 };
 use super::mesh::{check_indexed, check_packed};
 use super::reader::Reader;
+#[cfg(feature = "blob-cells")]
 use super::structure_config::StructureConfig;
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
 use crate::bvh::TreeArrays;
 use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::cells::LeWords;
-use crate::error::{BlobError, BlobSection, StructureError};
+#[cfg(feature = "blob-cells")]
+use crate::error::StructureError;
+use crate::error::{BlobError, BlobSection};
+#[cfg(feature = "blob-cells")]
 use crate::grid::{Grid, GridLayout};
+#[cfg(feature = "blob-cells")]
 use crate::kdtree::KdTree;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
+#[cfg(feature = "blob-cells")]
 use crate::octree::Octree;
 use crate::query::{LeafTriangles, Traverse, Visitor};
 use crate::structure_kind::StructureKind;
@@ -47,6 +53,7 @@ pub struct BlobView<'a> {
 enum RawStructure<'a> {
     Bvh(BlobTree<'a>),
     /// Node words (k-d tree, octree) or cell offsets (grid), then references.
+    #[cfg_attr(not(feature = "blob-cells"), allow(dead_code))]
     Cells(LeWords<'a>, LeWords<'a>),
 }
 
@@ -106,6 +113,7 @@ impl<'a> BlobView<'a> {
     pub const fn tree(&self) -> Option<&BlobTree<'a>> {
         match &self.structure {
             BlobStructure::Bvh(t) => Some(t),
+            #[cfg(feature = "blob-cells")]
             _ => None,
         }
     }
@@ -173,16 +181,7 @@ fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
             depth: 0,
         })
     } else {
-        let words = if header.kind == StructureKind::Grid {
-            header.node_count.checked_add(1)
-        } else {
-            header.node_count.checked_mul(2)
-        }
-        .ok_or(BlobError::TooLarge)?;
-        RawStructure::Cells(
-            LeWords::new(r.records::<WORD_BYTES>(words, BlobSection::Nodes)?),
-            LeWords::new(r.records::<WORD_BYTES>(header.reference_count, BlobSection::References)?),
-        )
+        cell_arrays(&header, &mut r)?
     };
     let layout_at = r.offset();
     let tag: u32 = r.value(BlobSection::MeshLayout)?;
@@ -211,6 +210,32 @@ fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
         header,
         structure,
         mesh,
+    })
+}
+
+/// A cell structure's node words (or cell offsets) and references, cut out of the bytes.
+#[cfg(feature = "blob-cells")]
+fn cell_arrays<'a>(header: &BlobHeader, r: &mut Reader<'a>) -> Result<RawStructure<'a>, BlobError> {
+    let words = if header.kind == StructureKind::Grid {
+        header.node_count.checked_add(1)
+    } else {
+        header.node_count.checked_mul(2)
+    }
+    .ok_or(BlobError::TooLarge)?;
+    Ok(RawStructure::Cells(
+        LeWords::new(r.records::<{ super::format::WORD_BYTES }>(words, BlobSection::Nodes)?),
+        LeWords::new(r.records::<{ super::format::WORD_BYTES }>(
+            header.reference_count,
+            BlobSection::References,
+        )?),
+    ))
+}
+
+/// Without the feature the header reader refuses every kind but the BVH.
+#[cfg(not(feature = "blob-cells"))]
+fn cell_arrays<'a>(header: &BlobHeader, _: &mut Reader<'a>) -> Result<RawStructure<'a>, BlobError> {
+    Err(BlobError::UnsupportedStructure {
+        kind: header.kind.tag(),
     })
 }
 
@@ -244,45 +269,69 @@ fn check_structure<'a>(
     raw: RawStructure<'a>,
     mesh: Option<&BlobMesh<'_>>,
 ) -> Result<BlobStructure<'a>, BlobError> {
-    if !header.config.is_valid() || header.config.kind() != header.kind {
-        return Err(BlobError::HeaderMismatch { field: "config" });
-    }
-    let n = header.triangle_count as usize;
+    let bad_config = BlobError::HeaderMismatch { field: "config" };
     let (structure, depth) = match raw {
         RawStructure::Bvh(mut tree) => {
+            if header.config.bvh().is_none_or(|c| c.check().is_err()) {
+                return Err(bad_config);
+            }
             tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
             (BlobStructure::Bvh(tree), tree.depth)
         }
+        #[cfg(feature = "blob-cells")]
         RawStructure::Cells(words, items) => {
-            let b = header.bounds;
-            let structure = match header.config {
-                StructureConfig::KdTree(_) => {
-                    BlobStructure::KdTree(KdTree::from_parts(b, words, items, n)?)
-                }
-                StructureConfig::Octree(_) => {
-                    BlobStructure::Octree(Octree::from_parts(b, words, items, n)?)
-                }
-                StructureConfig::Grid { resolution, .. } => {
-                    let layout = GridLayout {
-                        bounds: b,
-                        resolution,
-                    };
-                    BlobStructure::Grid(Grid::from_parts(layout, words, items, n)?)
-                }
-                StructureConfig::Bvh(_) => {
-                    return Err(BlobError::InvalidNode(StructureError::BadNode { node: 0 }));
-                }
-            };
-            let deepest = structure.cell_stats(n).map_or(0, |s| s.max_depth);
-            (structure, u32::try_from(deepest).unwrap_or(u32::MAX))
+            // The header reader makes the config's kind the header's.
+            if !header.config.is_valid() {
+                return Err(bad_config);
+            }
+            check_cells(header, words, items)?
+        }
+        #[cfg(not(feature = "blob-cells"))]
+        RawStructure::Cells(..) => {
+            return Err(BlobError::UnsupportedStructure {
+                kind: header.kind.tag(),
+            });
         }
     };
     if depth != header.depth {
         return Err(BlobError::HeaderMismatch { field: "depth" });
     }
     Ok(structure)
+}
+
+#[cfg(feature = "blob-cells")]
+/// [`check_structure`] for a k-d tree, octree or grid: the structure and its deepest leaf. In a
+/// frame of its own, so that validating a BVH does not reserve the stack these checks use.
+#[inline(never)]
+fn check_cells<'a>(
+    header: &BlobHeader,
+    words: LeWords<'a>,
+    items: LeWords<'a>,
+) -> Result<(BlobStructure<'a>, u32), BlobError> {
+    let n = header.triangle_count as usize;
+    let b = header.bounds;
+    let structure = match header.config {
+        StructureConfig::KdTree(_) => {
+            BlobStructure::KdTree(KdTree::from_parts(b, words, items, n)?)
+        }
+        StructureConfig::Octree(_) => {
+            BlobStructure::Octree(Octree::from_parts(b, words, items, n)?)
+        }
+        StructureConfig::Grid { resolution, .. } => {
+            let layout = GridLayout {
+                bounds: b,
+                resolution,
+            };
+            BlobStructure::Grid(Grid::from_parts(layout, words, items, n)?)
+        }
+        StructureConfig::Bvh(_) => {
+            return Err(BlobError::InvalidNode(StructureError::BadNode { node: 0 }));
+        }
+    };
+    let deepest = structure.cell_stats(n).map_or(0, |s| s.max_depth);
+    Ok((structure, u32::try_from(deepest).unwrap_or(u32::MAX)))
 }
 
 /// Refuses a header box that differs from the structure's, bit for bit.
@@ -328,6 +377,7 @@ impl<'a> BlobTree<'a> {
     pub fn parse(bytes: &'a [u8]) -> Result<(BlobHeader, Self), BlobError> {
         match BlobStructure::parse(bytes)? {
             (header, BlobStructure::Bvh(tree)) => Ok((header, tree)),
+            #[cfg(feature = "blob-cells")]
             (header, _) => Err(BlobError::UnsupportedStructure {
                 kind: header.kind.tag(),
             }),

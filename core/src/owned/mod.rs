@@ -16,7 +16,7 @@
 #[cfg(feature = "blob")]
 mod blob;
 mod cell_scene;
-#[cfg(feature = "blob")]
+#[cfg(feature = "blob-cells")]
 mod index_blob;
 mod mesh_bvh;
 mod mesh_grid;
