@@ -4,7 +4,9 @@
 use std::ops::ControlFlow;
 
 use meshq::MeshQuery;
+use meshq::blob::BlobView;
 use meshq::geom::CullMode;
+use meshq::math::Ray;
 use meshq::math::{Aabb, Vec3};
 use meshq::query::{RayOptions, TriangleTest};
 
@@ -140,4 +142,30 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
         assert_eq!(seen, usize::from(!want.is_empty()), "{what}: break {i}");
     }
     let _ = c;
+}
+
+/// Runs every kind of query on a blob view (rays, any-hit, closest points, overlaps); the
+/// point is that none of them panics or hangs. Returns how many found something.
+pub fn exercise(view: &BlobView<'_>) -> usize {
+    let b = view.bounds();
+    let (c, r) = if b.is_empty() || !b.is_finite() {
+        (Vec3::ZERO, 1.0)
+    } else {
+        (b.center(), (0.5 * b.extent().length()).max(1e-3))
+    };
+    let mut found = 0;
+    for k in 0..16u32 {
+        let angle = k as f32 * 0.39;
+        let origin = c + Vec3::new(angle.cos(), angle.sin(), 0.5) * (2.0 * r);
+        let ray = Ray::new(origin, c - origin);
+        found += usize::from(view.raycast(&ray).is_some());
+        found += usize::from(view.raycast_any(&ray));
+        found += usize::from(view.closest_point(origin, f32::INFINITY).is_some());
+    }
+    let mut out = [0u32; 8];
+    found += view
+        .overlap_aabb_into(&Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r)), &mut out)
+        .total;
+    view.overlap_sphere(c, 0.5 * r, |_| ControlFlow::Continue(()));
+    found
 }

@@ -1,40 +1,12 @@
 //! Corrupt, truncated and foreign blobs are refused with the right error, and no byte-level
 //! damage — even damage that keeps the checksum valid — makes parsing or a query panic.
 
-use std::ops::ControlFlow;
-
+use meshq::MeshBvh;
 use meshq::blob::{self, BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
 use meshq::error::{BlobError, BlobSection};
-use meshq::math::{Aabb, Ray, Vec3};
 use meshq::mesh::MeshRef;
-use meshq::{MeshBvh, MeshQuery};
 use meshq_tests::{bake, load_mesh};
-
-/// Runs every kind of query on a view; the point is that none of them panics or hangs.
-fn exercise(view: &BlobView<'_>) -> usize {
-    let b = view.bounds();
-    let (c, r) = if b.is_empty() || !b.is_finite() {
-        (Vec3::ZERO, 1.0)
-    } else {
-        (b.center(), (0.5 * b.extent().length()).max(1e-3))
-    };
-    let mut found = 0;
-    for k in 0..16u32 {
-        let angle = k as f32 * 0.39;
-        let origin = c + Vec3::new(angle.cos(), angle.sin(), 0.5) * (2.0 * r);
-        let ray = Ray::new(origin, c - origin);
-        found += usize::from(view.raycast(&ray).is_some());
-        found += usize::from(view.raycast_any(&ray));
-        found += usize::from(view.closest_point(origin, f32::INFINITY).is_some());
-    }
-    let mut out = [0u32; 8];
-    found += view
-        .overlap_aabb_into(&Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r)), &mut out)
-        .total;
-    view.overlap_sphere(c, 0.5 * r, |_| ControlFlow::Continue(()));
-    found
-}
 
 #[test]
 fn every_single_byte_corruption_and_truncation_is_handled() {
@@ -44,7 +16,7 @@ fn every_single_byte_corruption_and_truncation_is_handled() {
     for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
         let bytes = bake(&mesh, &BuildConfig::default(), layout).unwrap();
         assert!((1_000..16_000).contains(&bytes.len()), "{}", bytes.len());
-        let reference = exercise(&BlobView::parse(&bytes).unwrap());
+        let reference = meshq_tests::suite::exercise(&BlobView::parse(&bytes).unwrap());
         assert!(reference > 0);
 
         let (mut refused, mut resealed_refused, mut resealed_accepted) = (0, 0, 0);
@@ -64,7 +36,7 @@ fn every_single_byte_corruption_and_truncation_is_handled() {
                 if blob::reseal(&mut damaged).is_ok() {
                     match BlobView::parse(&damaged) {
                         Ok(view) => {
-                            exercise(&view);
+                            meshq_tests::suite::exercise(&view);
                             resealed_accepted += 1;
                         }
                         Err(_) => resealed_refused += 1,
@@ -183,7 +155,7 @@ fn an_empty_mesh_round_trips() {
         let bytes = bake(&mesh, &BuildConfig::default(), layout).unwrap();
         let view = BlobView::parse(&bytes).unwrap();
         assert_eq!(view.header().node_count, 0);
-        assert_eq!(exercise(&view), 0);
+        assert_eq!(meshq_tests::suite::exercise(&view), 0);
     }
 }
 
@@ -205,7 +177,7 @@ fn an_order_naming_a_triangle_twice_is_refused_by_the_owned_copy() {
         blob::reseal(&mut bytes).unwrap();
     }
     let view = BlobView::parse(&bytes).unwrap();
-    assert!(exercise(&view) > 0);
+    assert!(meshq_tests::suite::exercise(&view) > 0);
     assert_eq!(
         MeshBvh::from_blob(&bytes).unwrap_err(),
         BlobError::RepeatedTriangle { slot: 1, tri: 0 }

@@ -2,14 +2,12 @@
 //! every triangle does; their bytes follow the documented wire format (read here by an
 //! independent serde mirror); damage is refused or harmless, never a panic.
 
-use std::ops::ControlFlow;
-
+use meshq::MeshBvh;
 use meshq::blob::{self, BlobStructure, BlobView, FORMAT_VERSION, MeshLayout, mesh_checksum};
 use meshq::error::BlobError;
-use meshq::math::{Aabb, Ray, Vec3};
+use meshq::math::Aabb;
 use meshq::mesh::{MeshRef, ValidMesh};
 use meshq::owned::{MeshIndex, StructureKind};
-use meshq::{MeshBvh, MeshQuery};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;
 use meshq_tests::{LoadedMesh, in_stadium, load_mesh, spot_patch};
@@ -244,31 +242,6 @@ fn a_cell_blob_is_one_postcard_message() {
     }
 }
 
-/// Every kind of query on a view; the point is that none panics or hangs.
-fn exercise(view: &BlobView<'_>) -> usize {
-    let b = view.bounds();
-    let (c, r) = if b.is_empty() || !b.is_finite() {
-        (Vec3::ZERO, 1.0)
-    } else {
-        (b.center(), (0.5 * b.extent().length()).max(1e-3))
-    };
-    let mut found = 0;
-    for k in 0..12u32 {
-        let angle = k as f32 * 0.53;
-        let origin = c + Vec3::new(angle.cos(), angle.sin(), 0.5) * (2.0 * r);
-        let ray = Ray::new(origin, c - origin);
-        found += usize::from(view.raycast(&ray).is_some());
-        found += usize::from(view.raycast_any(&ray));
-        found += usize::from(view.closest_point(origin, f32::INFINITY).is_some());
-    }
-    let mut out = [0u32; 8];
-    found += view
-        .overlap_aabb_into(&Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r)), &mut out)
-        .total;
-    view.overlap_sphere(c, 0.5 * r, |_| ControlFlow::Continue(()));
-    found
-}
-
 /// Raw damage to any byte is refused (the checksum); damage with the checksum recomputed is
 /// refused by validation or gives a view that queries safely; every truncation is refused.
 #[test]
@@ -281,7 +254,7 @@ fn damaged_cell_blobs_are_refused_or_harmless() {
                 .unwrap()
                 .to_blob(layout)
                 .unwrap();
-            assert!(exercise(&BlobView::parse(&bytes).unwrap()) > 0);
+            assert!(meshq_tests::suite::exercise(&BlobView::parse(&bytes).unwrap()) > 0);
             let (mut refused, mut accepted) = (0, 0);
             for i in 0..bytes.len() {
                 for flip in [0x01u8, 0x80, 0xFF] {
@@ -294,7 +267,7 @@ fn damaged_cell_blobs_are_refused_or_harmless() {
                     if blob::reseal(&mut damaged).is_ok() {
                         match BlobView::parse(&damaged) {
                             Ok(view) => {
-                                exercise(&view);
+                                meshq_tests::suite::exercise(&view);
                                 accepted += 1;
                             }
                             Err(_) => refused += 1,
