@@ -8,7 +8,7 @@ use meshq::kdtree::{KdConfig, KdNode, KdTree};
 use meshq::math::{Ray, Vec3};
 use meshq::mesh::ValidMesh;
 use meshq::octree::{Octree, OctreeConfig, OctreeNode};
-use meshq::owned::{MeshIndex, StructureKind};
+use meshq::owned::{MeshGrid, MeshIndex, StructureKind};
 use meshq::query::RayOptions;
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
@@ -47,6 +47,11 @@ fn grid_answers_every_query_as_brute_force() {
             let (mut offsets, mut items) = (vec![0; sizes.offsets], vec![0; sizes.items]);
             let grid = Grid::build(&mesh, &config, &mut offsets, &mut items).unwrap();
             assert_eq!(grid.items().len(), sizes.items, "{name}: measured exactly");
+            // The owned grid finds its arrays in one pass of its own: the same arrays.
+            let owned = MeshGrid::build(&mesh, &config).unwrap();
+            assert_eq!(owned.grid().layout(), grid.layout(), "{name} λ={lambda}");
+            assert_eq!(owned.grid().offsets(), grid.offsets(), "{name} λ={lambda}");
+            assert_eq!(owned.grid().items(), grid.items(), "{name} λ={lambda}");
             let checked = Grid::from_parts(
                 *grid.layout(),
                 grid.offsets(),

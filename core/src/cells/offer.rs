@@ -18,18 +18,22 @@ impl Offer {
         }
     }
 
-    /// Offers the references `ids` of `cell` to `visitor` (nothing for an empty cell).
+    /// Offers the references `ids` of `cell` (when tracked) to `visitor` (nothing for an empty
+    /// cell).
     #[inline(always)]
     pub(crate) fn cell<V: Visitor + ?Sized>(
         &mut self,
         visitor: &mut V,
         ids: LeafTriangleIds<'_>,
-        cell: Cell,
+        cell: Option<Cell>,
     ) -> ControlFlow<()> {
         if ids.entries() == 0 {
             return ControlFlow::Continue(());
         }
-        let ids = ids.with_cell(cell);
+        let ids = match cell {
+            Some(cell) => ids.with_cell(cell),
+            None => ids,
+        };
         match &mut self.mailbox {
             Some(mailbox) => visitor.leaf(mailbox.filter(ids)),
             None => visitor.leaf(ids),

@@ -28,8 +28,14 @@ impl ReferencePad {
     /// Whether triangle `tri` is referenced by the cell with box `cell`.
     #[inline]
     pub(crate) fn touches(self, tri: &Triangle, cell: &Aabb) -> bool {
-        let pad = glam::Vec3::splat(self.0);
-        overlap_triangle_aabb(tri, &Aabb::new(cell.min - pad, cell.max + pad))
+        let padded = self.grow(cell);
+        // A corner inside the padded box settles it without the separating-axis test (most
+        // small triangles have one in each cell they touch).
+        let corner_inside = padded.is_finite()
+            && [tri.a, tri.b, tri.c]
+                .iter()
+                .any(|&p| padded.contains_point(p));
+        corner_inside || overlap_triangle_aabb(tri, &padded)
     }
 
     /// `aabb` grown by the pad.

@@ -17,6 +17,13 @@ pub trait Words: Copy {
     /// Word `i`, if present.
     fn word(&self, i: usize) -> Option<u32>;
 
+    /// Words `2i` and `2i + 1` (two-word node `i`), if both are present.
+    #[inline(always)]
+    fn pair(&self, i: usize) -> Option<[u32; 2]> {
+        let at = i.checked_mul(2)?;
+        Some([self.word(at)?, self.word(at.checked_add(1)?)?])
+    }
+
     /// Words `first..first + count` as the triangle ids of a leaf whose first slot is `first`,
     /// if all are present.
     fn ids(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>>;
@@ -63,6 +70,15 @@ impl Words for LeWords<'_> {
     }
 
     #[inline(always)]
+    fn pair(&self, i: usize) -> Option<[u32; 2]> {
+        let at = i.checked_mul(2)?;
+        match self.0.get(at..at.checked_add(2)?)? {
+            [a, b] => Some([u32::from_le_bytes(*a), u32::from_le_bytes(*b)]),
+            _ => None,
+        }
+    }
+
+    #[inline(always)]
     fn ids(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
         let bytes = self.0.get(first..first.checked_add(count)?)?;
         Some(LeafTriangleIds::from_le_bytes(first, bytes))
@@ -85,6 +101,11 @@ impl<N: TwoWordNode> Words for &[N] {
     fn word(&self, i: usize) -> Option<u32> {
         let [a, b] = self.get(i / 2)?.words();
         Some(if i.is_multiple_of(2) { a } else { b })
+    }
+
+    #[inline(always)]
+    fn pair(&self, i: usize) -> Option<[u32; 2]> {
+        self.get(i).map(TwoWordNode::words)
     }
 
     #[inline(always)]

@@ -1,8 +1,11 @@
 //! Building a grid: count the references of a resolution, shrink it until they fit, fill.
 
+use glam::Vec3;
+
 use super::{Grid, GridConfig, GridLayout};
 use crate::cells::ReferencePad;
 use crate::error::{BufferKind, BuildError};
+use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 
 /// What a grid build needs: its layout and the exact length of each buffer.
@@ -18,7 +21,7 @@ pub struct GridSizes {
 
 /// Calls `each(cell index)` for every cell triangle `tri` of `mesh` touches, in ascending
 /// index order.
-fn for_each_cell(
+pub(crate) fn for_each_cell(
     layout: &GridLayout,
     pad: ReferencePad,
     mesh: &ValidMesh<'_>,
@@ -34,12 +37,16 @@ fn for_each_cell(
         each(layout.index(lo));
         return;
     }
+    // Cell boxes from the boundaries directly: the same values as `layout.cell`.
+    let [bx, by, bz] = layout.boundaries();
     for k in lo[2]..=hi[2] {
+        let (z0, z1) = (bz.at(k), bz.at(k + 1));
         for j in lo[1]..=hi[1] {
+            let (y0, y1) = (by.at(j), by.at(j + 1));
             for i in lo[0]..=hi[0] {
-                let c = [i, j, k];
-                if pad.touches(&t, layout.cell(c).aabb()) {
-                    each(layout.index(c));
+                let cell = Aabb::new(Vec3::new(bx.at(i), y0, z0), Vec3::new(bx.at(i + 1), y1, z1));
+                if pad.touches(&t, &cell) {
+                    each(layout.index([i, j, k]));
                 }
             }
         }

@@ -65,11 +65,20 @@ impl GridLayout {
         else {
             return 0.0;
         };
-        if i >= n {
-            return hi;
-        }
-        let step = (hi - lo) / n as f32;
-        (lo + i as f32 * step).min(hi)
+        Boundaries::new(lo, hi, n).at(i)
+    }
+
+    /// The boundaries of each axis, for walking many cells (the same values as
+    /// [`boundary`](Self::boundary)).
+    #[inline(always)]
+    pub(crate) fn boundaries(&self) -> [Boundaries; 3] {
+        let (lo, hi) = (self.bounds.min.to_array(), self.bounds.max.to_array());
+        let [nx, ny, nz] = self.resolution;
+        [
+            Boundaries::new(lo[0], hi[0], nx),
+            Boundaries::new(lo[1], hi[1], ny),
+            Boundaries::new(lo[2], hi[2], nz),
+        ]
     }
 
     /// The box of the cells `lo..hi` (per axis, `hi` exclusive).
@@ -136,31 +145,61 @@ impl GridLayout {
     pub fn cells_touching(&self, aabb: &Aabb) -> ([u32; 3], [u32; 3]) {
         let (mut lo, mut hi) = ([0u32; 3], [0u32; 3]);
         let (a, b) = (aabb.min.to_array(), aabb.max.to_array());
-        for axis in 0..3 {
+        let (min, max) = (self.bounds.min.to_array(), self.bounds.max.to_array());
+        let axes = a.iter().zip(&b).zip(min.iter().zip(&max));
+        for (axis, (((&a, &b), (&start, &end)), (l, h))) in
+            axes.zip(lo.iter_mut().zip(hi.iter_mut())).enumerate()
+        {
             let n = self.resolution.get(axis).copied().unwrap_or(1);
-            let (Some(&a), Some(&b), Some(l), Some(h)) =
-                (a.get(axis), b.get(axis), lo.get_mut(axis), hi.get_mut(axis))
-            else {
-                continue;
-            };
+            let boundary = Boundaries::new(start, end, n);
             // Lowest cell whose box reaches `a`: its upper boundary is at least `a`.
             let mut first = self.coordinate_cell(axis, a);
-            while first > 0 && self.boundary(axis, first) >= a {
+            while first > 0 && boundary.at(first) >= a {
                 first -= 1;
             }
-            while first + 1 < n && self.boundary(axis, first + 1) < a {
+            while first + 1 < n && boundary.at(first + 1) < a {
                 first += 1;
             }
             // Highest cell whose box starts at or below `b`.
             let mut last = self.coordinate_cell(axis, b).max(first);
-            while last + 1 < n && self.boundary(axis, last + 1) <= b {
+            while last + 1 < n && boundary.at(last + 1) <= b {
                 last += 1;
             }
-            while last > first && self.boundary(axis, last) > b {
+            while last > first && boundary.at(last) > b {
                 last -= 1;
             }
             (*l, *h) = (first, last);
         }
         (lo, hi)
+    }
+}
+
+/// The cell boundaries of one axis, `n` cells from `lo` to `hi`, with the step worked out once.
+#[derive(Clone, Copy)]
+pub(crate) struct Boundaries {
+    lo: f32,
+    hi: f32,
+    n: u32,
+    step: f32,
+}
+
+impl Boundaries {
+    #[inline(always)]
+    fn new(lo: f32, hi: f32, n: u32) -> Self {
+        Self {
+            lo,
+            hi,
+            n,
+            step: (hi - lo) / n as f32,
+        }
+    }
+
+    /// Boundary `i` (see [`GridLayout::boundary`]).
+    #[inline(always)]
+    pub(crate) fn at(self, i: u32) -> f32 {
+        if i >= self.n {
+            return self.hi;
+        }
+        (self.lo + i as f32 * self.step).min(self.hi)
     }
 }

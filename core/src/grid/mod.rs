@@ -33,6 +33,8 @@ mod traverse;
 mod tree;
 
 pub use build::GridSizes;
+#[cfg(feature = "alloc")]
+pub(crate) use build::for_each_cell;
 pub use config::GridConfig;
 pub use layout::GridLayout;
 pub use tree::Grid;

@@ -14,6 +14,11 @@ const MARGIN: f32 = 1.0 / 65_536.0;
 /// most 30 halvings (three axes of at most 1024 cells).
 const STACK: usize = 64;
 
+/// The most rows of cells (runs along x) a range may span for the walk to check whether it is
+/// empty before entering it: a row's references are one contiguous run of the offsets, so each
+/// costs two reads, against the box tests of every cell below a range left unchecked.
+const EMPTY_CHECK_ROWS: u32 = 64;
+
 impl<W: Words> Traverse for Grid<W> {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         if self.items.is_empty() {
@@ -40,7 +45,9 @@ impl<W: Words> Grid<W> {
         let Some(ids) = self.items.ids(first, count) else {
             return true;
         };
-        offer.cell(visitor, ids, self.layout.cell(c)).is_continue()
+        offer
+            .cell(visitor, ids, Some(self.layout.cell(c)))
+            .is_continue()
     }
 
     /// Amanatides–Woo: from the cell where the ray enters the grid, step to the neighbour across
@@ -155,12 +162,16 @@ impl<W: Words> Grid<W> {
             if let (Some(h), Some(l)) = (mid_hi.get_mut(axis), mid_lo.get_mut(axis)) {
                 (*h, *l) = (mid, mid);
             }
-            let first = visitor
-                .enter(&layout.range_box(lo, mid_hi))
-                .map(|k| (lo, mid_hi, k));
-            let second = visitor
-                .enter(&layout.range_box(mid_lo, hi))
-                .map(|k| (mid_lo, hi, k));
+            let mut enter = |lo: [u32; 3], hi: [u32; 3]| {
+                if self.holds_nothing(lo, hi) {
+                    return None;
+                }
+                visitor
+                    .enter(&layout.range_box(lo, hi))
+                    .map(|k| (lo, hi, k))
+            };
+            let first = enter(lo, mid_hi);
+            let second = enter(mid_lo, hi);
             let (near, far) = match (first, second) {
                 (Some(a), Some(b)) if b.2 < a.2 => (Some(b), Some(a)),
                 (a, b) => (a.or(b), a.and(b)),
@@ -171,6 +182,29 @@ impl<W: Words> Grid<W> {
             }
             current = near;
         }
+    }
+}
+
+impl<W: Words> Grid<W> {
+    /// Whether the cells `lo..hi` (per axis, `hi` exclusive) are known to reference nothing:
+    /// checked row by row when the range spans at most [`EMPTY_CHECK_ROWS`] rows, otherwise
+    /// `false` (unknown). Only a skip: the answer never depends on it.
+    fn holds_nothing(&self, lo: [u32; 3], hi: [u32; 3]) -> bool {
+        let rows = (hi[1] - lo[1]).saturating_mul(hi[2] - lo[2]);
+        if rows > EMPTY_CHECK_ROWS || hi[0] <= lo[0] {
+            return false;
+        }
+        for z in lo[2]..hi[2] {
+            for y in lo[1]..hi[1] {
+                let first = self.layout.index([lo[0], y, z]);
+                let end = self.layout.index([hi[0] - 1, y, z]) + 1;
+                match (self.offsets.word(first), self.offsets.word(end)) {
+                    (Some(a), Some(b)) if a == b => {}
+                    _ => return false,
+                }
+            }
+        }
+        true
     }
 }
 

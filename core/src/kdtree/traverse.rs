@@ -4,7 +4,7 @@
 use core::ops::ControlFlow;
 
 use super::{KdConfig, KdKind, KdTree};
-use crate::cells::{Offer, Words};
+use crate::cells::{Offer, Region, Untracked, Words};
 use crate::geom::SlabRay;
 use crate::math::Ray;
 use crate::query::{Cell, Traverse, Visitor};
@@ -20,11 +20,24 @@ impl<N: Words, W: Words> Traverse for KdTree<N, W> {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         let mut offer = Offer::new(visitor);
         match visitor.ray().copied() {
-            Some(ray) => {
-                self.march::<V, false>(&ray, visitor, &mut offer);
+            // Ray queries rarely read cells: only work them out for a visitor that does.
+            Some(ray) if visitor.needs_cells() => {
+                self.march::<V, Cell, false>(&ray, visitor, &mut offer);
             }
+            Some(ray) => self.march::<V, Untracked, false>(&ray, visitor, &mut offer),
             None => self.descend(visitor, &mut offer),
         }
+    }
+}
+
+/// Component `axis` (0, 1, anything else 2) of `v`.
+#[inline(always)]
+fn component(v: [f32; 3], axis: usize) -> f32 {
+    let [x, y, z] = v;
+    match axis {
+        0 => x,
+        1 => y,
+        _ => z,
     }
 }
 
@@ -35,7 +48,7 @@ impl<N: Words, W: Words> KdTree<N, W> {
         &self,
         first: u32,
         count: u32,
-        cell: Cell,
+        cell: Option<Cell>,
         visitor: &mut V,
         offer: &mut Offer,
     ) -> ControlFlow<()> {
@@ -49,26 +62,38 @@ impl<N: Words, W: Words> KdTree<N, W> {
     /// crosses it; the near side is walked now, the far side deferred with its own span. After
     /// a leaf, the next deferred cell is entered only if the visitor's answer does not already
     /// lie before it (`revisit` of its `t_near`): a hit inside the current cell ends the walk,
-    /// one beyond it does not.
+    /// one beyond it does not. `R` is what is kept of each cell (the cell, or nothing).
+    ///
+    /// Plane crossings are found with the slab test's padded reciprocal direction and widened
+    /// by [`MARGIN`], so a span never loses a point the ray reaches within rounding.
     ///
     /// `EXIT_ON_ANY_HIT` replaces that rule by "stop once anything was hit" — wrong, kept only
     /// so a test can show the suites catch it.
-    pub(super) fn march<V: Visitor + ?Sized, const EXIT_ON_ANY_HIT: bool>(
+    pub(super) fn march<V: Visitor + ?Sized, R: Region, const EXIT_ON_ANY_HIT: bool>(
         &self,
         ray: &Ray,
         visitor: &mut V,
         offer: &mut Offer,
     ) {
         let b = self.bounds;
-        let (entry, exit) = SlabRay::new(ray).clip(b.min.to_array(), b.max.to_array());
+        let slab = SlabRay::new(ray);
+        let (entry, exit) = slab.clip(b.min.to_array(), b.max.to_array());
         let (t0, t1) = (entry - entry.abs() * MARGIN, exit + exit.abs() * MARGIN);
         if !(t0 <= t1) {
             return;
         }
-        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
-        let mut stack = [(0u32, t0, t1, Cell::root(b)); STACK];
+        let (o, d, inv) = (
+            ray.origin.to_array(),
+            ray.dir.to_array(),
+            slab.inv_dir.to_array(),
+        );
+        let root = R::root(b);
+        let Some(root_node) = self.node(0) else {
+            return;
+        };
+        let mut stack = [(root_node, t0, t1, root); STACK];
         let mut top = 0usize;
-        let mut current = Some((0u32, t0, t1, Cell::root(b)));
+        let mut current = Some((root_node, t0, t1, root));
         loop {
             let Some((mut node, near_t, mut far_t, mut cell)) = current.take().or_else(|| {
                 top = top.checked_sub(1)?;
@@ -81,9 +106,12 @@ impl<N: Words, W: Words> KdTree<N, W> {
                 return;
             }
             loop {
-                match self.node(node as usize).map(|n| n.kind()) {
-                    Some(KdKind::Leaf { first, count }) => {
-                        if self.visit(first, count, cell, visitor, offer).is_break() {
+                match node.kind() {
+                    KdKind::Leaf { first, count } => {
+                        if self
+                            .visit(first, count, cell.cell(), visitor, offer)
+                            .is_break()
+                        {
                             return;
                         }
                         if EXIT_ON_ANY_HIT && !visitor.revisit(f32::MAX) {
@@ -91,53 +119,55 @@ impl<N: Words, W: Words> KdTree<N, W> {
                         }
                         break;
                     }
-                    Some(KdKind::Inner {
+                    KdKind::Inner {
                         axis,
                         split,
                         first_child,
-                    }) => {
-                        let (Some(&oa), Some(&da)) = (o.get(axis), d.get(axis)) else {
-                            return;
+                    } => {
+                        // Both children are read before the ray decides between them: they
+                        // share a cache line, and the loads overlap the arithmetic.
+                        let (Some(lower), Some(upper)) = (
+                            self.node(first_child as usize),
+                            self.node(first_child as usize + 1),
+                        ) else {
+                            break;
                         };
-                        let (below, above) = cell.split(axis, split);
+                        let (oa, da) = (component(o, axis), component(d, axis));
                         let low_first = oa < split || (oa == split && da <= 0.0);
-                        let (near, far) = if low_first {
-                            ((first_child, below), (first_child + 1, above))
-                        } else {
-                            ((first_child + 1, above), (first_child, below))
-                        };
                         let (visit_near, visit_far, cut_lo, cut_hi) = if da == 0.0 {
                             // Parallel to the plane: only the origin's side, or both when the
                             // ray lies in the plane.
-                            let both = oa == split;
-                            (true, both, near_t, far_t)
-                        } else if (da < 0.0) == low_first {
-                            // Moving away from the plane: it lies behind the origin.
-                            (true, false, near_t, far_t)
+                            (true, oa == split, near_t, far_t)
                         } else {
-                            let ts = (split - oa) / da;
+                            // The plane lies ahead when the ray moves toward the far side;
+                            // behind the origin, only the near side is reached.
+                            let ahead = (da < 0.0) != low_first;
+                            let ts = (split - oa) * component(inv, axis);
                             let slack = ts.abs() * MARGIN;
                             (
-                                ts + slack >= near_t,
-                                ts - slack <= far_t,
+                                !ahead || ts + slack >= near_t,
+                                ahead && ts - slack <= far_t,
                                 ts - slack,
                                 ts + slack,
                             )
                         };
-                        match (visit_near, visit_far) {
-                            (true, true) => {
-                                if let Some(slot) = stack.get_mut(top) {
-                                    *slot = (far.0, near_t.max(cut_lo), far_t, far.1);
-                                    top += 1;
-                                }
-                                (node, cell) = near;
-                                far_t = far_t.min(cut_hi);
-                            }
-                            (true, false) => (node, cell) = near,
-                            (false, _) => (node, cell) = far,
+                        let (below, above) = cell.split(axis, split);
+                        let (near, far) = if low_first {
+                            ((lower, below), (upper, above))
+                        } else {
+                            ((upper, above), (lower, below))
+                        };
+                        // Written without branching on which sides are visited (the ray's
+                        // path is unpredictable): the far side is always stored and kept only
+                        // when both are visited.
+                        let both = visit_near && visit_far;
+                        if let Some(slot) = stack.get_mut(top) {
+                            *slot = (far.0, near_t.max(cut_lo), far_t, far.1);
+                            top += usize::from(both);
                         }
+                        (node, cell) = if visit_near { near } else { far };
+                        far_t = if both { far_t.min(cut_hi) } else { far_t };
                     }
-                    None => break,
                 }
             }
         }
@@ -166,7 +196,10 @@ impl<N: Words, W: Words> KdTree<N, W> {
             loop {
                 match self.node(node as usize).map(|n| n.kind()) {
                     Some(KdKind::Leaf { first, count }) => {
-                        if self.visit(first, count, cell, visitor, offer).is_break() {
+                        if self
+                            .visit(first, count, Some(cell), visitor, offer)
+                            .is_break()
+                        {
                             return;
                         }
                         break;
@@ -225,7 +258,7 @@ mod tests {
         fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
             let mut offer = Offer::new(visitor);
             if let Some(ray) = visitor.ray().copied() {
-                self.0.march::<V, true>(&ray, visitor, &mut offer);
+                self.0.march::<V, Cell, true>(&ray, visitor, &mut offer);
             }
         }
     }

@@ -165,10 +165,8 @@ impl<N: Words, W: Words> KdTree<N, W> {
     #[inline(always)]
     #[must_use]
     pub fn node(&self, i: usize) -> Option<KdNode> {
-        Some(KdNode {
-            a: self.nodes.word(i.checked_mul(2)?)?,
-            b: self.nodes.word(i * 2 + 1)?,
-        })
+        let [a, b] = self.nodes.pair(i)?;
+        Some(KdNode { a, b })
     }
 
     /// Every leaf with its cell and depth, depth first, below to above.

@@ -35,7 +35,7 @@ impl<N: Words, W: Words> Traverse for Octree<N, W> {
             };
             let Some(first) = n.first_child() else {
                 if let Some(ids) = self.items.ids(n.a as usize, n.b as usize)
-                    && offer.cell(visitor, ids, cell).is_break()
+                    && offer.cell(visitor, ids, Some(cell)).is_break()
                 {
                     return;
                 }

@@ -152,10 +152,8 @@ impl<N: Words, W: Words> Octree<N, W> {
     #[inline(always)]
     #[must_use]
     pub fn node(&self, i: usize) -> Option<OctreeNode> {
-        Some(OctreeNode {
-            a: self.nodes.word(i.checked_mul(2)?)?,
-            b: self.nodes.word(i * 2 + 1)?,
-        })
+        let [a, b] = self.nodes.pair(i)?;
+        Some(OctreeNode { a, b })
     }
 
     /// Every leaf with its cell and depth, depth first, octant 0 first.

@@ -87,8 +87,9 @@ impl<'a> LeafTriangleIds<'a> {
 
     /// The cell this leaf owns, when the structure may reference a triangle from several
     /// leaves (k-d tree, octree, grid); `None` for a structure that references each triangle
-    /// once (a BVH). A query that reports triangles must report each from one cell only: see
-    /// [`Cell`].
+    /// once (a BVH), and possibly for a visitor whose
+    /// [`needs_cells`](super::Visitor::needs_cells) is false. A query that reports triangles
+    /// must report each from one cell only: see [`Cell`].
     #[inline(always)]
     #[must_use]
     pub const fn cell(&self) -> Option<&Cell> {

@@ -68,6 +68,15 @@ pub trait Visitor {
         false
     }
 
+    /// Whether this query reads the [`cell`](LeafTriangleIds::cell) of the leaves it is
+    /// offered. When false, structures may offer leaves without their cell (and skip working
+    /// cells out). The default is true exactly for queries that take every reference
+    /// ([`skips_repeats`](Self::skips_repeats) false): those that report triangles, which need
+    /// the cell to report each once.
+    fn needs_cells(&self) -> bool {
+        !self.skips_repeats()
+    }
+
     /// Visits a leaf (or a cell): its triangles as `(slot, mesh triangle index)` pairs, where
     /// the slot is what [`LeafTriangles::corners`] is asked for. `Break` ends the traversal.
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;
