@@ -97,6 +97,7 @@ pub mod octree;
 pub mod owned;
 pub mod prelude;
 pub mod query;
+pub mod remesh;
 mod structure_kind;
 pub mod wide;
 

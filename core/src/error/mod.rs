@@ -7,6 +7,7 @@ mod batch;
 mod blob;
 mod build;
 mod mesh;
+mod remesh;
 mod structure;
 
 pub use batch::{BatchBuffer, BatchError};
@@ -14,4 +15,5 @@ pub use batch::{BatchBuffer, BatchError};
 pub use blob::{BlobError, BlobSection};
 pub use build::{BufferKind, BuildError};
 pub use mesh::{FlatSlice, MeshError};
+pub use remesh::{RemeshBuffer, RemeshError};
 pub use structure::StructureError;

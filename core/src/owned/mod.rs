@@ -23,6 +23,7 @@ mod mesh_grid;
 mod mesh_index;
 mod mesh_kdtree;
 mod mesh_octree;
+mod remeshed;
 
 pub use crate::structure_kind::{StructureKind, UnknownStructure};
 pub use mesh_bvh::MeshBvh;
@@ -30,3 +31,4 @@ pub use mesh_grid::MeshGrid;
 pub use mesh_index::MeshIndex;
 pub use mesh_kdtree::MeshKdTree;
 pub use mesh_octree::MeshOctree;
+pub use remeshed::Remeshed;

@@ -1,0 +1,114 @@
+//! How much room a remeshing run needs.
+
+#[cfg(feature = "alloc")]
+use super::HalfEdgeBuffers;
+use crate::math::dot;
+use crate::mesh::ValidMesh;
+
+/// Buffer sizes for remeshing a mesh toward a target edge length.
+///
+/// A remesh of surface area `A` toward edge length `L` ends with about `A / (√3/4 · L²)`
+/// triangles (equilateral ones of side `L`). Before collapsing, splitting can leave edges as
+/// short as `2/3·L`, so the count may pass that on the way: the estimate allows three times
+/// the final count on top of the input's triangles, and one more vertex per added triangle.
+/// A run that still needs more stops with
+/// [`RemeshError::OutOfCapacity`](crate::error::RemeshError::OutOfCapacity), leaving a
+/// valid mesh; retry with larger buffers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RemeshCapacity {
+    /// Vertices: the length of `positions`, `vertex_half_edges` and the smoothing scratch.
+    pub vertices: usize,
+    /// Triangles: three half-edges each (`origins`, `twins` and `creases` are three times as
+    /// long).
+    pub triangles: usize,
+}
+
+impl RemeshCapacity {
+    /// The estimate for remeshing `mesh` toward `target_length` (0: the mean edge length of
+    /// its triangles, each triangle's three edges counted).
+    #[must_use]
+    pub fn for_mesh(mesh: &ValidMesh<'_>, target_length: f32) -> Self {
+        let (mut area, mut edge_sum, mut edges) = (0.0f64, 0.0f64, 0usize);
+        for t in 0..mesh.triangle_count() as u32 {
+            let Some(tri) = mesh.triangle(t) else {
+                continue;
+            };
+            area += f64::from(tri.area());
+            for (p, q) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
+                let d = q - p;
+                edge_sum += f64::from(libm::sqrtf(dot(d, d)));
+                edges += 1;
+            }
+        }
+        let length = if target_length > 0.0 {
+            f64::from(target_length)
+        } else if edges > 0 {
+            edge_sum / edges as f64
+        } else {
+            0.0
+        };
+        let expected = if length > 0.0 {
+            area / (libm::sqrt(3.0) / 4.0 * length * length)
+        } else {
+            0.0
+        };
+        // `as` saturates a huge estimate; the sums below saturate too.
+        let added = ((3.0 * expected) as usize).saturating_add(64);
+        Self {
+            vertices: mesh.positions().len().saturating_add(added),
+            triangles: mesh.triangle_count().saturating_add(added),
+        }
+    }
+
+    /// Length of the half-edge buffers (`origins`, `twins`, `creases`).
+    #[must_use]
+    pub const fn half_edges(&self) -> usize {
+        self.triangles.saturating_mul(3)
+    }
+
+    /// Length of the scratch [`HalfEdgeMesh::from_mesh`](super::HalfEdgeMesh::from_mesh)
+    /// needs for an input within this capacity.
+    #[must_use]
+    pub const fn pairing_scratch(&self) -> usize {
+        let h = self.half_edges();
+        if h > self.vertices { h } else { self.vertices }
+    }
+}
+
+/// Buffers of a [`RemeshCapacity`], owned (feature `alloc`).
+#[cfg(feature = "alloc")]
+#[derive(Clone, Debug, Default)]
+pub struct RemeshStorage {
+    positions: alloc::vec::Vec<[f32; 3]>,
+    origins: alloc::vec::Vec<u32>,
+    twins: alloc::vec::Vec<u32>,
+    vertex_half_edges: alloc::vec::Vec<u32>,
+    creases: alloc::vec::Vec<bool>,
+}
+
+#[cfg(feature = "alloc")]
+impl RemeshStorage {
+    /// Buffers of `capacity`.
+    #[must_use]
+    pub fn new(capacity: RemeshCapacity) -> Self {
+        use alloc::vec;
+        Self {
+            positions: vec![[0.0; 3]; capacity.vertices],
+            origins: vec![0; capacity.half_edges()],
+            twins: vec![0; capacity.half_edges()],
+            vertex_half_edges: vec![0; capacity.vertices],
+            creases: vec![false; capacity.half_edges()],
+        }
+    }
+
+    /// The buffers, for [`HalfEdgeMesh::from_mesh`](super::HalfEdgeMesh::from_mesh).
+    pub fn buffers(&mut self) -> HalfEdgeBuffers<'_> {
+        HalfEdgeBuffers {
+            positions: &mut self.positions,
+            origins: &mut self.origins,
+            twins: &mut self.twins,
+            vertex_half_edges: &mut self.vertex_half_edges,
+            creases: &mut self.creases,
+        }
+    }
+}

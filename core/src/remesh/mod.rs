@@ -1,0 +1,25 @@
+//! Isotropic remeshing in caller buffers (Botsch and Kobbelt 2004): triangles of one target
+//! edge length, valences near 6, on the input's surface.
+//!
+//! The remesher works on a [`HalfEdgeMesh`]: the input's triangles as half-edges in buffers
+//! the caller owns, built only from a manifold, consistently oriented mesh. Anything else is
+//! refused with a [`RemeshError`](crate::error::RemeshError) naming the edge or vertex at
+//! fault, so a scan with a branching edge or a bow-tie vertex is reported, not remeshed into
+//! something worse. [`remesh`] then runs the iterations in place, projecting onto the input
+//! through any [`MeshQuery`](crate::query::MeshQuery) (a BVH over the input).
+
+mod capacity;
+mod config;
+mod creases;
+mod edit;
+mod half_edges;
+mod quality;
+mod remesher;
+
+pub use capacity::RemeshCapacity;
+#[cfg(feature = "alloc")]
+pub use capacity::RemeshStorage;
+pub use config::RemeshConfig;
+pub use half_edges::{HalfEdgeBuffers, HalfEdgeMesh, NO_HALF_EDGE};
+pub use quality::MeshQuality;
+pub use remesher::{RemeshReport, mean_edge_length, remesh};

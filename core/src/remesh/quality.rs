@@ -1,0 +1,109 @@
+//! The figures a remesh is judged by: valences, angles, edge-length spread.
+
+use super::half_edges::HalfEdgeMesh;
+use crate::math::dot;
+
+/// Quality figures of a triangle mesh, as remeshing reports them before and after.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeshQuality {
+    /// Triangles.
+    pub triangles: usize,
+    /// Vertices used by a triangle.
+    pub vertices: usize,
+    /// Percentage of interior vertices with exactly six edges, `0..=100` (0 with none).
+    pub valence_6_percent: f32,
+    /// The smallest triangle angle, in degrees, over triangles with no boundary vertex (180
+    /// with none).
+    pub min_angle_off_boundary: f32,
+    /// Percentage of triangles with an angle under 30°, `0..=100`.
+    pub under_30_percent: f32,
+    /// Mean edge length, in the mesh's units.
+    pub mean_edge: f32,
+    /// Standard deviation of the edge lengths divided by their mean (0 with no edges).
+    pub edge_cv: f32,
+}
+
+/// The three angles of the triangle with corners `p`, in degrees (0 at a corner where an edge
+/// has no length).
+fn angles([p0, p1, p2]: [glam::Vec3; 3]) -> [f32; 3] {
+    let mut out = [0.0f32; 3];
+    for (angle, (a, b, c)) in out
+        .iter_mut()
+        .zip([(p0, p1, p2), (p1, p2, p0), (p2, p0, p1)])
+    {
+        let (u, v) = (b - a, c - a);
+        let lengths = libm::sqrtf(dot(u, u) * dot(v, v));
+        if lengths > 0.0 {
+            let cos = (dot(u, v) / lengths).clamp(-1.0, 1.0);
+            *angle = libm::acosf(cos).to_degrees();
+        }
+    }
+    out
+}
+
+impl MeshQuality {
+    /// The figures of `mesh`.
+    #[must_use]
+    pub fn of(mesh: &HalfEdgeMesh<'_>) -> Self {
+        let (mut interior, mut six, mut used) = (0usize, 0usize, 0usize);
+        for v in 0..mesh.vertex_count() as u32 {
+            if mesh.vertex_half_edge(v).is_none() {
+                continue;
+            }
+            used += 1;
+            if !mesh.is_boundary_vertex(v) {
+                interior += 1;
+                six += usize::from(mesh.valence(v) == 6);
+            }
+        }
+        let (mut min_angle, mut under_30) = (180.0f32, 0usize);
+        for t in 0..mesh.triangle_count() as u32 {
+            let corners = mesh.triangle(t);
+            let a = angles(corners.map(|v| mesh.position(v)));
+            let smallest = a.iter().copied().fold(180.0f32, f32::min);
+            under_30 += usize::from(smallest < 30.0);
+            if !corners.iter().any(|&v| mesh.is_boundary_vertex(v)) {
+                min_angle = min_angle.min(smallest);
+            }
+        }
+        let (mut sum, mut sum_sq, mut edges) = (0.0f64, 0.0f64, 0usize);
+        for he in 0..mesh.half_edge_count() as u32 {
+            if mesh.twin(he).is_none_or(|g| he < g) {
+                let (a, b) = mesh.ends(he);
+                let d = mesh.position(b) - mesh.position(a);
+                let len = f64::from(libm::sqrtf(dot(d, d)));
+                sum += len;
+                sum_sq += len * len;
+                edges += 1;
+            }
+        }
+        let percent = |part: usize, whole: usize| {
+            if whole == 0 {
+                0.0
+            } else {
+                (100.0 * part as f64 / whole as f64) as f32
+            }
+        };
+        let (mean, cv) = if edges == 0 {
+            (0.0, 0.0)
+        } else {
+            let mean = sum / edges as f64;
+            let variance = (sum_sq / edges as f64 - mean * mean).max(0.0);
+            let cv = if mean > 0.0 {
+                libm::sqrt(variance) / mean
+            } else {
+                0.0
+            };
+            (mean, cv)
+        };
+        Self {
+            triangles: mesh.triangle_count(),
+            vertices: used,
+            valence_6_percent: percent(six, interior),
+            min_angle_off_boundary: min_angle,
+            under_30_percent: percent(under_30, mesh.triangle_count()),
+            mean_edge: mean as f32,
+            edge_cv: cv as f32,
+        }
+    }
+}

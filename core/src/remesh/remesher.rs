@@ -1,0 +1,354 @@
+//! The remeshing loop (Botsch and Kobbelt 2004): split long edges, collapse short ones, flip
+//! toward valence 6, smooth tangentially, project back onto the input.
+
+use glam::Vec3;
+
+use super::config::RemeshConfig;
+use super::half_edges::HalfEdgeMesh;
+use crate::error::{RemeshBuffer, RemeshError};
+use crate::math::{cross, dot};
+use crate::query::MeshQuery;
+
+/// What a [`remesh`] run did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RemeshReport {
+    /// Iterations run.
+    pub iterations: u32,
+    /// Edges split.
+    pub splits: usize,
+    /// Edges collapsed.
+    pub collapses: usize,
+    /// Edges flipped.
+    pub flips: usize,
+    /// Crease edges marked at the start.
+    pub creases: usize,
+}
+
+/// The mean length of the mesh's edges (each counted once); 0 for a mesh without edges.
+#[must_use]
+pub fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
+    let (mut sum, mut count) = (0.0f64, 0usize);
+    for he in 0..mesh.half_edge_count() as u32 {
+        if mesh.twin(he).is_none_or(|g| he < g) {
+            let (a, b) = mesh.ends(he);
+            let d = mesh.position(b) - mesh.position(a);
+            sum += f64::from(libm::sqrtf(dot(d, d)));
+            count += 1;
+        }
+    }
+    if count == 0 {
+        0.0
+    } else {
+        (sum / count as f64) as f32
+    }
+}
+
+/// Remeshes `mesh` in place toward triangles of one edge length, keeping it on the surface
+/// `reference` answers closest points for (build a BVH over the input mesh before editing and
+/// pass it with the input: `bvh.with(&input)`).
+///
+/// Each iteration splits every edge longer than `4/3·L` at its midpoint, collapses edges
+/// shorter than `4/5·L` unless that would make an edge longer than `4/3·L`, turn a triangle
+/// over, or change the topology, flips edges that bring the four vertices' valences nearer
+/// 6 (4 on the boundary), moves every free vertex toward the area-weighted centroid of its
+/// one-ring within its tangent plane, and projects the moved vertices onto `reference`.
+/// Boundary vertices and crease vertices never move and are never removed, so boundaries
+/// and creases keep their shape (their edges are still split). Vertices no triangle uses
+/// are dropped first. `positions_scratch` holds the smoothed positions: at least one entry
+/// per vertex the buffers can hold.
+///
+/// The result depends only on the inputs: every operation runs in a fixed order with plain
+/// `f32` arithmetic, so it is the same on every target.
+///
+/// # Errors
+/// - [`RemeshError::InvalidConfig`] for a config out of range, or a default target length
+///   on a mesh with no edges;
+/// - [`RemeshError::OutOfCapacity`] when a split finds no room: the mesh is left valid,
+///   with the edits made so far;
+/// - [`RemeshError::BufferTooSmall`] when `positions_scratch` is shorter than the vertex
+///   capacity.
+pub fn remesh<Q: MeshQuery + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
+    config: &RemeshConfig,
+    positions_scratch: &mut [[f32; 3]],
+) -> Result<RemeshReport, RemeshError> {
+    config.validate()?;
+    if positions_scratch.len() < mesh.vertex_capacity() {
+        return Err(RemeshError::BufferTooSmall {
+            buffer: RemeshBuffer::Scratch,
+            needed: mesh.vertex_capacity(),
+            got: positions_scratch.len(),
+        });
+    }
+    let length = if config.target_length > 0.0 {
+        config.target_length
+    } else {
+        mean_edge_length(mesh)
+    };
+    if !(length > 0.0 && length.is_finite()) {
+        return Err(RemeshError::InvalidConfig {
+            field: "target_length",
+        });
+    }
+    mesh.drop_unused_vertices();
+    let mut report = RemeshReport {
+        creases: config.feature_angle.map_or(0, |a| mesh.mark_creases(a)),
+        ..RemeshReport::default()
+    };
+    let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
+    for _ in 0..config.iterations {
+        report.splits += split_long_edges(mesh, high)?;
+        report.collapses += collapse_short_edges(mesh, low, high);
+        report.flips += equalize_valences(mesh);
+        smooth_tangentially(mesh, positions_scratch);
+        project(mesh, reference);
+        report.iterations += 1;
+    }
+    Ok(report)
+}
+
+fn squared_length(mesh: &HalfEdgeMesh<'_>, he: u32) -> f32 {
+    let (a, b) = mesh.ends(he);
+    let d = mesh.position(b) - mesh.position(a);
+    dot(d, d)
+}
+
+/// Most sweeps of the split pass.
+const SPLIT_SWEEPS: usize = 10;
+
+/// Splits edges longer than `high` at their midpoints, sweep after sweep over the edges there
+/// were at each sweep's start, until a sweep splits nothing (at most [`SPLIT_SWEEPS`]).
+///
+/// Sweeps, not one pass that chases every new edge: splitting an edge that is not its
+/// triangle's longest can make a new edge as long as it (a median as long as its side), and
+/// chasing those never ends. Each sweep halves what it splits, so a few sweeps reach the
+/// limit everywhere a mesh is reasonable.
+fn split_long_edges(mesh: &mut HalfEdgeMesh<'_>, high: f32) -> Result<usize, RemeshError> {
+    let limit = high * high;
+    let mut splits = 0usize;
+    for _ in 0..SPLIT_SWEEPS {
+        let before = splits;
+        let end = mesh.half_edge_count() as u32;
+        for he in 0..end {
+            if squared_length(mesh, he) > limit {
+                let (a, b) = mesh.ends(he);
+                let mid = (mesh.position(a) + mesh.position(b)) * 0.5;
+                mesh.split_edge(he, mid)?;
+                splits += 1;
+            }
+        }
+        if splits == before {
+            break;
+        }
+    }
+    Ok(splits)
+}
+
+/// Collapses edges shorter than `low` where [`collapse_is_safe`] allows, each in the
+/// direction that removes an interior vertex.
+fn collapse_short_edges(mesh: &mut HalfEdgeMesh<'_>, low: f32, high: f32) -> usize {
+    let limit = low * low;
+    let mut collapses = 0usize;
+    let mut he = 0u32;
+    while (he as usize) < mesh.half_edge_count() {
+        if squared_length(mesh, he) < limit && try_collapse(mesh, he, high) {
+            collapses += 1;
+            // Slots were refilled from the end: look at this one again.
+            continue;
+        }
+        he += 1;
+    }
+    collapses
+}
+
+/// Collapses the edge of `he` one way or the other if allowed; true when it did.
+fn try_collapse(mesh: &mut HalfEdgeMesh<'_>, he: u32, high: f32) -> bool {
+    for w in [Some(he), mesh.twin(he)].into_iter().flatten() {
+        if !mesh.can_collapse(w) {
+            continue;
+        }
+        let (a, b) = mesh.ends(w);
+        let target = if mesh.is_boundary_vertex(b) || mesh.touches_crease(b) {
+            mesh.position(b)
+        } else {
+            (mesh.position(a) + mesh.position(b)) * 0.5
+        };
+        if collapse_is_safe(mesh, a, b, target, high) {
+            return mesh.collapse_edge(w, target);
+        }
+    }
+    false
+}
+
+/// Whether moving `a` and `b` to `target` keeps every edge around them at most `high` long
+/// and leaves no triangle around them turned over or flat (the triangles on edge `a`–`b`
+/// itself vanish). "Over" is judged against the area-weighted normal of all their triangles
+/// before, so a triangle that was already flat does not block the collapse that removes it.
+fn collapse_is_safe(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3, high: f32) -> bool {
+    let limit = high * high;
+    let mut reference = Vec3::ZERO;
+    for v in [a, b] {
+        mesh.for_each_outgoing(v, |he| reference += mesh.triangle_normal(he / 3));
+    }
+    let mut safe = true;
+    for v in [a, b] {
+        mesh.for_each_neighbour(v, |n| {
+            if n != a && n != b {
+                let d = mesh.position(n) - target;
+                safe &= dot(d, d) <= limit;
+            }
+        });
+        mesh.for_each_outgoing(v, |he| {
+            let t = mesh.triangle(he / 3);
+            if t.contains(&a) && t.contains(&b) {
+                return;
+            }
+            let [p, q, r] = t.map(|x| {
+                if x == a || x == b {
+                    target
+                } else {
+                    mesh.position(x)
+                }
+            });
+            let after = cross(q - p, r - p);
+            safe &= dot(reference, after) > 0.0 && dot(after, after) > 0.0;
+        });
+    }
+    safe
+}
+
+/// The valence a vertex aims at: 6 inside, 4 on the boundary.
+fn target_valence(mesh: &HalfEdgeMesh<'_>, v: u32) -> i64 {
+    if mesh.is_boundary_vertex(v) { 4 } else { 6 }
+}
+
+/// Flips every interior edge whose flip lowers the four vertices' total distance from their
+/// target valences, unless it would fold the two triangles over.
+fn equalize_valences(mesh: &mut HalfEdgeMesh<'_>) -> usize {
+    let mut flips = 0usize;
+    for he in 0..mesh.half_edge_count() as u32 {
+        let Some(g) = mesh.twin(he) else {
+            continue;
+        };
+        if g < he || !mesh.can_flip(he) {
+            continue;
+        }
+        let (a, b) = mesh.ends(he);
+        let c = mesh.origin(HalfEdgeMesh::prev(he));
+        let d = mesh.origin(HalfEdgeMesh::prev(g));
+        let deviation = |v: u32, change: i64| {
+            (i64::from(mesh.valence(v)) + change - target_valence(mesh, v)).abs()
+        };
+        let before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
+        let after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
+        if after < before && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
+            flips += 1;
+        }
+    }
+    flips
+}
+
+/// Whether flipping the edge of `he` (twin `g`) gives two triangles facing the way the old
+/// pair does: each new normal has a positive dot product with both old ones.
+fn flip_keeps_orientation(mesh: &HalfEdgeMesh<'_>, he: u32, g: u32) -> bool {
+    let (a, b) = mesh.ends(he);
+    let c = mesh.origin(HalfEdgeMesh::prev(he));
+    let d = mesh.origin(HalfEdgeMesh::prev(g));
+    let [pa, pb, pc, pd] = [a, b, c, d].map(|v| mesh.position(v));
+    let (old0, old1) = (mesh.triangle_normal(he / 3), mesh.triangle_normal(g / 3));
+    let new0 = cross(pd - pa, pc - pa);
+    let new1 = cross(pb - pd, pc - pd);
+    [new0, new1]
+        .iter()
+        .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
+}
+
+/// Whether vertex `v` may move: not on the boundary, on no crease, used by a triangle.
+fn is_free(mesh: &HalfEdgeMesh<'_>, v: u32) -> bool {
+    mesh.vertex_half_edge(v).is_some() && !mesh.is_boundary_vertex(v) && !mesh.touches_crease(v)
+}
+
+/// Moves every free vertex toward the area-weighted centroid of its one-ring's triangles,
+/// within its tangent plane (the area-weighted normal's plane), all from the same old
+/// positions.
+fn smooth_tangentially(mesh: &mut HalfEdgeMesh<'_>, scratch: &mut [[f32; 3]]) {
+    let count = mesh.vertex_count();
+    for (v, slot) in (0u32..).zip(scratch.iter_mut().take(count)) {
+        let p = mesh.position(v);
+        *slot = p.to_array();
+        if !is_free(mesh, v) {
+            continue;
+        }
+        let (mut weighted, mut area, mut normal) = (Vec3::ZERO, 0.0f32, Vec3::ZERO);
+        mesh.for_each_outgoing(v, |he| {
+            let [a, b, c] = mesh.triangle(he / 3).map(|x| mesh.position(x));
+            let n = cross(b - a, c - a);
+            let double_area = libm::sqrtf(dot(n, n));
+            weighted += (a + b + c) * (double_area / 3.0);
+            area += double_area;
+            normal += n;
+        });
+        let normal_len = dot(normal, normal);
+        if !(area > 0.0 && normal_len > 0.0) {
+            continue;
+        }
+        let centroid = weighted / area;
+        let step = centroid - p;
+        // Remove the step's part along the normal: the move stays on the tangent plane.
+        let tangential = step - normal * (dot(step, normal) / normal_len);
+        *slot = (p + tangential).to_array();
+    }
+    for (v, slot) in (0u32..).zip(scratch.iter().take(count)) {
+        mesh.set_position(v, Vec3::from_array(*slot));
+    }
+}
+
+/// Puts every free vertex on the closest point of `reference`, unless that would turn one
+/// of its triangles over or flatten it (a vertex beside a hole projects onto the
+/// hole's rim, in line with the rim's vertices): it then stays where smoothing put it.
+fn project<Q: MeshQuery + ?Sized>(mesh: &mut HalfEdgeMesh<'_>, reference: &Q) {
+    for v in 0..mesh.vertex_count() as u32 {
+        if !is_free(mesh, v) {
+            continue;
+        }
+        if let Some(hit) = reference.closest_point(mesh.position(v), f32::INFINITY)
+            && moves_safely(mesh, v, hit.point)
+        {
+            mesh.set_position(v, hit.point);
+        }
+    }
+}
+
+/// How flat a triangle may get from a projection: its height over its longest edge, as a
+/// fraction of that edge (about the sine of its smallest angle; 0.05 is about 3°).
+const FLATTEST: f32 = 0.05;
+
+/// Whether moving vertex `v` to `to` keeps each of its triangles facing the same way and no
+/// flatter than [`FLATTEST`] (unless it was flatter already and gets no worse).
+fn moves_safely(mesh: &HalfEdgeMesh<'_>, v: u32, to: Vec3) -> bool {
+    let flatness = |p: [Vec3; 3]| {
+        let n = cross(p[1] - p[0], p[2] - p[0]);
+        let longest = [p[1] - p[0], p[2] - p[1], p[0] - p[2]]
+            .iter()
+            .map(|&e| dot(e, e))
+            .fold(0.0f32, f32::max);
+        // |n| / longest² is the height over the longest edge; compared squared.
+        (
+            n,
+            if longest > 0.0 {
+                dot(n, n) / (longest * longest)
+            } else {
+                0.0
+            },
+        )
+    };
+    let mut safe = true;
+    mesh.for_each_outgoing(v, |he| {
+        let corners = mesh.triangle(he / 3);
+        let (before, was) = flatness(corners.map(|x| mesh.position(x)));
+        let (after, now) = flatness(corners.map(|x| if x == v { to } else { mesh.position(x) }));
+        safe &= dot(before, after) > 0.0 && (now >= FLATTEST * FLATTEST || now >= was);
+    });
+    safe
+}
