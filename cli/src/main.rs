@@ -1,16 +1,18 @@
-//! `meshq`: bake acceleration-structure blobs offline, inspect them, and run ray and
-//! closest-point queries from files.
+//! `meshq`: bake acceleration-structure blobs offline, inspect them, run ray and
+//! closest-point queries from files, and remesh meshes.
 
 mod bake;
 mod closest;
 mod inspect;
 mod inspect_cells;
 mod mesh_file;
+mod mesh_write;
 mod output;
 mod progress;
 mod quality;
 mod raycast;
 mod records;
+mod remesh;
 mod structure;
 mod structure_arg;
 mod workload;
@@ -36,6 +38,8 @@ enum Command {
     Raycast(raycast::RaycastArgs),
     /// Find the closest surface point for points from a file.
     Closest(closest::ClosestArgs),
+    /// Remesh a mesh toward uniform, near-equilateral triangles on its surface.
+    Remesh(remesh::RemeshArgs),
     /// Write a reproducible ray or point set for a mesh (the DESIGN.md workloads).
     Workload(workload::WorkloadArgs),
 }
@@ -48,6 +52,7 @@ fn main() -> ExitCode {
         Command::Inspect(args) => inspect::run(args),
         Command::Raycast(args) => raycast::run(args),
         Command::Closest(args) => closest::run(args),
+        Command::Remesh(args) => remesh::run(args),
         Command::Workload(args) => workload::run(args),
     };
     match result {

@@ -7,8 +7,10 @@ use super::MeshBvh;
 use crate::bvh::BuildConfig;
 use crate::error::RemeshError;
 use crate::mesh::ValidMesh;
+use crate::query::MeshQuery;
 use crate::remesh::{
-    HalfEdgeMesh, MeshQuality, RemeshCapacity, RemeshConfig, RemeshReport, RemeshStorage, remesh,
+    HalfEdgeMesh, MeshQuality, RemeshCapacity, RemeshConfig, RemeshReport, RemeshStorage,
+    remesh_with_progress,
 };
 
 /// A remeshed copy of a mesh: its vertices and triangles, what the run did, and the quality
@@ -38,6 +40,19 @@ impl Remeshed {
     /// invalid config), or [`RemeshError::OutOfCapacity`] once buffers would pass `u32`
     /// indexing.
     pub fn of(mesh: &ValidMesh<'_>, config: &RemeshConfig) -> Result<Self, RemeshError> {
+        Self::with_progress(mesh, config, |_| {})
+    }
+
+    /// [`Remeshed::of`], calling `progress` after each iteration with the report so far (a
+    /// run restarted with larger buffers counts again from the first iteration).
+    ///
+    /// # Errors
+    /// As [`Remeshed::of`].
+    pub fn with_progress(
+        mesh: &ValidMesh<'_>,
+        config: &RemeshConfig,
+        mut progress: impl FnMut(&RemeshReport),
+    ) -> Result<Self, RemeshError> {
         config.validate()?;
         let reference = MeshBvh::build(mesh, &BuildConfig::default())
             .map_err(|error| RemeshError::ReferenceBvh { error })?;
@@ -48,7 +63,7 @@ impl Remeshed {
             let mut he = HalfEdgeMesh::from_mesh(mesh, storage.buffers(), &mut pairing)?;
             let before = MeshQuality::of(&he);
             let mut smoothing = vec![[0.0f32; 3]; capacity.vertices];
-            match remesh(&mut he, &reference, config, &mut smoothing) {
+            match remesh_with_progress(&mut he, &reference, config, &mut smoothing, &mut progress) {
                 Ok(report) => {
                     return Ok(Self {
                         positions: he.used_positions().to_vec(),
@@ -71,5 +86,45 @@ impl Remeshed {
                 Err(e) => return Err(e),
             }
         }
+    }
+}
+
+impl Remeshed {
+    /// The two-sided distance between this mesh and `input`, sampled at every vertex and
+    /// triangle centroid of each against the other's surface, relative to the diagonal of
+    /// `input`'s bounds: the largest of those closest-point distances. An estimate of the
+    /// Hausdorff distance from below (points between samples may lie farther).
+    ///
+    /// # Errors
+    /// [`RemeshError::ReferenceBvh`] when a BVH of either mesh cannot be built.
+    pub fn distance_to(&self, input: &ValidMesh<'_>) -> Result<f32, RemeshError> {
+        let output = crate::mesh::MeshRef::new(&self.positions, &self.triangles)
+            .validate()
+            .map_err(|_| RemeshError::InvalidConfig {
+                field: "output mesh",
+            })?;
+        let bvh = |m: &ValidMesh<'_>| {
+            MeshBvh::build(m, &BuildConfig::default())
+                .map_err(|error| RemeshError::ReferenceBvh { error })
+        };
+        let (to_input, to_output) = (bvh(input)?, bvh(&output)?);
+        let bounds = input.bounds();
+        let diagonal = (bounds.max - bounds.min).length();
+        let farthest = |from: &ValidMesh<'_>, to: &MeshBvh| {
+            let mut far = 0.0f32;
+            for t in 0..from.triangle_count() as u32 {
+                let Some(tri) = from.triangle(t) else {
+                    continue;
+                };
+                for p in [tri.a, tri.b, tri.c, (tri.a + tri.b + tri.c) / 3.0] {
+                    if let Some(c) = to.closest_point(p, f32::INFINITY) {
+                        far = far.max(c.distance_squared);
+                    }
+                }
+            }
+            libm::sqrtf(far)
+        };
+        let far = farthest(&output, &to_input).max(farthest(input, &to_output));
+        Ok(if diagonal > 0.0 { far / diagonal } else { 0.0 })
     }
 }

@@ -22,4 +22,4 @@ pub use capacity::RemeshStorage;
 pub use config::RemeshConfig;
 pub use half_edges::{HalfEdgeBuffers, HalfEdgeMesh, NO_HALF_EDGE};
 pub use quality::MeshQuality;
-pub use remesher::{RemeshReport, mean_edge_length, remesh};
+pub use remesher::{RemeshReport, mean_edge_length, remesh, remesh_with_progress};

@@ -73,6 +73,21 @@ pub fn remesh<Q: MeshQuery + ?Sized>(
     config: &RemeshConfig,
     positions_scratch: &mut [[f32; 3]],
 ) -> Result<RemeshReport, RemeshError> {
+    remesh_with_progress(mesh, reference, config, positions_scratch, |_| {})
+}
+
+/// [`remesh`], calling `progress` with the report so far after each iteration (to drive a
+/// progress bar; it cannot change the result).
+///
+/// # Errors
+/// As [`remesh`].
+pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
+    config: &RemeshConfig,
+    positions_scratch: &mut [[f32; 3]],
+    mut progress: impl FnMut(&RemeshReport),
+) -> Result<RemeshReport, RemeshError> {
     config.validate()?;
     if positions_scratch.len() < mesh.vertex_capacity() {
         return Err(RemeshError::BufferTooSmall {
@@ -104,6 +119,7 @@ pub fn remesh<Q: MeshQuery + ?Sized>(
         smooth_tangentially(mesh, positions_scratch);
         project(mesh, reference);
         report.iterations += 1;
+        progress(&report);
     }
     Ok(report)
 }

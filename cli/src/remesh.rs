@@ -1,0 +1,180 @@
+//! `meshq remesh`: isotropic remeshing of a mesh file, with quality figures before and after.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use meshq::mesh::MeshRef;
+use meshq::owned::Remeshed;
+use meshq::remesh::{MeshQuality, RemeshConfig};
+use serde::Serialize;
+
+use crate::mesh_file::read_mesh;
+use crate::mesh_write::write_mesh;
+use crate::{output, progress};
+
+#[derive(Args, Debug)]
+pub struct RemeshArgs {
+    /// The mesh: OBJ, PLY or STL; it must be manifold and consistently oriented.
+    pub mesh: PathBuf,
+    /// Where to write the result: `.obj` or `.ply`.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Target edge length, in the mesh's units (default: the input's mean edge length).
+    #[arg(long, conflicts_with = "target_ratio")]
+    pub target_length: Option<f32>,
+    /// Target edge length as a multiple of the input's mean edge length.
+    #[arg(long)]
+    pub target_ratio: Option<f32>,
+    /// Iterations of split, collapse, flip, smooth and project.
+    #[arg(long, default_value_t = 10)]
+    pub iterations: u32,
+    /// Keep creases sharper than this dihedral angle, in degrees.
+    #[arg(long)]
+    pub feature_angle: Option<f32>,
+    /// Print the figures as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Quality figures of one mesh, as printed.
+#[derive(Serialize)]
+struct Figures {
+    triangles: usize,
+    vertices: usize,
+    valence_6_percent: f32,
+    min_angle_off_boundary_degrees: f32,
+    triangles_under_30_degrees_percent: f32,
+    mean_edge: f32,
+    edge_length_cv: f32,
+}
+
+impl From<MeshQuality> for Figures {
+    fn from(q: MeshQuality) -> Self {
+        Self {
+            triangles: q.triangles,
+            vertices: q.vertices,
+            valence_6_percent: q.valence_6_percent,
+            min_angle_off_boundary_degrees: q.min_angle_off_boundary,
+            triangles_under_30_degrees_percent: q.under_30_percent,
+            mean_edge: q.mean_edge,
+            edge_length_cv: q.edge_cv,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Summary {
+    target_length: f32,
+    iterations: u32,
+    splits: usize,
+    collapses: usize,
+    flips: usize,
+    creases: usize,
+    before: Figures,
+    after: Figures,
+    /// Two-sided distance to the input, sampled at vertices and centroids, over the input's
+    /// bounding-box diagonal.
+    hausdorff_relative: f32,
+    remesh_seconds: f64,
+}
+
+pub fn run(args: &RemeshArgs) -> Result<()> {
+    let data = read_mesh(&args.mesh)?;
+    let mesh = MeshRef::new(&data.positions, &data.triangles)
+        .validate()
+        .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
+    let mut config = RemeshConfig {
+        target_length: args.target_length.unwrap_or(0.0),
+        iterations: args.iterations,
+        feature_angle: args.feature_angle,
+    };
+    if let Some(ratio) = args.target_ratio {
+        anyhow::ensure!(
+            ratio > 0.0 && ratio.is_finite(),
+            "--target-ratio must be positive"
+        );
+        config.target_length = ratio * mean_edge(&data.positions, &data.triangles);
+    }
+    let bar = progress::bar(u64::from(config.iterations), "iterations");
+    let start = Instant::now();
+    let remeshed =
+        Remeshed::with_progress(&mesh, &config, |r| bar.set_position(r.iterations.into()))
+            .with_context(|| format!("cannot remesh {}", args.mesh.display()))?;
+    let remesh_seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let hausdorff_relative = remeshed.distance_to(&mesh)?;
+    write_mesh(&args.output, &remeshed.positions, &remeshed.triangles)?;
+    let r = remeshed.report;
+    let summary = Summary {
+        target_length: if config.target_length > 0.0 {
+            config.target_length
+        } else {
+            remeshed.before.mean_edge
+        },
+        iterations: r.iterations,
+        splits: r.splits,
+        collapses: r.collapses,
+        flips: r.flips,
+        creases: r.creases,
+        before: remeshed.before.into(),
+        after: remeshed.after.into(),
+        hausdorff_relative,
+        remesh_seconds,
+    };
+    if args.json {
+        return output::json(&summary);
+    }
+    println!(
+        "remeshed {} -> {}",
+        args.mesh.display(),
+        args.output.display()
+    );
+    println!(
+        "  target edge {:.6}, {} iterations: {} splits, {} collapses, {} flips, {} crease edges, {:.3} s",
+        summary.target_length,
+        r.iterations,
+        r.splits,
+        r.collapses,
+        r.flips,
+        r.creases,
+        remesh_seconds
+    );
+    println!(
+        "  {:<7} {:>10} {:>10} {:>12} {:>10} {:>8}",
+        "", "triangles", "valence 6", "min angle", "< 30°", "edge CV"
+    );
+    for (name, f) in [("before", &summary.before), ("after", &summary.after)] {
+        println!(
+            "  {:<7} {:>10} {:>9.2}% {:>11.2}° {:>9.3}% {:>8.4}",
+            name,
+            f.triangles,
+            f.valence_6_percent,
+            f.min_angle_off_boundary_degrees,
+            f.triangles_under_30_degrees_percent,
+            f.edge_length_cv
+        );
+    }
+    println!("  distance to the input: {hausdorff_relative:.2e} of the bounding-box diagonal");
+    Ok(())
+}
+
+/// The mean length of the mesh's edges, each counted once (the default target length).
+fn mean_edge(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> f32 {
+    let p = |v: u32| meshq::Vec3::from_array(positions[v as usize]);
+    let edges: std::collections::BTreeSet<(u32, u32)> = triangles
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    let sum: f64 = edges
+        .iter()
+        .map(|&(a, b)| f64::from((p(b) - p(a)).length()))
+        .sum();
+    if edges.is_empty() {
+        0.0
+    } else {
+        (sum / edges.len() as f64) as f32
+    }
+}
