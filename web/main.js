@@ -1,6 +1,6 @@
 // The meshq demo: the bundled bunny loaded as a prebuilt blob, click-to-pick, a closest-point
-// probe, a structure selector (BVH, k-d tree, octree, grid) drawing its levels and cells, and a
-// batched benchmark. Everything geometric is answered by meshq
+// probe, a structure selector (BVH, k-d tree, octree, grid) drawing its levels and cells,
+// remeshing with the quality before and after, and a batched benchmark. Everything geometric is answered by meshq
 // (WebAssembly); three.js only draws.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -8,7 +8,7 @@ import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { PLYLoader } from 'three/addons/loaders/PLYLoader.js';
 import { STLLoader } from 'three/addons/loaders/STLLoader.js';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
-import init, { MeshBvh, randomRays } from 'meshq';
+import init, { MeshBvh, randomRays, remesh } from 'meshq';
 
 const $ = (id) => document.getElementById(id);
 const demo = { ready: false, source: null, triangles: 0, lastRay: null, lastHit: null, bench: null };
@@ -34,7 +34,8 @@ const probe = new THREE.Mesh(new THREE.SphereGeometry(1, 12, 8), new THREE.MeshB
 const probeHit = new THREE.Mesh(new THREE.SphereGeometry(1, 12, 8), new THREE.MeshBasicMaterial({ color: 0x44ffaa }));
 const probeLine = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x44ffaa }));
 const boxes = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x66aaff, transparent: true, opacity: 0.7 }));
-for (const o of [marker, picked, probe, probeHit, probeLine, boxes]) {
+const wire = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x202020, transparent: true, opacity: 0.45 }));
+for (const o of [marker, picked, probe, probeHit, probeLine, boxes, wire]) {
   o.visible = false;
   scene.add(o);
 }
@@ -70,6 +71,7 @@ function show(bvh, source, timeLabel, ms, blobBytes) {
   const centre = new THREE.Vector3((b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2);
   const radius = Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]) / 2;
   state = { bvh, mesh, positions, centre, radius };
+  updateWire();
   // The design workload's camera: 2.5 r in front of the centre, looking down -z.
   camera.position.set(centre.x, centre.y, centre.z + 2.5 * radius);
   camera.near = radius / 100;
@@ -93,6 +95,17 @@ function show(bvh, source, timeLabel, ms, blobBytes) {
   $('stat-blob').textContent = `${(blobBytes ?? bvh.toBlob().length).toLocaleString('en')} bytes`;
   for (const id of ['hit-triangle', 'hit-distance', 'hit-normal', 'probe-distance', 'bench-result']) $(id).textContent = '—';
   Object.assign(demo, { source, structure: bvh.structure, triangles: bvh.triangleCount, lastRay: null, lastHit: null, bench: null });
+}
+
+/** Shows the input or the remeshed mesh (after a remesh), with its wireframe if asked. */
+function updateWire() {
+  if (!state) return;
+  state.displayed ??= state.mesh.geometry;
+  const input = remeshed !== null && $('remesh-before').checked;
+  state.mesh.geometry = input ? remeshed.input : state.displayed;
+  wire.geometry.dispose();
+  wire.geometry = new THREE.WireframeGeometry(state.mesh.geometry);
+  wire.visible = $('wireframe').checked;
 }
 
 function updateBoxes() {
@@ -199,6 +212,77 @@ function updateProbe() {
   probeLine.geometry.dispose();
   probeLine.geometry = new THREE.BufferGeometry().setFromPoints([probe.position, probeHit.position]);
   $('probe-distance').textContent = format(near.distance, 6);
+}
+
+/** Indexed display geometry of flat positions and indices. */
+function indexedGeometry(positions, indices) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  g.setIndex(new THREE.BufferAttribute(indices, 1));
+  g.computeVertexNormals();
+  return g;
+}
+
+let remeshed = null; // { input: BufferGeometry of the mesh before, result }
+$('remesh').addEventListener('click', () => {
+  if (!state) return;
+  $('status').textContent = 'remeshing…';
+  setTimeout(() => {
+    try {
+      const positions = state.bvh.vertexPositions();
+      const indices = state.bvh.indices();
+      const input = indexedGeometry(positions, indices);
+      const t0 = performance.now();
+      const result = remesh(positions, indices, { targetRatio: Number($('remesh-ratio').value) });
+      const ms = performance.now() - t0;
+      const bvh = MeshBvh.build(result.positions, result.indices, { structure: $('structure').value });
+      remeshed = null;
+      show(bvh, `${demo.source} remeshed`, 'remesh time', ms);
+      remeshed = { input, result };
+      $('remesh-before').checked = false;
+      updateWire();
+      showFigures(result, ms);
+      demo.remesh = {
+        ms,
+        triangles: result.after.triangles,
+        positions: Array.from(result.positions),
+        indices: Array.from(result.indices),
+        before: { ...result.before, valences: Array.from(result.before.valences) },
+        after: { ...result.after, valences: Array.from(result.after.valences) },
+        distance: result.distance,
+      };
+      $('status').textContent = `remeshed in ${(ms / 1000).toFixed(2)} s`;
+    } catch (error) {
+      $('status').textContent = `could not remesh: ${error.message ?? error}`;
+      demo.remeshError = String(error.message ?? error);
+    }
+  }, 20);
+});
+$('remesh-before').addEventListener('change', updateWire);
+$('wireframe').addEventListener('change', updateWire);
+
+/** The quality table and a valence histogram of interior vertices, before and after. */
+function showFigures(result, ms) {
+  const rows = [
+    ['triangles', (q) => q.triangles.toLocaleString('en')],
+    ['valence 6', (q) => `${q.valence6Percent.toFixed(1)} %`],
+    ['min angle', (q) => `${q.minAngleOffBoundary.toFixed(1)}°`],
+    ['angles < 30°', (q) => `${q.under30Percent.toFixed(2)} %`],
+    ['edge CV', (q) => q.edgeCv.toFixed(3)],
+  ];
+  const cells = rows.map(([name, f]) => `<tr><th>${name}</th><td>${f(result.before)}</td><td>${f(result.after)}</td></tr>`);
+  $('remesh-figures').innerHTML = `<tr><th></th><th>before</th><th>after</th></tr>${cells.join('')}`
+    + `<tr><th>distance</th><td colspan="2">${result.distance.toExponential(2)} of the diagonal</td></tr>`
+    + `<tr><th>time</th><td colspan="2">${(ms / 1000).toFixed(2)} s</td></tr>`;
+  const bar = (n, total) => '█'.repeat(Math.round((40 * n) / Math.max(total, 1)));
+  const total = (h) => h.reduce((a, b) => a + b, 0);
+  const lines = [];
+  for (let k = 3; k <= 12; k++) {
+    const b = result.before.valences[k] ?? 0;
+    const a = result.after.valences[k] ?? 0;
+    lines.push(`${String(k).padStart(3)}${k === 12 ? '+' : ' '} before ${bar(b, total(result.before.valences)).padEnd(40)} after ${bar(a, total(result.after.valences))}`);
+  }
+  $('remesh-histogram').textContent = `interior valences\n${lines.join('\n')}`;
 }
 
 $('bench').addEventListener('click', () => {

@@ -266,6 +266,33 @@ impl MeshBvh {
         out
     }
 
+    /// The mesh's vertex positions, 3 numbers per vertex, in the order `indices` refers to
+    /// (as built, or as stored in a blob with its mesh): with `indices`, the indexed mesh,
+    /// e.g. to remesh it.
+    #[wasm_bindgen(js_name = vertexPositions)]
+    pub fn vertex_positions(&self) -> Vec<f32> {
+        self.storage
+            .scene
+            .mesh()
+            .positions()
+            .iter()
+            .flatten()
+            .copied()
+            .collect()
+    }
+
+    /// The mesh's triangles, 3 vertex indices each, in triangle order.
+    pub fn indices(&self) -> Vec<u32> {
+        self.storage
+            .scene
+            .mesh()
+            .triangles()
+            .iter()
+            .flatten()
+            .copied()
+            .collect()
+    }
+
     /// Boxes to draw at depth `level` (the root is level 0), 6 numbers per box: `minX, minY,
     /// minZ, maxX, maxY, maxZ`. A BVH: its node boxes at that depth. A k-d tree or octree: the
     /// cells its splits have cut space into by that depth (the nodes at that depth and the

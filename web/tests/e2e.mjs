@@ -1,7 +1,8 @@
 // End to end in real headless Chromium (Debian's chromium, driven by playwright-core): open
 // the demo, wait for the bunny blob, click the canvas centre, check that the displayed hit
 // equals the native answer for that exact ray (the meshq command, run on the same blob), load
-// another blob through the file input, run the benchmark button, and save a screenshot.
+// another blob through the file input, run the benchmark button, remesh it (equal to the
+// native command bit for bit), and save screenshots.
 // Run after scripts/build-web.sh: node web/tests/e2e.mjs (MESHQ_BIN: the native meshq binary).
 import assert from 'node:assert/strict';
 import { spawn, execFileSync } from 'node:child_process';
@@ -122,6 +123,34 @@ try {
   await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
   await page.waitForFunction(() => window.meshqDemo.lastHit !== null);
   await page.screenshot({ path: join(out, 'demo-spot.png') });
+
+  // The remesh button on spot: the result equals the native command's, bit for bit.
+  await page.click('#remesh');
+  await page.waitForFunction(() => window.meshqDemo.remesh || window.meshqDemo.remeshError, null, { timeout: 120000 });
+  const remeshed = await page.evaluate(() => window.meshqDemo.remesh);
+  assert.ok(remeshed, await page.evaluate(() => window.meshqDemo.remeshError));
+  const ply = join(scratch, 'spot-remeshed.ply');
+  const summary = JSON.parse(execFileSync(meshq, ['remesh', join(root, 'assets/spot.obj'), '-o', ply, '--json']));
+  const bytes = readFileSync(ply);
+  const body = bytes.indexOf('end_header\n') + 'end_header\n'.length;
+  const vertices = Number(/element vertex (\d+)/.exec(bytes.toString('latin1', 0, body))[1]);
+  const triangles = Number(/element face (\d+)/.exec(bytes.toString('latin1', 0, body))[1]);
+  const nativePositions = new Float32Array(bytes.buffer.slice(bytes.byteOffset + body, bytes.byteOffset + body + vertices * 12));
+  const nativeIndices = [];
+  for (let t = 0, at = body + vertices * 12; t < triangles; t++, at += 13) {
+    nativeIndices.push(bytes.readUInt32LE(at + 1), bytes.readUInt32LE(at + 5), bytes.readUInt32LE(at + 9));
+  }
+  assert.equal(remeshed.triangles, summary.after.triangles, 'remeshed triangles = native');
+  assert.deepEqual(remeshed.indices, nativeIndices, 'remeshed indices = native');
+  assert.deepEqual(remeshed.positions, Array.from(nativePositions), 'remeshed positions = native, bit for bit');
+  assert.equal(remeshed.after.valence6Percent, Math.fround(summary.after.valence_6_percent));
+  assert.match(await page.textContent('#remesh-figures'), /valence 6/);
+  assert.match(await page.textContent('#remesh-histogram'), /interior valences/);
+  await page.check('#remesh-before');
+  await page.screenshot({ path: join(out, 'demo-spot-before-remesh.png') });
+  await page.uncheck('#remesh-before');
+  await page.screenshot({ path: join(out, 'demo-spot-remeshed.png') });
+  console.log(`remesh button: ${remeshed.triangles} triangles in ${(remeshed.ms / 1000).toFixed(2)} s, equal to native`);
   assert.deepEqual(errors, [], 'no console errors');
   console.log(`end to end in Chromium: ok (screenshots in ${out})`);
 } finally {

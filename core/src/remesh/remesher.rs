@@ -114,7 +114,7 @@ pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
     let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
     for _ in 0..config.iterations {
         report.splits += split_long_edges(mesh, high)?;
-        report.collapses += collapse_short_edges(mesh, low, high);
+        report.collapses += collapse_short_edges::<true>(mesh, low, high);
         report.flips += equalize_valences(mesh);
         smooth_tangentially(mesh, positions_scratch);
         project(mesh, reference);
@@ -163,12 +163,19 @@ fn split_long_edges(mesh: &mut HalfEdgeMesh<'_>, high: f32) -> Result<usize, Rem
 
 /// Collapses edges shorter than `low` where [`collapse_is_safe`] allows, each in the
 /// direction that removes an interior vertex.
-fn collapse_short_edges(mesh: &mut HalfEdgeMesh<'_>, low: f32, high: f32) -> usize {
+///
+/// `GUARD_LONG_EDGES` false drops the rule that a collapse may not make an edge longer than
+/// `high` — wrong, kept only so a test can show it matters.
+fn collapse_short_edges<const GUARD_LONG_EDGES: bool>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    low: f32,
+    high: f32,
+) -> usize {
     let limit = low * low;
     let mut collapses = 0usize;
     let mut he = 0u32;
     while (he as usize) < mesh.half_edge_count() {
-        if squared_length(mesh, he) < limit && try_collapse(mesh, he, high) {
+        if squared_length(mesh, he) < limit && try_collapse::<GUARD_LONG_EDGES>(mesh, he, high) {
             collapses += 1;
             // Slots were refilled from the end: look at this one again.
             continue;
@@ -179,7 +186,11 @@ fn collapse_short_edges(mesh: &mut HalfEdgeMesh<'_>, low: f32, high: f32) -> usi
 }
 
 /// Collapses the edge of `he` one way or the other if allowed; true when it did.
-fn try_collapse(mesh: &mut HalfEdgeMesh<'_>, he: u32, high: f32) -> bool {
+fn try_collapse<const GUARD_LONG_EDGES: bool>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    he: u32,
+    high: f32,
+) -> bool {
     for w in [Some(he), mesh.twin(he)].into_iter().flatten() {
         if !mesh.can_collapse(w) {
             continue;
@@ -189,6 +200,11 @@ fn try_collapse(mesh: &mut HalfEdgeMesh<'_>, he: u32, high: f32) -> bool {
             mesh.position(b)
         } else {
             (mesh.position(a) + mesh.position(b)) * 0.5
+        };
+        let high = if GUARD_LONG_EDGES {
+            high
+        } else {
+            f32::INFINITY
         };
         if collapse_is_safe(mesh, a, b, target, high) {
             return mesh.collapse_edge(w, target);
@@ -367,4 +383,75 @@ fn moves_safely(mesh: &HalfEdgeMesh<'_>, v: u32, to: Vec3) -> bool {
         safe &= dot(before, after) > 0.0 && (now >= FLATTEST * FLATTEST || now >= was);
     });
     safe
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::MeshRef;
+    use crate::remesh::HalfEdgeBuffers;
+
+    /// The longest edge of `mesh`.
+    fn longest(mesh: &HalfEdgeMesh<'_>) -> f32 {
+        (0..mesh.half_edge_count() as u32)
+            .map(|he| libm::sqrtf(squared_length(mesh, he)))
+            .fold(0.0, f32::max)
+    }
+
+    /// A flat patch: `a` at the origin and `b` 0.1 beside it (a short edge for L = 1), a ring
+    /// of six vertices 1.3 from `a`. Collapsing `a`–`b` to its midpoint would stretch the
+    /// edge to the ring vertex opposite `b` to 1.35, past 4/3: the guard must refuse it, and
+    /// without the guard the pass makes that long edge.
+    #[test]
+    fn a_collapse_that_would_make_a_long_edge_is_refused() {
+        let ring: Vec<[f32; 3]> = (0..6)
+            .map(|k| {
+                let angle = core::f32::consts::PI / 3.0 * k as f32;
+                [1.3 * libm::cosf(angle), 1.3 * libm::sinf(angle), 0.0]
+            })
+            .collect();
+        let mut positions = vec![[0.0, 0.0, 0.0], [0.1, 0.0, 0.0]];
+        positions.extend(ring);
+        let (a, b) = (0u32, 1u32);
+        let r = |k: u32| 2 + k;
+        let triangles = [
+            [b, r(0), r(1)],
+            [b, r(1), a],
+            [a, r(1), r(2)],
+            [a, r(2), r(3)],
+            [a, r(3), r(4)],
+            [a, r(4), r(5)],
+            [a, r(5), b],
+            [b, r(5), r(0)],
+        ];
+        let input = MeshRef::new(&positions, &triangles).validate().unwrap();
+        let (high, low) = (4.0 / 3.0, 0.8);
+        for guard in [true, false] {
+            let mut p = vec![[0.0f32; 3]; 8];
+            let (mut o, mut t, mut c) = (vec![0u32; 24], vec![0u32; 24], vec![false; 24]);
+            let mut out = vec![0u32; 8];
+            let mut scratch = vec![0u32; 24];
+            let buffers = HalfEdgeBuffers {
+                positions: &mut p,
+                origins: &mut o,
+                twins: &mut t,
+                vertex_half_edges: &mut out,
+                creases: &mut c,
+            };
+            let mut mesh = HalfEdgeMesh::from_mesh(&input, buffers, &mut scratch).unwrap();
+            assert!(longest(&mesh) <= high);
+            let collapses = if guard {
+                collapse_short_edges::<true>(&mut mesh, low, high)
+            } else {
+                collapse_short_edges::<false>(&mut mesh, low, high)
+            };
+            if guard {
+                assert_eq!(collapses, 0);
+                assert!(longest(&mesh) <= high);
+            } else {
+                assert_eq!(collapses, 1);
+                assert!(longest(&mesh) > high, "the mutant stretches an edge");
+            }
+        }
+    }
 }
