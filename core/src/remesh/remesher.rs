@@ -117,7 +117,7 @@ pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
         report.collapses += collapse_short_edges::<true>(mesh, low, high);
         report.flips += equalize_valences(mesh);
         smooth_tangentially(mesh, positions_scratch);
-        project(mesh, reference);
+        project(mesh, reference, positions_scratch);
         report.iterations += 1;
         progress(&report);
     }
@@ -161,7 +161,7 @@ fn split_long_edges(mesh: &mut HalfEdgeMesh<'_>, high: f32) -> Result<usize, Rem
     Ok(splits)
 }
 
-/// Collapses edges shorter than `low` where [`collapse_is_safe`] allows, each in the
+/// Collapses edges shorter than `low` where [`stays_short`] and [`keeps_orientation`] allow, each in the
 /// direction that removes an interior vertex.
 ///
 /// `GUARD_LONG_EDGES` false drops the rule that a collapse may not make an edge longer than
@@ -192,10 +192,11 @@ fn try_collapse<const GUARD_LONG_EDGES: bool>(
     high: f32,
 ) -> bool {
     for w in [Some(he), mesh.twin(he)].into_iter().flatten() {
-        if !mesh.can_collapse(w) {
+        let (a, b) = mesh.ends(w);
+        // The cheap refusals first; `can_collapse` repeats them with the link condition.
+        if mesh.is_boundary_vertex(a) || mesh.touches_crease(a) {
             continue;
         }
-        let (a, b) = mesh.ends(w);
         let target = if mesh.is_boundary_vertex(b) || mesh.touches_crease(b) {
             mesh.position(b)
         } else {
@@ -206,31 +207,42 @@ fn try_collapse<const GUARD_LONG_EDGES: bool>(
         } else {
             f32::INFINITY
         };
-        if collapse_is_safe(mesh, a, b, target, high) {
+        if stays_short(mesh, a, b, target, high)
+            && mesh.can_collapse(w)
+            && keeps_orientation(mesh, a, b, target)
+        {
             return mesh.collapse_edge(w, target);
         }
     }
     false
 }
 
-/// Whether moving `a` and `b` to `target` keeps every edge around them at most `high` long
-/// and leaves no triangle around them turned over or flat (the triangles on edge `a`–`b`
-/// itself vanish). "Over" is judged against the area-weighted normal of all their triangles
-/// before, so a triangle that was already flat does not block the collapse that removes it.
-fn collapse_is_safe(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3, high: f32) -> bool {
+/// Whether moving `a` and `b` to `target` keeps every edge around them at most `high` long.
+fn stays_short(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3, high: f32) -> bool {
     let limit = high * high;
-    let mut reference = Vec3::ZERO;
-    for v in [a, b] {
-        mesh.for_each_outgoing(v, |he| reference += mesh.triangle_normal(he / 3));
-    }
-    let mut safe = true;
+    let mut short = true;
     for v in [a, b] {
         mesh.for_each_neighbour(v, |n| {
             if n != a && n != b {
                 let d = mesh.position(n) - target;
-                safe &= dot(d, d) <= limit;
+                short &= dot(d, d) <= limit;
             }
         });
+    }
+    short
+}
+
+/// Whether moving `a` and `b` to `target` leaves no triangle around them turned over or flat
+/// (the triangles on edge `a`–`b` itself vanish). "Over" is judged against the
+/// area-weighted normal of all their triangles before, so a triangle that was already flat
+/// does not block the collapse that removes it.
+fn keeps_orientation(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3) -> bool {
+    let mut reference = Vec3::ZERO;
+    for v in [a, b] {
+        mesh.for_each_outgoing(v, |he| reference += mesh.triangle_normal(he / 3));
+    }
+    let mut kept = true;
+    for v in [a, b] {
         mesh.for_each_outgoing(v, |he| {
             let t = mesh.triangle(he / 3);
             if t.contains(&a) && t.contains(&b) {
@@ -244,10 +256,10 @@ fn collapse_is_safe(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3, high:
                 }
             });
             let after = cross(q - p, r - p);
-            safe &= dot(reference, after) > 0.0 && dot(after, after) > 0.0;
+            kept &= dot(reference, after) > 0.0 && dot(after, after) > 0.0;
         });
     }
-    safe
+    kept
 }
 
 /// The valence a vertex aims at: 6 inside, 4 on the boundary.
@@ -263,17 +275,18 @@ fn equalize_valences(mesh: &mut HalfEdgeMesh<'_>) -> usize {
         let Some(g) = mesh.twin(he) else {
             continue;
         };
-        if g < he || !mesh.can_flip(he) {
+        if g < he {
             continue;
         }
         let (a, b) = mesh.ends(he);
         let c = mesh.origin(HalfEdgeMesh::prev(he));
         let d = mesh.origin(HalfEdgeMesh::prev(g));
-        let deviation = |v: u32, change: i64| {
-            (i64::from(mesh.valence(v)) + change - target_valence(mesh, v)).abs()
-        };
-        let before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
-        let after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
+        // Each vertex's distance from its target valence, now and after the flip.
+        let [da, db, dc, dd] =
+            [a, b, c, d].map(|v| i64::from(mesh.valence(v)) - target_valence(mesh, v));
+        let before = da.abs() + db.abs() + dc.abs() + dd.abs();
+        let after = (da - 1).abs() + (db - 1).abs() + (dc + 1).abs() + (dd + 1).abs();
+        // `flip_edge` checks `can_flip` itself: the cheaper tests go first.
         if after < before && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
             flips += 1;
         }
@@ -331,20 +344,34 @@ fn smooth_tangentially(mesh: &mut HalfEdgeMesh<'_>, scratch: &mut [[f32; 3]]) {
         let tangential = step - normal * (dot(step, normal) / normal_len);
         *slot = (p + tangential).to_array();
     }
-    for (v, slot) in (0u32..).zip(scratch.iter().take(count)) {
+    // Swap: the mesh takes the new positions, the scratch keeps the old ones for `project`.
+    for (v, slot) in (0u32..).zip(scratch.iter_mut().take(count)) {
+        let old = mesh.position(v);
         mesh.set_position(v, Vec3::from_array(*slot));
+        *slot = old.to_array();
     }
 }
 
 /// Puts every free vertex on the closest point of `reference`, unless that would turn one
 /// of its triangles over or flatten it (a vertex beside a hole projects onto the
 /// hole's rim, in line with the rim's vertices): it then stays where smoothing put it.
-fn project<Q: MeshQuery + ?Sized>(mesh: &mut HalfEdgeMesh<'_>, reference: &Q) {
-    for v in 0..mesh.vertex_count() as u32 {
+///
+/// `before` holds each vertex's position before smoothing. A vertex that was on the surface
+/// then is at most as far from it as smoothing moved it, so the query first looks only that
+/// far (a much smaller search) and only on finding nothing looks everywhere: the closest
+/// point is the same either way, so the result does not depend on it.
+fn project<Q: MeshQuery + ?Sized>(mesh: &mut HalfEdgeMesh<'_>, reference: &Q, before: &[[f32; 3]]) {
+    for (v, old) in (0..mesh.vertex_count() as u32).zip(before) {
         if !is_free(mesh, v) {
             continue;
         }
-        if let Some(hit) = reference.closest_point(mesh.position(v), f32::INFINITY)
+        let p = mesh.position(v);
+        let moved = p - Vec3::from_array(*old);
+        let near = libm::sqrtf(dot(moved, moved)) * 1.001;
+        let found = reference
+            .closest_point(p, near)
+            .or_else(|| reference.closest_point(p, f32::INFINITY));
+        if let Some(hit) = found
             && moves_safely(mesh, v, hit.point)
         {
             mesh.set_position(v, hit.point);
