@@ -6,25 +6,40 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 
-/// Writes `positions` and `triangles` to `path`: `.obj` or `.ply`.
+/// Writes `positions` and `triangles` to `path`: `.obj` or `.ply`. The file is written beside
+/// `path` under a temporary name and renamed over it only once complete, so a failed write
+/// never leaves a truncated file (or clobbers the input when `path` is the input).
 pub fn write_mesh(path: &Path, positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Result<()> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
-    let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-    let mut out = BufWriter::new(file);
-    match ext.as_str() {
-        "obj" => write_obj(&mut out, positions, triangles),
-        "ply" => write_ply(&mut out, positions, triangles),
-        _ => bail!(
+    if !matches!(ext.as_str(), "obj" | "ply") {
+        bail!(
             "{}: unknown output format (expected .obj or .ply)",
             path.display()
-        ),
+        );
     }
-    .and_then(|()| out.flush().map_err(Into::into))
-    .with_context(|| format!("cannot write {}", path.display()))
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(".partial");
+    let partial = Path::new(&partial);
+    let written = (|| -> Result<()> {
+        let file = File::create(partial)?;
+        let mut out = BufWriter::new(file);
+        if ext == "obj" {
+            write_obj(&mut out, positions, triangles)?;
+        } else {
+            write_ply(&mut out, positions, triangles)?;
+        }
+        out.flush()?;
+        std::fs::rename(partial, path)?;
+        Ok(())
+    })();
+    if written.is_err() {
+        let _ = std::fs::remove_file(partial);
+    }
+    written.with_context(|| format!("cannot write {}", path.display()))
 }
 
 fn write_obj(out: &mut impl Write, positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Result<()> {

@@ -6,7 +6,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 use meshq::mesh::MeshRef;
-use meshq::owned::Remeshed;
+use meshq::owned::{Remeshed, mean_edge_length};
 use meshq::remesh::{MeshQuality, RemeshConfig};
 use serde::Serialize;
 
@@ -95,7 +95,7 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
             ratio > 0.0 && ratio.is_finite(),
             "--target-ratio must be positive"
         );
-        config.target_length = ratio * mean_edge(&data.positions, &data.triangles);
+        config.target_length = ratio * mean_edge_length(&mesh);
     }
     let bar = progress::bar(u64::from(config.iterations), "iterations");
     let start = Instant::now();
@@ -158,23 +158,4 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
     }
     println!("  distance to the input: {hausdorff_relative:.2e} of the bounding-box diagonal");
     Ok(())
-}
-
-/// The mean length of the mesh's edges, each counted once (the default target length).
-fn mean_edge(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> f32 {
-    let p = |v: u32| meshq::Vec3::from_array(positions[v as usize]);
-    let edges: std::collections::BTreeSet<(u32, u32)> = triangles
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .map(|(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    let sum: f64 = edges
-        .iter()
-        .map(|&(a, b)| f64::from((p(b) - p(a)).length()))
-        .sum();
-    if edges.is_empty() {
-        0.0
-    } else {
-        (sum / edges.len() as f64) as f32
-    }
 }

@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use js_sys::{Float32Array, Object, Reflect, Uint32Array};
 use meshq::mesh::MeshRef;
-use meshq::owned::Remeshed;
+use meshq::owned::{Remeshed, mean_edge_length};
 use meshq::remesh::{MeshQuality, RemeshConfig};
 use wasm_bindgen::prelude::*;
 
@@ -124,24 +124,7 @@ pub fn remesh(positions: Vec<f32>, indices: JsValue, options: JsValue) -> Result
     let mesh = MeshRef::from_flat(&positions, &indices)
         .and_then(MeshRef::validate)
         .map_err(|e| JsError::new(&e.to_string()))?;
-    let config = config(&options, || {
-        let p = |v: u32| glam::Vec3::from_array(mesh.positions()[v as usize]);
-        let edges: BTreeSet<(u32, u32)> = mesh
-            .triangles()
-            .iter()
-            .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-            .map(|(a, b)| (a.min(b), a.max(b)))
-            .collect();
-        let sum: f64 = edges
-            .iter()
-            .map(|&(a, b)| f64::from((p(b) - p(a)).length()))
-            .sum();
-        if edges.is_empty() {
-            0.0
-        } else {
-            (sum / edges.len() as f64) as f32
-        }
-    })?;
+    let config = config(&options, || mean_edge_length(&mesh))?;
     let out = Remeshed::of(&mesh, &config).map_err(|e| JsError::new(&e.to_string()))?;
     let distance = out
         .distance_to(&mesh)

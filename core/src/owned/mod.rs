@@ -31,4 +31,4 @@ pub use mesh_grid::MeshGrid;
 pub use mesh_index::MeshIndex;
 pub use mesh_kdtree::MeshKdTree;
 pub use mesh_octree::MeshOctree;
-pub use remeshed::Remeshed;
+pub use remeshed::{Remeshed, mean_edge_length};

@@ -1,11 +1,10 @@
 //! [`Remeshed`]: a mesh remeshed in one call, with buffers sized and grown as needed.
 
-use alloc::vec;
 use alloc::vec::Vec;
 
 use super::MeshBvh;
 use crate::bvh::BuildConfig;
-use crate::error::RemeshError;
+use crate::error::{RemeshBuffer, RemeshError};
 use crate::mesh::ValidMesh;
 use crate::query::MeshQuery;
 use crate::remesh::{
@@ -57,12 +56,24 @@ impl Remeshed {
         let reference = MeshBvh::build(mesh, &BuildConfig::default())
             .map_err(|error| RemeshError::ReferenceBvh { error })?;
         let mut capacity = RemeshCapacity::for_mesh(mesh, config.target_length);
+        let too_big = |capacity| RemeshError::OutOfCapacity {
+            buffer: RemeshBuffer::Scratch,
+            capacity,
+        };
         loop {
-            let mut storage = RemeshStorage::new(capacity);
-            let mut pairing = vec![0u32; capacity.pairing_scratch()];
+            let mut storage = RemeshStorage::new(capacity)?;
+            let mut pairing = Vec::new();
+            pairing
+                .try_reserve_exact(capacity.pairing_scratch())
+                .map_err(|_| too_big(capacity.pairing_scratch()))?;
+            pairing.resize(capacity.pairing_scratch(), 0u32);
             let mut he = HalfEdgeMesh::from_mesh(mesh, storage.buffers(), &mut pairing)?;
             let before = MeshQuality::of(&he);
-            let mut smoothing = vec![[0.0f32; 3]; capacity.vertices];
+            let mut smoothing = Vec::new();
+            smoothing
+                .try_reserve_exact(capacity.vertices)
+                .map_err(|_| too_big(capacity.vertices))?;
+            smoothing.resize(capacity.vertices, [0.0f32; 3]);
             match remesh_with_progress(&mut he, &reference, config, &mut smoothing, &mut progress) {
                 Ok(report) => {
                     return Ok(Self {
@@ -126,5 +137,35 @@ impl Remeshed {
         };
         let far = farthest(&output, &to_input).max(farthest(input, &to_output));
         Ok(if diagonal > 0.0 { far / diagonal } else { 0.0 })
+    }
+}
+
+/// The mean length of `mesh`'s edges, each counted once: the target length
+/// [`RemeshConfig::default`] remeshes toward (0 for a mesh without triangles), for callers that
+/// give a target as a multiple of it.
+#[must_use]
+pub fn mean_edge_length(mesh: &ValidMesh<'_>) -> f32 {
+    let edges: alloc::collections::BTreeSet<(u32, u32)> = mesh
+        .triangles()
+        .iter()
+        .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    let point = |v: u32| {
+        mesh.positions()
+            .get(v as usize)
+            .map_or(glam::Vec3::ZERO, |&p| glam::Vec3::from_array(p))
+    };
+    let sum: f64 = edges
+        .iter()
+        .map(|&(a, b)| {
+            let d = point(b) - point(a);
+            f64::from(libm::sqrtf(crate::math::dot(d, d)))
+        })
+        .sum();
+    if edges.is_empty() {
+        0.0
+    } else {
+        (sum / edges.len() as f64) as f32
     }
 }

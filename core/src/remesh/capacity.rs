@@ -89,16 +89,40 @@ pub struct RemeshStorage {
 #[cfg(feature = "alloc")]
 impl RemeshStorage {
     /// Buffers of `capacity`.
-    #[must_use]
-    pub fn new(capacity: RemeshCapacity) -> Self {
-        use alloc::vec;
-        Self {
-            positions: vec![[0.0; 3]; capacity.vertices],
-            origins: vec![0; capacity.half_edges()],
-            twins: vec![0; capacity.half_edges()],
-            vertex_half_edges: vec![0; capacity.vertices],
-            creases: vec![false; capacity.half_edges()],
+    ///
+    /// # Errors
+    /// [`RemeshError::OutOfCapacity`](crate::error::RemeshError::OutOfCapacity) when the
+    /// capacity passes `u32` indexing or the allocator refuses the memory (nothing is left
+    /// allocated then).
+    pub fn new(capacity: RemeshCapacity) -> Result<Self, crate::error::RemeshError> {
+        use crate::error::{RemeshBuffer, RemeshError};
+        let limit = super::NO_HALF_EDGE as usize - 1;
+        let refuse = |buffer, capacity| RemeshError::OutOfCapacity { buffer, capacity };
+        if capacity.vertices > limit {
+            return Err(refuse(RemeshBuffer::Positions, limit));
         }
+        if capacity.half_edges() > limit {
+            return Err(refuse(RemeshBuffer::HalfEdges, limit));
+        }
+        fn filled<T: Clone>(len: usize, value: T) -> Option<alloc::vec::Vec<T>> {
+            let mut v = alloc::vec::Vec::new();
+            v.try_reserve_exact(len).ok()?;
+            v.resize(len, value);
+            Some(v)
+        }
+        let (v, h) = (capacity.vertices, capacity.half_edges());
+        let positions = filled(v, [0.0f32; 3]).ok_or(refuse(RemeshBuffer::Positions, v))?;
+        let vertex_half_edges = filled(v, 0u32).ok_or(refuse(RemeshBuffer::VertexHalfEdges, v))?;
+        let origins = filled(h, 0u32).ok_or(refuse(RemeshBuffer::HalfEdges, h))?;
+        let twins = filled(h, 0u32).ok_or(refuse(RemeshBuffer::HalfEdges, h))?;
+        let creases = filled(h, false).ok_or(refuse(RemeshBuffer::HalfEdges, h))?;
+        Ok(Self {
+            positions,
+            origins,
+            twins,
+            vertex_half_edges,
+            creases,
+        })
     }
 
     /// The buffers, for [`HalfEdgeMesh::from_mesh`](super::HalfEdgeMesh::from_mesh).

@@ -143,61 +143,53 @@ impl HalfEdgeMesh<'_> {
                 capacity: self.triangle_capacity() * 3,
             });
         }
-        let (a, b) = self.ends(he);
         let crease = self.is_crease(he);
         let m = self.vertex_count as u32;
         self.vertex_count += 1;
         self.set_position(m, at);
         // Triangle (a, b, c) becomes (a, m, c) in place plus a new (m, b, c).
-        let (n0, p0) = (Self::next(he), Self::prev(he));
-        let c = self.origin(p0);
-        let old_bc = self.outer(n0);
-        let t2 = self.triangle_count as u32 * 3;
-        self.triangle_count += 1;
-        for (k, v) in [m, b, c].into_iter().enumerate() {
-            self.set_origin(t2 + k as u32, v);
-        }
-        self.set_origin(n0, m);
-        self.attach(t2 + 1, old_bc);
-        self.link(n0, t2 + 2);
-        self.set_crease(n0, false);
-        self.set_crease(t2 + 2, false);
-        self.set_crease(t2, crease);
-        if self.vertex_half_edge(b) == Some(n0) {
-            self.set_vertex_half_edge(b, t2 + 1);
-        }
+        let t2 = self.split_side(he, m, crease);
+        // m→b: on the boundary, the half-edge leaving m without a twin.
+        self.set_vertex_half_edge(m, t2);
         match g {
             Some(g) => {
                 // Its twin's triangle (b, a, d) becomes (b, m, d) plus a new (m, a, d).
-                let (n1, p1) = (Self::next(g), Self::prev(g));
-                let d = self.origin(p1);
-                let old_ad = self.outer(n1);
-                let t3 = self.triangle_count as u32 * 3;
-                self.triangle_count += 1;
-                for (k, v) in [m, a, d].into_iter().enumerate() {
-                    self.set_origin(t3 + k as u32, v);
-                }
-                self.set_origin(n1, m);
-                self.attach(t3 + 1, old_ad);
-                self.link(n1, t3 + 2);
-                self.set_crease(n1, false);
-                self.set_crease(t3 + 2, false);
-                self.set_crease(t3, crease);
+                let t3 = self.split_side(g, m, crease);
                 self.link(he, t3);
                 self.link(g, t2);
-                if self.vertex_half_edge(a) == Some(n1) {
-                    self.set_vertex_half_edge(a, t3 + 1);
-                }
-                self.set_vertex_half_edge(m, t2);
             }
             None => {
                 self.link(he, NO_HALF_EDGE);
                 self.link(t2, NO_HALF_EDGE);
-                // The boundary half-edge leaving m.
-                self.set_vertex_half_edge(m, t2);
             }
         }
         Ok(m)
+    }
+
+    /// One side of a split: the triangle of `he` (from `x` to `y`, third corner `z`) becomes
+    /// (x, m, z) in place plus a new triangle (m, y, z), whose first half-edge (m→y) is
+    /// returned for the caller to pair across the edge. The new half-edge m→y keeps the split
+    /// edge's crease flag; the inner edge m–z is no crease.
+    fn split_side(&mut self, he: u32, m: u32, crease: bool) -> u32 {
+        let y = self.origin(Self::next(he));
+        let (n, p) = (Self::next(he), Self::prev(he));
+        let z = self.origin(p);
+        let old_yz = self.outer(n);
+        let t = self.triangle_count as u32 * 3;
+        self.triangle_count += 1;
+        for (k, v) in [m, y, z].into_iter().enumerate() {
+            self.set_origin(t + k as u32, v);
+        }
+        self.set_origin(n, m);
+        self.attach(t + 1, old_yz);
+        self.link(n, t + 2);
+        self.set_crease(n, false);
+        self.set_crease(t + 2, false);
+        self.set_crease(t, crease);
+        if self.vertex_half_edge(y) == Some(n) {
+            self.set_vertex_half_edge(y, t + 1);
+        }
+        t
     }
 
     /// Whether the edge of `he` may be flipped: interior, not a crease, both ends keeping at

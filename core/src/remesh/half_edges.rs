@@ -68,6 +68,7 @@ impl<'a> HalfEdgeMesh<'a> {
     ///
     /// # Errors
     /// - [`RemeshError::BufferTooSmall`] for a buffer shorter than that;
+    /// - [`RemeshError::OutOfCapacity`] when `3T` half-edges cannot be indexed by `u32`;
     /// - [`RemeshError::RepeatedVertex`] for a triangle using a vertex twice;
     /// - [`RemeshError::NonManifoldEdge`] for an edge shared by more than two triangles;
     /// - [`RemeshError::InconsistentOrientation`] for two triangles running along an edge the
@@ -87,6 +88,13 @@ impl<'a> HalfEdgeMesh<'a> {
             needed: usize::MAX,
             got: buffers.origins.len(),
         })?;
+        // Half-edges are indexed by `u32` below `NO_HALF_EDGE`.
+        if h >= NO_HALF_EDGE as usize {
+            return Err(RemeshError::OutOfCapacity {
+                buffer: RemeshBuffer::HalfEdges,
+                capacity: NO_HALF_EDGE as usize - 1,
+            });
+        }
         room(RemeshBuffer::Positions, buffers.positions.len(), v)?;
         room(RemeshBuffer::HalfEdges, buffers.origins.len(), h)?;
         room(RemeshBuffer::HalfEdges, buffers.twins.len(), h)?;
@@ -241,19 +249,24 @@ impl<'a> HalfEdgeMesh<'a> {
         }
     }
 
-    /// The most vertices the buffers hold.
+    /// The most vertices the buffers hold (at most `u32::MAX − 1`: indices are `u32`).
     #[must_use]
     pub fn vertex_capacity(&self) -> usize {
-        self.positions.len().min(self.vertex_half_edges.len())
+        self.positions
+            .len()
+            .min(self.vertex_half_edges.len())
+            .min(NO_HALF_EDGE as usize - 1)
     }
 
-    /// The most triangles the buffers hold.
+    /// The most triangles the buffers hold (their half-edges indexed by `u32`, below
+    /// [`NO_HALF_EDGE`]).
     #[must_use]
     pub fn triangle_capacity(&self) -> usize {
         self.origins
             .len()
             .min(self.twins.len())
             .min(self.creases.len())
+            .min(NO_HALF_EDGE as usize - 1)
             / 3
     }
 

@@ -62,7 +62,7 @@ pub fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 ///
 /// # Errors
 /// - [`RemeshError::InvalidConfig`] for a config out of range, or a default target length
-///   on a mesh with no edges;
+///   on a mesh whose edges all have zero length (a mesh with no triangles is returned empty);
 /// - [`RemeshError::OutOfCapacity`] when a split finds no room: the mesh is left valid,
 ///   with the edits made so far;
 /// - [`RemeshError::BufferTooSmall`] when `positions_scratch` is shorter than the vertex
@@ -95,6 +95,11 @@ pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
             needed: mesh.vertex_capacity(),
             got: positions_scratch.len(),
         });
+    }
+    if mesh.triangle_count() == 0 {
+        // Nothing to remesh: the result is the empty mesh.
+        mesh.drop_unused_vertices();
+        return Ok(RemeshReport::default());
     }
     let length = if config.target_length > 0.0 {
         config.target_length
