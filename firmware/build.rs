@@ -6,7 +6,12 @@ use std::env;
 use std::path::PathBuf;
 
 /// Cargo feature → bundled mesh (file stem in `assets/`).
-const MESHES: [(&str, &str); 2] = [("BUNNY", "stanford-bunny"), ("SPOT", "spot")];
+/// `remesh` remeshes the small UV sphere instead of querying a mesh.
+const MESHES: [(&str, &str); 3] = [
+    ("BUNNY", "stanford-bunny"),
+    ("SPOT", "spot"),
+    ("REMESH", "uv-sphere"),
+];
 
 fn main() {
     let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo"));
@@ -22,7 +27,7 @@ fn main() {
         .map(|(_, stem)| *stem)
         .collect();
     let [stem] = chosen[..] else {
-        panic!("enable exactly one mesh: --features bunny or --features spot");
+        panic!("enable exactly one of --features bunny, spot or remesh");
     };
 
     // `--features octree` places the mesh's octree blob in flash instead of its BVH blob.

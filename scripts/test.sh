@@ -34,7 +34,7 @@ step "tests (optimised test profile)"
 # out spares compiling its peers (obvhs, parry3d, criterion) optimised.
 cargo test --locked --workspace --exclude meshq-bench
 
-step "firmware: Cortex-M4F in QEMU, parity with the golden file, panic-free proof, memory"
+step "firmware: Cortex-M4F in QEMU, parity with the golden files (queries, remeshing), panic-free proofs, memory"
 MESHQ_CLI_PROFILE=test ./scripts/firmware.sh
 
 step "WebAssembly: parity with the golden file and blob bytes, in Node"

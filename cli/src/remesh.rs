@@ -72,6 +72,9 @@ struct Summary {
     collapses: usize,
     flips: usize,
     creases: usize,
+    /// The most vertices and triangles held at once: buffers this large repeat the run.
+    peak_vertices: usize,
+    peak_triangles: usize,
     before: Figures,
     after: Figures,
     /// Two-sided distance to the input, sampled at vertices and centroids, over the input's
@@ -118,6 +121,8 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
         collapses: r.collapses,
         flips: r.flips,
         creases: r.creases,
+        peak_vertices: r.peak_vertices,
+        peak_triangles: r.peak_triangles,
         before: remeshed.before.into(),
         after: remeshed.after.into(),
         hausdorff_relative,

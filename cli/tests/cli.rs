@@ -495,6 +495,11 @@ fn remesh_writes_a_better_mesh_and_refuses_a_non_manifold_one() {
         assert!(edge_cv("after") < edge_cv("before") / 2.0, "{json}");
         assert!(v["hausdorff_relative"].as_f64().unwrap() < 0.02, "{json}");
         assert_eq!(v["iterations"].as_u64(), Some(4));
+        // The peak holds at least the input and the output.
+        let count = |key: &str| v[key].as_u64().unwrap();
+        let triangles = |side: &str| v[side]["triangles"].as_u64().unwrap();
+        assert!(count("peak_triangles") >= triangles("before").max(triangles("after")));
+        assert!(count("peak_vertices") > 0, "{json}");
     }
     // --target-ratio 2: about a quarter of the triangles.
     let coarse = dir.path().join("coarse.obj");

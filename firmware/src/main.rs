@@ -2,6 +2,9 @@
 //! place through [`BlobView`] (no node or triangle is copied to RAM), and checks every answer
 //! bit against the golden digest the native test suite computed from brute force.
 //!
+//! With `--features remesh` it remeshes the small UV sphere from its blob instead (see
+//! `remesh_run`).
+//!
 //! Exit status (through semihosting, so QEMU exits with it): 0 when the digest matches, 1 on a
 //! digest mismatch, 2 when the blob is refused, 3 when the golden file has no usable line for
 //! the mesh, 4 when the blob holds another mesh than the golden line describes.
@@ -9,26 +12,34 @@
 #![no_std]
 #![no_main]
 
+#[cfg(not(feature = "remesh"))]
 mod in_place;
 #[cfg(feature = "panic-free")]
 mod panic_free;
+#[cfg(feature = "remesh")]
+mod remesh_run;
 mod report;
 mod stack;
 
 use cortex_m_rt::entry;
+#[cfg(not(feature = "remesh"))]
 use meshq::MeshQuery;
 use meshq::blob::BlobView;
+#[cfg(not(feature = "remesh"))]
 use meshq_workload::{find_golden, run_parity};
 
+#[cfg(not(feature = "remesh"))]
 use crate::in_place::InPlace;
 
 /// The blob, baked offline by `meshq bake` and linked into flash.
 static BLOB: &[u8] = include_bytes!(env!("MESHQ_BLOB"));
 /// The golden parity file shared with the native and WebAssembly tests.
+#[cfg(not(feature = "remesh"))]
 static GOLDEN: &str = include_str!("../../tests/golden/parity.txt");
 /// The mesh the blob was baked from (its file stem in `assets/`).
 const MESH: &str = env!("MESHQ_MESH");
 /// How many closest-hit answers are printed in full, as a readable sample.
+#[cfg(not(feature = "remesh"))]
 const SAMPLES: usize = 3;
 
 #[entry]
@@ -44,6 +55,13 @@ fn validate(bytes: &'static [u8]) -> Result<BlobView<'static>, meshq::error::Blo
     BlobView::parse(bytes)
 }
 
+/// `--features remesh`: remesh the blob's mesh instead of querying it.
+#[cfg(feature = "remesh")]
+fn run() -> i32 {
+    remesh_run::run(core::hint::black_box(BLOB), MESH)
+}
+
+#[cfg(not(feature = "remesh"))]
 fn run() -> i32 {
     // Opaque to the optimiser: the blob is a compile-time constant, and without this the
     // compiler could fold checks on its known bytes away, which would hollow out the

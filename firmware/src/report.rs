@@ -5,8 +5,17 @@
 
 use meshq::blob::BlobHeader;
 use meshq::error::BlobError;
+#[cfg(feature = "remesh")]
+use meshq::error::{MeshError, RemeshError};
+#[cfg(not(feature = "remesh"))]
 use meshq::math::RayHit;
-use meshq_workload::{GoldenError, ParityReport};
+#[cfg(feature = "remesh")]
+use meshq::remesh::RemeshReport;
+use meshq_workload::GoldenError;
+#[cfg(feature = "remesh")]
+use meshq_workload::MeshDigest;
+#[cfg(not(feature = "remesh"))]
+use meshq_workload::ParityReport;
 
 #[cfg(not(feature = "panic-free"))]
 use semihosting::println;
@@ -45,6 +54,7 @@ pub fn blob_loaded(header: &BlobHeader) {
     );
 }
 
+#[cfg(not(feature = "remesh"))]
 pub fn sample(index: usize, hit: Option<RayHit>) {
     match hit {
         Some(h) => println!(
@@ -58,6 +68,7 @@ pub fn sample(index: usize, hit: Option<RayHit>) {
     }
 }
 
+#[cfg(not(feature = "remesh"))]
 pub fn parity(got: &ParityReport, golden: &ParityReport) {
     println!(
         "hits {} any-hits {} closest points {} digest 0x{:016x}",
@@ -71,9 +82,52 @@ pub fn parity(got: &ParityReport, golden: &ParityReport) {
     }
 }
 
+#[cfg(not(feature = "remesh"))]
 pub fn stack(validation: u32, queries: u32, printing: u32) {
     println!(
         "stack high-water marks (bytes): validation {validation}, queries {queries}, \
          sample queries with printing {printing}"
     );
+}
+
+#[cfg(feature = "remesh")]
+pub fn remeshed(run: &RemeshReport, got: &MeshDigest, golden: &MeshDigest) {
+    println!(
+        "remeshed in {} iterations: {} splits, {} collapses, {} flips; peak {} vertices, {} \
+         triangles",
+        run.iterations, run.splits, run.collapses, run.flips, run.peak_vertices, run.peak_triangles
+    );
+    println!(
+        "result: {} vertices, {} triangles, digest 0x{:016x}",
+        got.vertices, got.triangles, got.digest
+    );
+    println!(
+        "golden: {} vertices, {} triangles, digest 0x{:016x}",
+        golden.vertices, golden.triangles, golden.digest
+    );
+    if got == golden {
+        println!("REMESH PARITY OK");
+    } else {
+        println!("REMESH PARITY MISMATCH");
+    }
+}
+
+#[cfg(feature = "remesh")]
+pub fn remesh_memory(arrays: usize, stack: u32) {
+    println!("stack high-water mark (bytes): remeshing {stack}, of which the mesh arrays {arrays}");
+}
+
+#[cfg(feature = "remesh")]
+pub fn input_too_large(vertices: usize, triangles: usize) {
+    println!("the input does not fit: at most {vertices} vertices and {triangles} triangles");
+}
+
+#[cfg(feature = "remesh")]
+pub fn mesh_refused(error: &MeshError) {
+    println!("mesh refused: {error}");
+}
+
+#[cfg(feature = "remesh")]
+pub fn remesh_failed(error: &RemeshError) {
+    println!("remeshing failed: {error}");
 }

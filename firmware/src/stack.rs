@@ -16,6 +16,7 @@ pub fn high_water() -> u32 {
 /// Runs `phase` and returns its result with the stack high-water mark, in bytes, it reached.
 /// For small results only: the result is moved once more than with [`repaint`] and
 /// [`high_water`] around the call.
+#[cfg(not(feature = "remesh"))]
 pub fn measured<R>(phase: impl FnOnce() -> R) -> (R, u32) {
     repaint();
     let result = phase();

@@ -106,7 +106,8 @@ fn figures(q: &MeshQuality, triangles: &[[u32; 3]]) -> Result<Object, JsError> {
 /// iteration count (default 10) and the crease angle in degrees to keep (default none).
 ///
 /// Returns `{ positions: Float32Array, indices: Uint32Array, iterations, splits, collapses,
-/// flips, creases, distance, before, after }`, where `before` and `after` hold `triangles`,
+/// flips, creases, peakVertices, peakTriangles, distance, before, after }` (the peaks: the
+/// most vertices and triangles held at once), where `before` and `after` hold `triangles`,
 /// `vertices`, `valence6Percent`, `minAngleOffBoundary` (degrees), `under30Percent`,
 /// `meanEdge`, `edgeCv` and `valences` (interior vertices by valence, the last entry 12 and
 /// more), and `distance` is the two-sided distance to the input (sampled at vertices and
@@ -148,6 +149,8 @@ pub fn remesh(positions: Vec<f32>, indices: JsValue, options: JsValue) -> Result
     set(&result, "collapses", r.collapses as f64)?;
     set(&result, "flips", r.flips as f64)?;
     set(&result, "creases", r.creases as f64)?;
+    set(&result, "peakVertices", r.peak_vertices as f64)?;
+    set(&result, "peakTriangles", r.peak_triangles as f64)?;
     set(&result, "distance", distance)?;
     set(&result, "before", figures(&out.before, mesh.triangles())?)?;
     set(&result, "after", figures(&out.after, &out.triangles)?)?;

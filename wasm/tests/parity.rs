@@ -9,12 +9,15 @@ use glam::Vec3;
 use js_sys::{Reflect, Uint32Array};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq_wasm::MeshBvh;
-use meshq_workload::{ParitySpec, ParityTarget, find_golden, run_parity};
+use meshq_workload::{
+    MeshDigest, ParitySpec, ParityTarget, find_golden, find_remesh_golden, run_parity,
+};
 use wasm_bindgen::JsValue;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 const GOLDEN: &str = include_str!("../../tests/golden/parity.txt");
 const BLOBS: &str = include_str!("../../tests/golden/blobs.txt");
+const REMESH_GOLDEN: &str = include_str!("../../tests/golden/remesh.txt");
 
 const MESHES: [(&str, &str); 5] = [
     (
@@ -345,4 +348,28 @@ fn bad_input_throws_with_the_core_message() {
         .map_err(JsValue::from)
         .unwrap();
     assert_eq!(ok.triangle_count(), 1);
+}
+
+/// The `remesh` binding, with its default options, gives the golden remeshing file's bits:
+/// the small sphere the firmware remeshes and two bundled meshes.
+#[wasm_bindgen_test]
+fn remeshing_matches_the_golden_remesh_file() {
+    let sphere = ("uv-sphere", include_str!("../../assets/uv-sphere.obj"));
+    for (name, obj) in [sphere, MESHES[1], MESHES[2]] {
+        let golden = find_remesh_golden(REMESH_GOLDEN, name).unwrap();
+        let (positions, indices) = load(obj);
+        assert_eq!(indices.len() / 3, golden.triangles_in as usize, "{name}");
+        let indices = Uint32Array::from(&indices[..]);
+        let out = meshq_wasm::remesh(positions, indices.into(), JsValue::UNDEFINED)
+            .map_err(JsValue::from)
+            .unwrap();
+        let array = |key: &str| Reflect::get(&out, &key.into()).unwrap();
+        let positions = js_sys::Float32Array::from(array("positions")).to_vec();
+        let indices = Uint32Array::from(array("indices")).to_vec();
+        let got = MeshDigest::of(
+            positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]),
+            indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]),
+        );
+        assert_eq!(got, golden.result, "{name}: remeshed in WebAssembly");
+    }
 }

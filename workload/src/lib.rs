@@ -13,7 +13,8 @@
 //! not depend on the target.
 //!
 //! [`parity`] runs a fixed set of these queries on any target and digests every result bit;
-//! [`golden`] reads and writes the golden file those digests are checked against.
+//! [`golden`] reads and writes the golden file those digests are checked against, and
+//! [`remesh_golden`] the golden file of remeshing results.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -23,6 +24,7 @@ extern crate std;
 
 pub mod golden;
 pub mod parity;
+pub mod remesh_golden;
 mod rng;
 
 use glam::Vec3;
@@ -30,6 +32,7 @@ use meshq::math::{Aabb, Ray};
 
 pub use golden::{GoldenEntry, GoldenError, find_golden};
 pub use parity::{ParityDigest, ParityReport, ParitySpec, ParityTarget, run_parity};
+pub use remesh_golden::{MeshDigest, RemeshGolden, find_remesh_golden};
 pub use rng::SplitMix64;
 
 /// Bounding-box centre `c`, half-diagonal `r` and the box of a point set.

@@ -149,10 +149,7 @@ impl<'a> HalfEdgeMesh<'a> {
     /// Pairs every half-edge with the one running the other way along its edge, by sorting
     /// the half-edges by edge in `order`.
     fn pair_twins(&mut self, order: &mut [u32]) -> Result<(), RemeshError> {
-        for (slot, he) in order.iter_mut().zip(0u32..) {
-            *slot = he;
-        }
-        order.sort_unstable_by_key(|&he| self.edge_key(he));
+        self.sort_by_edge(order);
         let key = |this: &Self, he: u32| this.edge_key(he);
         let mut i = 0usize;
         while let Some(&first) = order.get(i) {
@@ -236,11 +233,37 @@ impl<'a> HalfEdgeMesh<'a> {
     }
 
     /// The sort key of half-edge `he`: its edge (lower vertex, higher vertex), then its
-    /// direction, then the half-edge itself, so the order (and the first error) does not
-    /// depend on the sort.
-    fn edge_key(&self, he: u32) -> (u64, bool, u32) {
+    /// direction.
+    fn edge_key(&self, he: u32) -> (u64, bool) {
         let (a, b) = self.ends(he);
-        ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), a > b, he)
+        ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), a > b)
+    }
+
+    /// Writes every half-edge into `order` sorted by edge (lower vertex, then higher vertex),
+    /// half-edges of one edge in index order: two stable counting sorts, by the higher
+    /// vertex into `twins` (free until pairing fills it) and then by the lower one into
+    /// `order`, counting in `vertex_half_edges` (filled after pairing). Linear time, and no
+    /// comparison sort whose panic paths the firmware's panic-free proof would refuse.
+    fn sort_by_edge(&mut self, order: &mut [u32]) {
+        let h = self.half_edge_count() as u32;
+        let ends = |origins: &[u32], he: u32| {
+            let next = HalfEdgeMesh::next(he);
+            let a = origins.get(he as usize).copied().unwrap_or(0);
+            let b = origins.get(next as usize).copied().unwrap_or(0);
+            (a.min(b), a.max(b))
+        };
+        let origins = &*self.origins;
+        let counts = &mut *self.vertex_half_edges;
+        let vertices = self.vertex_count;
+        // By the higher vertex, from index order into `twins`.
+        counting_sort(counts, vertices, 0..h, &mut *self.twins, |he| {
+            ends(origins, he).1
+        });
+        // By the lower vertex, stably, from `twins` into `order`.
+        let by_higher = self.twins.get(..h as usize).unwrap_or_default();
+        counting_sort(counts, vertices, by_higher.iter().copied(), order, |he| {
+            ends(origins, he).0
+        });
     }
 
     fn set_twin(&mut self, he: u32, twin: u32) {
@@ -463,5 +486,39 @@ impl<'a> HalfEdgeMesh<'a> {
             .filter(|&v| self.vertex_half_edge(v).is_some())
             .count();
         used as i64 - self.edge_count() as i64 + self.triangle_count as i64
+    }
+}
+
+/// Stable counting sort of `items` by `key` (below `keys`) into `out`, with `counts` (at
+/// least `keys` long) as the bucket offsets. Keys at or past `keys`, and items past the end
+/// of `out`, are skipped (the callers' keys are vertex indices already checked in range).
+fn counting_sort(
+    counts: &mut [u32],
+    keys: usize,
+    items: impl Iterator<Item = u32> + Clone,
+    out: &mut [u32],
+    key: impl Fn(u32) -> u32,
+) {
+    let counts = counts.get_mut(..keys).unwrap_or_default();
+    counts.fill(0);
+    for item in items.clone() {
+        if let Some(c) = counts.get_mut(key(item) as usize) {
+            *c += 1;
+        }
+    }
+    // Counts to first slots.
+    let mut start = 0u32;
+    for c in counts.iter_mut() {
+        let n = *c;
+        *c = start;
+        start = start.saturating_add(n);
+    }
+    for item in items {
+        if let Some(slot) = counts.get_mut(key(item) as usize) {
+            if let Some(o) = out.get_mut(*slot as usize) {
+                *o = item;
+            }
+            *slot += 1;
+        }
     }
 }

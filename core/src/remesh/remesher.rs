@@ -22,6 +22,12 @@ pub struct RemeshReport {
     pub flips: usize,
     /// Crease edges marked at the start.
     pub creases: usize,
+    /// The most vertices the mesh held at once (after a split pass): buffers of this many
+    /// vertices and [`peak_triangles`](Self::peak_triangles) triangles are enough to repeat
+    /// the run.
+    pub peak_vertices: usize,
+    /// The most triangles the mesh held at once.
+    pub peak_triangles: usize,
 }
 
 /// The mean length of the mesh's edges (each counted once); 0 for a mesh without edges.
@@ -114,11 +120,16 @@ pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
     mesh.drop_unused_vertices();
     let mut report = RemeshReport {
         creases: config.feature_angle.map_or(0, |a| mesh.mark_creases(a)),
+        peak_vertices: mesh.vertex_count(),
+        peak_triangles: mesh.triangle_count(),
         ..RemeshReport::default()
     };
     let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
     for _ in 0..config.iterations {
         report.splits += split_long_edges(mesh, high)?;
+        // Only splits add: the counts peak here.
+        report.peak_vertices = report.peak_vertices.max(mesh.vertex_count());
+        report.peak_triangles = report.peak_triangles.max(mesh.triangle_count());
         report.collapses += collapse_short_edges::<true>(mesh, low, high);
         report.flips += equalize_valences(mesh);
         smooth_tangentially(mesh, positions_scratch);
