@@ -6,10 +6,12 @@
 pub mod assets;
 pub mod oracle;
 pub mod suite;
+pub mod topology;
 pub mod workload;
 
 pub use assets::{LoadedMesh, MESHES, in_stadium, load_mesh, load_obj, spot_patch};
 pub use meshq_workload::SplitMix64;
+pub use topology::Topology;
 
 use meshq::MeshBvh;
 use meshq::blob::MeshLayout;

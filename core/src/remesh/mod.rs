@@ -9,6 +9,7 @@
 //! through any [`MeshQuery`](crate::query::MeshQuery) (a BVH over the input).
 
 mod capacity;
+mod check;
 mod config;
 mod creases;
 mod edit;
@@ -19,7 +20,11 @@ mod remesher;
 pub use capacity::RemeshCapacity;
 #[cfg(feature = "alloc")]
 pub use capacity::RemeshStorage;
+pub use check::HalfEdgeDefect;
 pub use config::RemeshConfig;
 pub use half_edges::{HalfEdgeBuffers, HalfEdgeMesh, NO_HALF_EDGE};
 pub use quality::MeshQuality;
-pub use remesher::{RemeshReport, mean_edge_length, remesh, remesh_with_progress};
+pub use remesher::{
+    RemeshObserver, RemeshReport, RemeshStep, mean_edge_length, remesh, remesh_observed,
+    remesh_with_progress,
+};

@@ -30,6 +30,47 @@ pub struct RemeshReport {
     pub peak_triangles: usize,
 }
 
+/// One step of a remeshing run, as [`RemeshObserver::edited`] sees it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum RemeshStep {
+    /// An edge was split at its midpoint.
+    Split,
+    /// An edge was collapsed (the last vertex and triangles moved into the freed slots).
+    Collapse,
+    /// An edge was flipped.
+    Flip,
+    /// Every free vertex moved toward its one-ring centroid.
+    Smooth,
+    /// The smoothed vertices were put on the reference surface.
+    Project,
+}
+
+/// Watches a [`remesh_observed`] run: called after every edit and every iteration, with
+/// the mesh as it then is. It cannot change the run. Checking invariants after every edit
+/// ([`HalfEdgeMesh::check`] and the topology) is what the tests use it for; drawing the
+/// steps is another use.
+pub trait RemeshObserver {
+    /// After each split, collapse and flip, and after each smoothing and projection pass.
+    fn edited(&mut self, step: RemeshStep, mesh: &HalfEdgeMesh<'_>) {
+        let _ = (step, mesh);
+    }
+
+    /// After each iteration, with the report so far.
+    fn iterated(&mut self, report: &RemeshReport) {
+        let _ = report;
+    }
+}
+
+/// A progress callback as an observer.
+struct Progress<F>(F);
+
+impl<F: FnMut(&RemeshReport)> RemeshObserver for Progress<F> {
+    fn iterated(&mut self, report: &RemeshReport) {
+        (self.0)(report);
+    }
+}
+
 /// The mean length of the mesh's edges (each counted once); 0 for a mesh without edges.
 #[must_use]
 pub fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
@@ -92,7 +133,28 @@ pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
     reference: &Q,
     config: &RemeshConfig,
     positions_scratch: &mut [[f32; 3]],
-    mut progress: impl FnMut(&RemeshReport),
+    progress: impl FnMut(&RemeshReport),
+) -> Result<RemeshReport, RemeshError> {
+    remesh_observed(
+        mesh,
+        reference,
+        config,
+        positions_scratch,
+        &mut Progress(progress),
+    )
+}
+
+/// [`remesh`], calling `observer` after every edit and every iteration (it cannot change
+/// the result).
+///
+/// # Errors
+/// As [`remesh`].
+pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
+    config: &RemeshConfig,
+    positions_scratch: &mut [[f32; 3]],
+    observer: &mut O,
 ) -> Result<RemeshReport, RemeshError> {
     config.validate()?;
     if positions_scratch.len() < mesh.vertex_capacity() {
@@ -126,16 +188,21 @@ pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
     };
     let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
     for _ in 0..config.iterations {
-        report.splits += split_long_edges(mesh, high)?;
+        report.splits += split_long_edges(mesh, high, observer)?;
         // Only splits add: the counts peak here.
         report.peak_vertices = report.peak_vertices.max(mesh.vertex_count());
         report.peak_triangles = report.peak_triangles.max(mesh.triangle_count());
-        report.collapses += collapse_short_edges::<true>(mesh, low, high);
-        report.flips += equalize_valences(mesh);
+        report.collapses += collapse_short_edges::<true, O>(mesh, low, high, observer);
+        report.flips += equalize_valences(mesh, observer);
         smooth_tangentially(mesh, positions_scratch);
+        observer.edited(RemeshStep::Smooth, mesh);
         project(mesh, reference, positions_scratch);
+        observer.edited(RemeshStep::Project, mesh);
         report.iterations += 1;
-        progress(&report);
+        observer.iterated(&report);
+    }
+    if config.iterations > 0 {
+        report.flips += improve_angles(mesh, observer);
     }
     Ok(report)
 }
@@ -156,7 +223,11 @@ const SPLIT_SWEEPS: usize = 10;
 /// triangle's longest can make a new edge as long as it (a median as long as its side), and
 /// chasing those never ends. Each sweep halves what it splits, so a few sweeps reach the
 /// limit everywhere a mesh is reasonable.
-fn split_long_edges(mesh: &mut HalfEdgeMesh<'_>, high: f32) -> Result<usize, RemeshError> {
+fn split_long_edges<O: RemeshObserver + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    high: f32,
+    observer: &mut O,
+) -> Result<usize, RemeshError> {
     let limit = high * high;
     let mut splits = 0usize;
     for _ in 0..SPLIT_SWEEPS {
@@ -168,6 +239,7 @@ fn split_long_edges(mesh: &mut HalfEdgeMesh<'_>, high: f32) -> Result<usize, Rem
                 let mid = (mesh.position(a) + mesh.position(b)) * 0.5;
                 mesh.split_edge(he, mid)?;
                 splits += 1;
+                observer.edited(RemeshStep::Split, mesh);
             }
         }
         if splits == before {
@@ -182,10 +254,11 @@ fn split_long_edges(mesh: &mut HalfEdgeMesh<'_>, high: f32) -> Result<usize, Rem
 ///
 /// `GUARD_LONG_EDGES` false drops the rule that a collapse may not make an edge longer than
 /// `high` — wrong, kept only so a test can show it matters.
-fn collapse_short_edges<const GUARD_LONG_EDGES: bool>(
+fn collapse_short_edges<const GUARD_LONG_EDGES: bool, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
     low: f32,
     high: f32,
+    observer: &mut O,
 ) -> usize {
     let limit = low * low;
     let mut collapses = 0usize;
@@ -193,6 +266,7 @@ fn collapse_short_edges<const GUARD_LONG_EDGES: bool>(
     while (he as usize) < mesh.half_edge_count() {
         if squared_length(mesh, he) < limit && try_collapse::<GUARD_LONG_EDGES>(mesh, he, high) {
             collapses += 1;
+            observer.edited(RemeshStep::Collapse, mesh);
             // Slots were refilled from the end: look at this one again.
             continue;
         }
@@ -284,8 +358,12 @@ fn target_valence(mesh: &HalfEdgeMesh<'_>, v: u32) -> i64 {
 }
 
 /// Flips every interior edge whose flip lowers the four vertices' total distance from their
-/// target valences, unless it would fold the two triangles over.
-fn equalize_valences(mesh: &mut HalfEdgeMesh<'_>) -> usize {
+/// target valences, unless it would fold the two triangles over or, beside a crease, make
+/// one flatter than [`FLATTEST`] and than the pair was.
+fn equalize_valences<O: RemeshObserver + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    observer: &mut O,
+) -> usize {
     let mut flips = 0usize;
     for he in 0..mesh.half_edge_count() as u32 {
         let Some(g) = mesh.twin(he) else {
@@ -305,9 +383,71 @@ fn equalize_valences(mesh: &mut HalfEdgeMesh<'_>) -> usize {
         // `flip_edge` checks `can_flip` itself: the cheaper tests go first.
         if after < before && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
             flips += 1;
+            observer.edited(RemeshStep::Flip, mesh);
         }
     }
     flips
+}
+
+/// Most sweeps of [`improve_angles`].
+const ANGLE_SWEEPS: usize = 3;
+
+/// Flips interior edges whose flip raises the smaller of the pair's smallest angles without
+/// taking the four vertices farther from their target valences in total (or at any valence
+/// cost when the pair holds a sliver, an angle under about 3°), sweep after sweep
+/// until one flips nothing (at most [`ANGLE_SWEEPS`]). Vertices stay where they are.
+fn improve_angles<O: RemeshObserver + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    observer: &mut O,
+) -> usize {
+    let mut flips = 0usize;
+    for _ in 0..ANGLE_SWEEPS {
+        let before_sweep = flips;
+        for he in 0..mesh.half_edge_count() as u32 {
+            let Some(g) = mesh.twin(he) else {
+                continue;
+            };
+            if g < he {
+                continue;
+            }
+            let (a, b) = mesh.ends(he);
+            let c = mesh.origin(HalfEdgeMesh::prev(he));
+            let d = mesh.origin(HalfEdgeMesh::prev(g));
+            let [da, db, dc, dd] =
+                [a, b, c, d].map(|v| i64::from(mesh.valence(v)) - target_valence(mesh, v));
+            let before = da.abs() + db.abs() + dc.abs() + dd.abs();
+            let after = (da - 1).abs() + (db - 1).abs() + (dc + 1).abs() + (dd + 1).abs();
+            let [pa, pb, pc, pd] = [a, b, c, d].map(|v| mesh.position(v));
+            let old = smallest_angle_sine([pa, pb, pc]).min(smallest_angle_sine([pb, pa, pd]));
+            // A sliver is worth a valence step; a fair pair is not.
+            if after > before && old >= FLATTEST {
+                continue;
+            }
+            let new = smallest_angle_sine([pa, pd, pc]).min(smallest_angle_sine([pd, pb, pc]));
+            if new > old && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
+                flips += 1;
+                observer.edited(RemeshStep::Flip, mesh);
+            }
+        }
+        if flips == before_sweep {
+            break;
+        }
+    }
+    flips
+}
+
+/// The sine of the smallest angle of corners `p` (the angle between the two longest edges;
+/// at most 60°, where the sine grows with the angle); 0 for a degenerate triangle.
+fn smallest_angle_sine(p: [Vec3; 3]) -> f32 {
+    let [x, y, z] = [p[1] - p[0], p[2] - p[1], p[0] - p[2]].map(|e| libm::sqrtf(dot(e, e)));
+    let n = normal_of(p);
+    // The two longest edges' product is the largest pairwise product.
+    let product = (x * y).max(y * z).max(z * x);
+    if product > 0.0 {
+        libm::sqrtf(dot(n, n)) / product
+    } else {
+        0.0
+    }
 }
 
 /// Whether flipping the edge of `he` (twin `g`) gives two triangles facing the way the old
@@ -320,9 +460,15 @@ fn flip_keeps_orientation(mesh: &HalfEdgeMesh<'_>, he: u32, g: u32) -> bool {
     let (old0, old1) = (mesh.triangle_normal(he / 3), mesh.triangle_normal(g / 3));
     let new0 = cross(pd - pa, pc - pa);
     let new1 = cross(pb - pd, pc - pd);
-    [new0, new1]
-        .iter()
-        .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
+    // Beside a crease, where vertices are fixed and a sliver once made stays, a flip may
+    // not make one. (Elsewhere later passes mend slivers, and the guard costs quality.)
+    let near_crease = [a, b, c, d].iter().any(|&v| mesh.touches_crease(v));
+    let was = flatness([pa, pb, pc]).min(flatness([pb, pa, pd]));
+    let now = flatness([pa, pd, pc]).min(flatness([pd, pb, pc]));
+    (!near_crease || flat_enough(now, was))
+        && [new0, new1]
+            .iter()
+            .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
 }
 
 /// Whether vertex `v` may move: not on the boundary, on no crease, used by a triangle.
@@ -399,31 +545,43 @@ fn project<Q: MeshQuery + ?Sized>(mesh: &mut HalfEdgeMesh<'_>, reference: &Q, be
 /// fraction of that edge (about the sine of its smallest angle; 0.05 is about 3°).
 const FLATTEST: f32 = 0.05;
 
+/// The normal of corners `p` (length: twice the area).
+fn normal_of(p: [Vec3; 3]) -> Vec3 {
+    cross(p[1] - p[0], p[2] - p[0])
+}
+
+/// How flat corners `p` are, squared: (height over the longest edge / that edge)², about the
+/// sine of the smallest angle squared; 0 for a degenerate triangle.
+fn flatness(p: [Vec3; 3]) -> f32 {
+    let n = normal_of(p);
+    let longest = [p[1] - p[0], p[2] - p[1], p[0] - p[2]]
+        .iter()
+        .map(|&e| dot(e, e))
+        .fold(0.0f32, f32::max);
+    if longest > 0.0 {
+        dot(n, n) / (longest * longest)
+    } else {
+        0.0
+    }
+}
+
+/// Whether an edit that replaces triangles as flat as `was` (the flattest of them) with
+/// ones as flat as `now` is allowed: not below [`FLATTEST`] unless no worse than before.
+fn flat_enough(now: f32, was: f32) -> bool {
+    now >= FLATTEST * FLATTEST || now >= was
+}
+
 /// Whether moving vertex `v` to `to` keeps each of its triangles facing the same way and no
 /// flatter than [`FLATTEST`] (unless it was flatter already and gets no worse).
 fn moves_safely(mesh: &HalfEdgeMesh<'_>, v: u32, to: Vec3) -> bool {
-    let flatness = |p: [Vec3; 3]| {
-        let n = cross(p[1] - p[0], p[2] - p[0]);
-        let longest = [p[1] - p[0], p[2] - p[1], p[0] - p[2]]
-            .iter()
-            .map(|&e| dot(e, e))
-            .fold(0.0f32, f32::max);
-        // |n| / longest² is the height over the longest edge; compared squared.
-        (
-            n,
-            if longest > 0.0 {
-                dot(n, n) / (longest * longest)
-            } else {
-                0.0
-            },
-        )
-    };
     let mut safe = true;
     mesh.for_each_outgoing(v, |he| {
         let corners = mesh.triangle(he / 3);
-        let (before, was) = flatness(corners.map(|x| mesh.position(x)));
-        let (after, now) = flatness(corners.map(|x| if x == v { to } else { mesh.position(x) }));
-        safe &= dot(before, after) > 0.0 && (now >= FLATTEST * FLATTEST || now >= was);
+        let before = corners.map(|x| mesh.position(x));
+        let after = corners.map(|x| if x == v { to } else { mesh.position(x) });
+        let (was, now) = (flatness(before), flatness(after));
+        let (before, after) = (normal_of(before), normal_of(after));
+        safe &= dot(before, after) > 0.0 && flat_enough(now, was);
     });
     safe
 }
@@ -484,9 +642,9 @@ mod tests {
             let mut mesh = HalfEdgeMesh::from_mesh(&input, buffers, &mut scratch).unwrap();
             assert!(longest(&mesh) <= high);
             let collapses = if guard {
-                collapse_short_edges::<true>(&mut mesh, low, high)
+                collapse_short_edges::<true, _>(&mut mesh, low, high, &mut Progress(|_: &_| {}))
             } else {
-                collapse_short_edges::<false>(&mut mesh, low, high)
+                collapse_short_edges::<false, _>(&mut mesh, low, high, &mut Progress(|_: &_| {}))
             };
             if guard {
                 assert_eq!(collapses, 0);

@@ -1,0 +1,273 @@
+//! After every single edit of a remeshing run — each split, collapse and flip, each
+//! smoothing and projection pass — the mesh is checked: the half-edge structure is sound
+//! ([`HalfEdgeMesh::check`]), the triangle list counted independently is manifold and
+//! consistently oriented with the input's Euler characteristic and boundary loops, and no
+//! triangle turned over: a smoothing or projection pass keeps every triangle facing its own
+//! way, and a split, collapse or flip makes new triangles that face the way the triangles
+//! they replace did together.
+//!
+//! A full check after every edit costs time proportional to the mesh, so these runs use small
+//! meshes: the UV sphere, a patch of spot (a boundary), and coarse remeshes of fandisk (creases
+//! kept) and of the bunny (holes).
+
+use meshq::MeshBvh;
+use meshq::Vec3;
+use meshq::bvh::BuildConfig;
+use meshq::math::cross;
+use meshq::mesh::MeshRef;
+use meshq::owned::{Remeshed, mean_edge_length};
+use meshq::remesh::{
+    HalfEdgeMesh, RemeshCapacity, RemeshConfig, RemeshObserver, RemeshStep, RemeshStorage,
+    remesh_observed,
+};
+use meshq_tests::{Topology, load_mesh, spot_patch};
+use std::collections::{HashMap, HashSet};
+
+struct Invariants<'a> {
+    name: &'a str,
+    topology: Topology,
+    /// Every triangle's corners after the last edit.
+    previous: Vec<[Vec3; 3]>,
+    edits: usize,
+    steps: [usize; 5],
+}
+
+impl RemeshObserver for Invariants<'_> {
+    fn edited(&mut self, step: RemeshStep, mesh: &HalfEdgeMesh<'_>) {
+        self.edits += 1;
+        self.steps[match step {
+            RemeshStep::Split => 0,
+            RemeshStep::Collapse => 1,
+            RemeshStep::Flip => 2,
+            RemeshStep::Smooth => 3,
+            _ => 4,
+        }] += 1;
+        let at = || format!("{}: after edit {} ({step:?})", self.name, self.edits);
+        if let Err(defect) = mesh.check() {
+            panic!("{}: {defect}", at());
+        }
+        let triangles: Vec<[u32; 3]> = (0..mesh.triangle_count() as u32)
+            .map(|t| mesh.triangle(t))
+            .collect();
+        let now = Topology::of(mesh.vertex_count(), &triangles);
+        assert!(now.manifold_oriented, "{}", at());
+        assert_eq!(
+            (now.euler, now.boundary_loops),
+            (self.topology.euler, self.topology.boundary_loops),
+            "{}: Euler characteristic and boundary loops",
+            at()
+        );
+        let corners: Vec<[Vec3; 3]> = triangles
+            .iter()
+            .map(|t| t.map(|v| mesh.position(v)))
+            .collect();
+        match step {
+            // Positions move, triangles keep their slots: none may turn over.
+            RemeshStep::Smooth | RemeshStep::Project => {
+                for (t, (old, new)) in self.previous.iter().zip(&corners).enumerate() {
+                    let (old, new) = (normal(old), normal(new));
+                    assert!(
+                        old == Vec3::ZERO || old.dot(new) > 0.0,
+                        "{}: triangle {t} turned over or flattened",
+                        at()
+                    );
+                }
+            }
+            // Triangles replaced. They are matched by their corners' coordinates, which edits
+            // elsewhere (and the renumbering a collapse does) leave alone.
+            _ => {
+                let before: HashMap<[[u32; 3]; 3], Vec3> =
+                    self.previous.iter().map(|c| (key(c), normal(c))).collect();
+                let after: HashSet<[[u32; 3]; 3]> = corners.iter().map(key).collect();
+                let replaced: Vec<Vec3> = before
+                    .iter()
+                    .filter(|(k, _)| !after.contains(*k))
+                    .map(|(_, &n)| n)
+                    .collect();
+                let new: Vec<&[Vec3; 3]> = corners
+                    .iter()
+                    .filter(|c| !before.contains_key(&key(c)))
+                    .collect();
+                // A collapse's neighbourhood, as it was: the old triangles at the two merged
+                // vertices. (The new fan may not face against their summed normal: a
+                // triangle may turn steeply there, but not over.) Those are the positions the removed triangles had and the new
+                // ones lack, and the one position every new triangle shares.
+                let vanished: Vec<Vec3> = self
+                    .previous
+                    .iter()
+                    .filter(|c| !after.contains(&key(c)))
+                    .flatten()
+                    .filter(|p| !new.iter().any(|c| c.contains(p)))
+                    .copied()
+                    .collect();
+                let merged: Vec<Vec3> = new
+                    .first()
+                    .map(|c| {
+                        c.iter()
+                            .filter(|p| new.iter().all(|n| n.contains(p)))
+                            .copied()
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                // Each triangle counted once per merged vertex it has (twice for the two on
+                // the collapsed edge): the area-weighted normal of both fans.
+                let sum: Vec3 = self
+                    .previous
+                    .iter()
+                    .map(|c| {
+                        let at = c
+                            .iter()
+                            .filter(|p| vanished.contains(p) || merged.contains(p))
+                            .count();
+                        normal(c) * at as f32
+                    })
+                    .sum();
+                for c in new {
+                    let n = normal(c);
+                    // A triangle within a degenerate one (a split sliver) has no facing.
+                    if flatness(c) < 1e-12 {
+                        continue;
+                    }
+                    let faces = match step {
+                        // Each half of a split triangle lies in it: the same normal.
+                        RemeshStep::Split => replaced.iter().any(|r| n.dot(*r) > 0.0),
+                        // A flipped pair faces the way both old triangles did.
+                        RemeshStep::Flip => replaced.iter().all(|r| n.dot(*r) > 0.0),
+                        // A collapse's new fan faces the way its old neighbourhood did
+                        // together.
+                        _ => n.dot(sum) > 0.0,
+                    };
+                    assert!(
+                        faces,
+                        "{}: new triangle {c:?} faces against those it replaced",
+                        at()
+                    );
+                }
+            }
+        }
+        self.previous = corners;
+    }
+}
+
+/// (Twice the area / the longest edge squared)²: about the sine of the smallest angle,
+/// squared.
+fn flatness(c: &[Vec3; 3]) -> f32 {
+    let longest = [c[1] - c[0], c[2] - c[1], c[0] - c[2]]
+        .iter()
+        .map(|e| e.length_squared())
+        .fold(0.0f32, f32::max);
+    if longest > 0.0 {
+        normal(c).length_squared() / (longest * longest)
+    } else {
+        0.0
+    }
+}
+
+/// The normal (length: twice the area) of a triangle's corners.
+fn normal(c: &[Vec3; 3]) -> Vec3 {
+    cross(c[1] - c[0], c[2] - c[0])
+}
+
+/// A triangle's corners as coordinate bits, rotated to start at the least: the same key for
+/// the same oriented triangle whatever its vertex numbers.
+fn key(c: &[Vec3; 3]) -> [[u32; 3]; 3] {
+    let bits = c.map(|p| p.to_array().map(f32::to_bits));
+    let first = (0..3).min_by_key(|&k| bits[k]).unwrap_or(0);
+    [bits[first], bits[(first + 1) % 3], bits[(first + 2) % 3]]
+}
+
+/// Remeshes `positions`/`triangles` with `config`, checking after every edit.
+fn checked_run(name: &str, positions: &[[f32; 3]], triangles: &[[u32; 3]], config: &RemeshConfig) {
+    let input = MeshRef::new(positions, triangles).validate().unwrap();
+    let reference = MeshBvh::build(&input, &BuildConfig::default()).unwrap();
+    let capacity = RemeshCapacity::for_mesh(&input, config.target_length);
+    let mut storage = RemeshStorage::new(capacity).unwrap();
+    let mut pairing = vec![0u32; capacity.pairing_scratch()];
+    let mut mesh = HalfEdgeMesh::from_mesh(&input, storage.buffers(), &mut pairing).unwrap();
+    let mut smoothing = vec![[0.0f32; 3]; capacity.vertices];
+    let topology = Topology::of(positions.len(), triangles);
+    assert!(topology.manifold_oriented, "{name}: input");
+    let mut observer = Invariants {
+        name,
+        topology,
+        previous: (0..mesh.triangle_count() as u32)
+            .map(|t| mesh.triangle(t).map(|v| mesh.position(v)))
+            .collect(),
+        edits: 0,
+        steps: [0; 5],
+    };
+    let report = remesh_observed(&mut mesh, &reference, config, &mut smoothing, &mut observer)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let [splits, collapses, flips, smooths, projections] = observer.steps;
+    // Every edit was seen, and each kind happened: the checks ran on all of them.
+    assert_eq!(
+        (splits, collapses, flips),
+        (report.splits, report.collapses, report.flips),
+        "{name}"
+    );
+    assert_eq!((smooths, projections), (10, 10), "{name}");
+    assert!(
+        splits > 0 && collapses > 0 && flips > 0,
+        "{name}: {report:?}"
+    );
+    eprintln!("{name}: {} edits checked ({report:?})", observer.edits);
+}
+
+/// A coarse remesh of a bundled mesh: small enough to check in full after every edit.
+fn coarse(name: &str, ratio: f32, feature_angle: Option<f32>) -> Remeshed {
+    let loaded = load_mesh(name);
+    let mesh = loaded.valid();
+    let config = RemeshConfig {
+        target_length: ratio * mean_edge_length(&mesh),
+        feature_angle,
+        ..RemeshConfig::default()
+    };
+    Remeshed::of(&mesh, &config).unwrap()
+}
+
+#[test]
+fn the_sphere_stays_sound_after_every_edit() {
+    let sphere = load_mesh("uv-sphere");
+    checked_run(
+        "uv-sphere",
+        &sphere.positions,
+        &sphere.triangles,
+        &RemeshConfig::default(),
+    );
+}
+
+#[test]
+fn a_patch_with_a_boundary_stays_sound_after_every_edit() {
+    let (positions, triangles) = spot_patch();
+    checked_run(
+        "spot patch",
+        &positions,
+        &triangles,
+        &RemeshConfig::default(),
+    );
+}
+
+#[test]
+fn coarse_fandisk_with_creases_stays_sound_after_every_edit() {
+    let input = coarse("fandisk", 3.0, Some(45.0));
+    let config = RemeshConfig {
+        feature_angle: Some(45.0),
+        ..RemeshConfig::default()
+    };
+    checked_run(
+        "coarse fandisk",
+        &input.positions,
+        &input.triangles,
+        &config,
+    );
+}
+
+#[test]
+fn the_coarse_bunny_with_its_holes_stays_sound_after_every_edit() {
+    let input = coarse("stanford-bunny", 5.0, None);
+    let config = RemeshConfig {
+        target_length: 0.8 * input.after.mean_edge,
+        ..RemeshConfig::default()
+    };
+    checked_run("coarse bunny", &input.positions, &input.triangles, &config);
+}
