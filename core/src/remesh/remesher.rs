@@ -357,6 +357,35 @@ fn target_valence(mesh: &HalfEdgeMesh<'_>, v: u32) -> i64 {
     if mesh.is_boundary_vertex(v) { 4 } else { 6 }
 }
 
+/// An interior edge seen from its lower half-edge, with what flipping it does to valences.
+struct FlipCandidate {
+    /// The twin half-edge.
+    g: u32,
+    /// The edge's ends `a`, `b` and the opposite corners `c` (in `he`'s triangle) and `d`.
+    corners: [u32; 4],
+    /// The four vertices' total distance from their target valences now,
+    before: i64,
+    /// and after the flip (`a`, `b` lose an edge, `c`, `d` gain one).
+    after: i64,
+}
+
+/// The flip candidate of half-edge `he`: `None` on the boundary and for the higher
+/// half-edge of a pair, so each edge is seen once.
+fn flip_candidate(mesh: &HalfEdgeMesh<'_>, he: u32) -> Option<FlipCandidate> {
+    let g = mesh.twin(he).filter(|&g| g > he)?;
+    let (a, b) = mesh.ends(he);
+    let c = mesh.origin(HalfEdgeMesh::prev(he));
+    let d = mesh.origin(HalfEdgeMesh::prev(g));
+    let [da, db, dc, dd] =
+        [a, b, c, d].map(|v| i64::from(mesh.valence(v)) - target_valence(mesh, v));
+    Some(FlipCandidate {
+        g,
+        corners: [a, b, c, d],
+        before: da.abs() + db.abs() + dc.abs() + dd.abs(),
+        after: (da - 1).abs() + (db - 1).abs() + (dc + 1).abs() + (dd + 1).abs(),
+    })
+}
+
 /// Flips every interior edge whose flip lowers the four vertices' total distance from their
 /// target valences, unless it would fold the two triangles over or, beside a crease, make
 /// one flatter than [`FLATTEST`] and than the pair was.
@@ -366,20 +395,12 @@ fn equalize_valences<O: RemeshObserver + ?Sized>(
 ) -> usize {
     let mut flips = 0usize;
     for he in 0..mesh.half_edge_count() as u32 {
-        let Some(g) = mesh.twin(he) else {
+        let Some(FlipCandidate {
+            g, before, after, ..
+        }) = flip_candidate(mesh, he)
+        else {
             continue;
         };
-        if g < he {
-            continue;
-        }
-        let (a, b) = mesh.ends(he);
-        let c = mesh.origin(HalfEdgeMesh::prev(he));
-        let d = mesh.origin(HalfEdgeMesh::prev(g));
-        // Each vertex's distance from its target valence, now and after the flip.
-        let [da, db, dc, dd] =
-            [a, b, c, d].map(|v| i64::from(mesh.valence(v)) - target_valence(mesh, v));
-        let before = da.abs() + db.abs() + dc.abs() + dd.abs();
-        let after = (da - 1).abs() + (db - 1).abs() + (dc + 1).abs() + (dd + 1).abs();
         // `flip_edge` checks `can_flip` itself: the cheaper tests go first.
         if after < before && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
             flips += 1;
@@ -404,20 +425,16 @@ fn improve_angles<O: RemeshObserver + ?Sized>(
     for _ in 0..ANGLE_SWEEPS {
         let before_sweep = flips;
         for he in 0..mesh.half_edge_count() as u32 {
-            let Some(g) = mesh.twin(he) else {
+            let Some(FlipCandidate {
+                g,
+                corners,
+                before,
+                after,
+            }) = flip_candidate(mesh, he)
+            else {
                 continue;
             };
-            if g < he {
-                continue;
-            }
-            let (a, b) = mesh.ends(he);
-            let c = mesh.origin(HalfEdgeMesh::prev(he));
-            let d = mesh.origin(HalfEdgeMesh::prev(g));
-            let [da, db, dc, dd] =
-                [a, b, c, d].map(|v| i64::from(mesh.valence(v)) - target_valence(mesh, v));
-            let before = da.abs() + db.abs() + dc.abs() + dd.abs();
-            let after = (da - 1).abs() + (db - 1).abs() + (dc + 1).abs() + (dd + 1).abs();
-            let [pa, pb, pc, pd] = [a, b, c, d].map(|v| mesh.position(v));
+            let [pa, pb, pc, pd] = corners.map(|v| mesh.position(v));
             let old = smallest_angle_sine([pa, pb, pc]).min(smallest_angle_sine([pb, pa, pd]));
             // A sliver is worth a valence step; a fair pair is not.
             if after > before && old >= FLATTEST {
