@@ -95,11 +95,12 @@ echo "remeshing (--features remesh): code $remesh_code bytes; stack high-water $
 echo "heap: 0 bytes (no allocator linked)"
 # The BVH keeps the 2 KiB stack budget. The octree's walk keeps up to seven sibling cells per
 # level on its stack: its cost is reported, and held to what it measured, 8 KiB.
-# Remeshing keeps its arrays on the stack: held to what it measured, 40 KiB of code and
-# 48 KiB of stack in the 64 KiB of RAM.
+# Remeshing keeps its arrays on the stack: held to what it measured, 44 KiB of code (40 KiB
+# until the final angle pass, which moves single vertices to widen small angles, added about
+# 2.5 KiB) and 48 KiB of stack in the 64 KiB of RAM.
 if [ "$code" -gt 24576 ] || [ "$stack" -gt 2048 ] || [ "$octree_stack" -gt 8192 ] ||
-  [ "$remesh_code" -gt 40960 ] || [ "$remesh_stack" -gt 49152 ]; then
+  [ "$remesh_code" -gt 45056 ] || [ "$remesh_stack" -gt 49152 ]; then
   echo "over budget: code must be <= 24 KiB, the BVH's stack <= 2 KiB, the octree's <= 8 KiB," \
-    "remeshing's code <= 40 KiB and its stack <= 48 KiB" >&2
+    "remeshing's code <= 44 KiB and its stack <= 48 KiB" >&2
   exit 1
 fi

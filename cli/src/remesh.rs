@@ -72,6 +72,8 @@ struct Summary {
     collapses: usize,
     flips: usize,
     creases: usize,
+    /// Vertices moved after the iterations to widen small angles.
+    relaxed: usize,
     /// The most vertices and triangles held at once: buffers this large repeat the run.
     peak_vertices: usize,
     peak_triangles: usize,
@@ -121,6 +123,7 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
         collapses: r.collapses,
         flips: r.flips,
         creases: r.creases,
+        relaxed: r.relaxed,
         peak_vertices: r.peak_vertices,
         peak_triangles: r.peak_triangles,
         before: remeshed.before.into(),

@@ -70,7 +70,7 @@ fn remeshed_meshes_are_sound_on_the_surface_and_better_shaped() {
             name: "spot",
             feature_angle: None,
             valence_6: 80.0,
-            min_angle: 30.0,
+            min_angle: 38.0,
             under_30: 0.0,
             edge_cv: 0.09,
             distance: 1.0e-2,
@@ -79,7 +79,7 @@ fn remeshed_meshes_are_sound_on_the_surface_and_better_shaped() {
             name: "fandisk",
             feature_angle: None,
             valence_6: 85.5,
-            min_angle: 32.0,
+            min_angle: 38.0,
             under_30: 0.0,
             edge_cv: 0.1,
             distance: 1.0e-2,
@@ -88,19 +88,20 @@ fn remeshed_meshes_are_sound_on_the_surface_and_better_shaped() {
             name: "stanford-bunny",
             feature_angle: None,
             valence_6: 84.5,
-            min_angle: 26.0,
-            under_30: 0.06,
+            min_angle: 32.0,
+            under_30: 0.02,
             edge_cv: 0.11,
             distance: 3.5e-3,
         },
         // Creases sharper than 45° kept: no slivers where creases meet, and the issue's
-        // distance target (3.8e-3).
+        // distance target (3.8e-3). Two of fandisk's creases meet at 19.4°, an angle any
+        // mesh keeping them inherits: the smallest angle can be little more.
         Expect {
             name: "fandisk",
             feature_angle: Some(45.0),
             valence_6: 84.0,
-            min_angle: 18.0,
-            under_30: 0.25,
+            min_angle: 20.0,
+            under_30: 0.05,
             edge_cv: 0.12,
             distance: 3.8e-3,
         },

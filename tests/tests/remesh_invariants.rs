@@ -1,5 +1,6 @@
 //! After every single edit of a remeshing run — each split, collapse and flip, each
-//! smoothing and projection pass — the mesh is checked: the half-edge structure is sound
+//! smoothing and projection pass, each vertex moved by the final angle pass — the mesh is
+//! checked: the half-edge structure is sound
 //! ([`HalfEdgeMesh::check`]), the triangle list counted independently is manifold and
 //! consistently oriented with the input's Euler characteristic and boundary loops, and no
 //! triangle turned over: a smoothing or projection pass keeps every triangle facing its own
@@ -17,8 +18,8 @@ use meshq::math::cross;
 use meshq::mesh::MeshRef;
 use meshq::owned::{Remeshed, mean_edge_length};
 use meshq::remesh::{
-    HalfEdgeMesh, RemeshCapacity, RemeshConfig, RemeshObserver, RemeshStep, RemeshStorage,
-    remesh_observed,
+    HalfEdgeMesh, RemeshCapacity, RemeshConfig, RemeshObserver, RemeshReport, RemeshStep,
+    RemeshStorage, remesh_observed,
 };
 use meshq_tests::{Topology, load_mesh, spot_patch};
 use std::collections::{HashMap, HashSet};
@@ -29,7 +30,7 @@ struct Invariants<'a> {
     /// Every triangle's corners after the last edit.
     previous: Vec<[Vec3; 3]>,
     edits: usize,
-    steps: [usize; 5],
+    steps: [usize; 6],
 }
 
 impl RemeshObserver for Invariants<'_> {
@@ -40,7 +41,8 @@ impl RemeshObserver for Invariants<'_> {
             RemeshStep::Collapse => 1,
             RemeshStep::Flip => 2,
             RemeshStep::Smooth => 3,
-            _ => 4,
+            RemeshStep::Project => 4,
+            _ => 5,
         }] += 1;
         let at = || format!("{}: after edit {} ({step:?})", self.name, self.edits);
         if let Err(defect) = mesh.check() {
@@ -63,7 +65,7 @@ impl RemeshObserver for Invariants<'_> {
             .collect();
         match step {
             // Positions move, triangles keep their slots: none may turn over.
-            RemeshStep::Smooth | RemeshStep::Project => {
+            RemeshStep::Smooth | RemeshStep::Project | RemeshStep::Relax => {
                 for (t, (old, new)) in self.previous.iter().zip(&corners).enumerate() {
                     let (old, new) = (normal(old), normal(new));
                     assert!(
@@ -176,8 +178,14 @@ fn key(c: &[Vec3; 3]) -> [[u32; 3]; 3] {
     [bits[first], bits[(first + 1) % 3], bits[(first + 2) % 3]]
 }
 
-/// Remeshes `positions`/`triangles` with `config`, checking after every edit.
-fn checked_run(name: &str, positions: &[[f32; 3]], triangles: &[[u32; 3]], config: &RemeshConfig) {
+/// Remeshes `positions`/`triangles` with `config`, checking after every edit; returns the
+/// run's report.
+fn checked_run(
+    name: &str,
+    positions: &[[f32; 3]],
+    triangles: &[[u32; 3]],
+    config: &RemeshConfig,
+) -> RemeshReport {
     let input = MeshRef::new(positions, triangles).validate().unwrap();
     let reference = MeshBvh::build(&input, &BuildConfig::default()).unwrap();
     let capacity = RemeshCapacity::for_mesh(&input, config.target_length);
@@ -194,15 +202,20 @@ fn checked_run(name: &str, positions: &[[f32; 3]], triangles: &[[u32; 3]], confi
             .map(|t| mesh.triangle(t).map(|v| mesh.position(v)))
             .collect(),
         edits: 0,
-        steps: [0; 5],
+        steps: [0; 6],
     };
     let report = remesh_observed(&mut mesh, &reference, config, &mut smoothing, &mut observer)
         .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let [splits, collapses, flips, smooths, projections] = observer.steps;
+    let [splits, collapses, flips, smooths, projections, relaxed] = observer.steps;
     // Every edit was seen, and each kind happened: the checks ran on all of them.
     assert_eq!(
-        (splits, collapses, flips),
-        (report.splits, report.collapses, report.flips),
+        (splits, collapses, flips, relaxed),
+        (
+            report.splits,
+            report.collapses,
+            report.flips,
+            report.relaxed
+        ),
         "{name}"
     );
     assert_eq!((smooths, projections), (10, 10), "{name}");
@@ -211,6 +224,7 @@ fn checked_run(name: &str, positions: &[[f32; 3]], triangles: &[[u32; 3]], confi
         "{name}: {report:?}"
     );
     eprintln!("{name}: {} edits checked ({report:?})", observer.edits);
+    report
 }
 
 /// A coarse remesh of a bundled mesh: small enough to check in full after every edit.
@@ -239,12 +253,13 @@ fn the_sphere_stays_sound_after_every_edit() {
 #[test]
 fn a_patch_with_a_boundary_stays_sound_after_every_edit() {
     let (positions, triangles) = spot_patch();
-    checked_run(
+    let report = checked_run(
         "spot patch",
         &positions,
         &triangles,
         &RemeshConfig::default(),
     );
+    assert!(report.relaxed > 0, "the final angle pass was checked too");
 }
 
 #[test]
@@ -254,12 +269,13 @@ fn coarse_fandisk_with_creases_stays_sound_after_every_edit() {
         feature_angle: Some(45.0),
         ..RemeshConfig::default()
     };
-    checked_run(
+    let report = checked_run(
         "coarse fandisk",
         &input.positions,
         &input.triangles,
         &config,
     );
+    assert!(report.relaxed > 0, "the final angle pass was checked too");
 }
 
 #[test]
@@ -269,5 +285,6 @@ fn the_coarse_bunny_with_its_holes_stays_sound_after_every_edit() {
         target_length: 0.8 * input.after.mean_edge,
         ..RemeshConfig::default()
     };
-    checked_run("coarse bunny", &input.positions, &input.triangles, &config);
+    let report = checked_run("coarse bunny", &input.positions, &input.triangles, &config);
+    assert!(report.relaxed > 0, "the final angle pass was checked too");
 }

@@ -106,7 +106,7 @@ fn figures(q: &MeshQuality, triangles: &[[u32; 3]]) -> Result<Object, JsError> {
 /// iteration count (default 10) and the crease angle in degrees to keep (default none).
 ///
 /// Returns `{ positions: Float32Array, indices: Uint32Array, iterations, splits, collapses,
-/// flips, creases, peakVertices, peakTriangles, distance, before, after }` (the peaks: the
+/// flips, relaxed, creases, peakVertices, peakTriangles, distance, before, after }` (the peaks: the
 /// most vertices and triangles held at once), where `before` and `after` hold `triangles`,
 /// `vertices`, `valence6Percent`, `minAngleOffBoundary` (degrees), `under30Percent`,
 /// `meanEdge`, `edgeCv` and `valences` (interior vertices by valence, the last entry 12 and
@@ -148,6 +148,7 @@ pub fn remesh(positions: Vec<f32>, indices: JsValue, options: JsValue) -> Result
     set(&result, "splits", r.splits as f64)?;
     set(&result, "collapses", r.collapses as f64)?;
     set(&result, "flips", r.flips as f64)?;
+    set(&result, "relaxed", r.relaxed as f64)?;
     set(&result, "creases", r.creases as f64)?;
     set(&result, "peakVertices", r.peak_vertices as f64)?;
     set(&result, "peakTriangles", r.peak_triangles as f64)?;

@@ -13,8 +13,9 @@ pub struct RemeshConfig {
     /// [`RemeshConfig::MAX_ITERATIONS`].
     pub iterations: u32,
     /// Edges whose two triangles' normals differ by more than this angle, in degrees, are
-    /// creases and kept: never flipped, their vertices never moved or removed (they are split
-    /// along the crease). `None` (the default) keeps none; otherwise in `(0, 180)`.
+    /// creases and kept: never flipped, split along the crease, and their vertices moved or
+    /// removed only along a nearly straight crease line (see [`remesh`](super::remesh)).
+    /// `None` (the default) keeps none; otherwise in `(0, 180)`.
     pub feature_angle: Option<f32>,
 }
 

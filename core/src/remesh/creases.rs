@@ -32,6 +32,7 @@ impl HalfEdgeMesh<'_> {
             }
             creases += usize::from(crease);
         }
+        self.has_creases = creases > 0;
         creases / 2
     }
 }

@@ -5,6 +5,10 @@ use glam::Vec3;
 
 use super::half_edges::{HalfEdgeMesh, NO_HALF_EDGE};
 use crate::error::{RemeshBuffer, RemeshError};
+use crate::math::dot;
+
+/// Cosine of the most a crease line may turn at a vertex that a collapse removes (20°).
+const CREASE_TURN_COSINE: f32 = 0.94;
 
 /// An outer half-edge of the triangles an edit rewrites: its twin and crease flag, saved
 /// before the rewrite.
@@ -22,6 +26,7 @@ impl HalfEdgeMesh<'_> {
     }
 
     fn set_crease(&mut self, he: u32, crease: bool) {
+        self.has_creases |= crease;
         if let Some(slot) = self.creases.get_mut(he as usize) {
             *slot = crease;
         }
@@ -269,13 +274,13 @@ impl HalfEdgeMesh<'_> {
     }
 
     /// Whether the edge of `he` (from `a` to `b`) may be collapsed, moving `a` into `b`: `a`
-    /// is not on the boundary and touches no crease, and the edge passes the link condition
-    /// (the only vertices both ends neighbour are the corners opposite the edge), so the
-    /// result stays manifold with the same topology.
+    /// may be removed (see [`may_remove`](Self::may_remove)), and the edge passes the link
+    /// condition (the only vertices both ends neighbour are the corners opposite the edge),
+    /// so the result stays manifold with the same topology.
     #[must_use]
     pub fn can_collapse(&self, he: u32) -> bool {
         let (a, b) = self.ends(he);
-        if self.is_boundary_vertex(a) || self.touches_crease(a) {
+        if !self.may_remove(he) {
             return false;
         }
         let Some(g) = self.twin(he) else {
@@ -294,9 +299,59 @@ impl HalfEdgeMesh<'_> {
         shared_ok && self.can_lose_edge(c) && self.can_lose_edge(d) && self.triangle_count > 4
     }
 
+    /// Whether the vertex `a` that half-edge `he` leaves may be removed by collapsing `he`'s
+    /// edge, so that `a`'s edges then end at the other end `b`. Not on the boundary; and
+    /// either on no crease, or inside a nearly straight crease line (see
+    /// [`crease_line_through`](Self::crease_line_through)) of which `he`'s edge is part.
+    /// The line then runs from `a`'s other crease neighbour straight to `b`, where it
+    /// nearly ran already. A corner where creases meet, or a crease's end, is never removed.
+    #[must_use]
+    pub fn may_remove(&self, he: u32) -> bool {
+        let (a, b) = self.ends(he);
+        if self.is_boundary_vertex(a) {
+            return false;
+        }
+        if !self.touches_crease(a) {
+            return true;
+        }
+        self.is_crease(he)
+            && self
+                .crease_line_through(a)
+                .is_some_and(|(p, n)| p == b || n == b)
+    }
+
+    /// The two crease neighbours of vertex `v` when `v` lies inside a crease line: off the
+    /// boundary, with exactly two crease edges, turning there by at most about 20°.
+    /// `None` for a vertex on no crease, a corner where creases meet, a crease's end or a
+    /// sharp bend.
+    #[must_use]
+    pub fn crease_line_through(&self, v: u32) -> Option<(u32, u32)> {
+        if self.is_boundary_vertex(v) {
+            return None;
+        }
+        let (mut count, mut ends) = (0u32, [v; 2]);
+        self.for_each_outgoing(v, |out| {
+            if self.is_crease(out) {
+                if let Some(slot) = ends.get_mut(count as usize) {
+                    *slot = self.ends(out).1;
+                }
+                count += 1;
+            }
+        });
+        let [p, n] = ends;
+        let (pp, pv, pn) = (self.position(p), self.position(v), self.position(n));
+        let (into, out) = (pv - pp, pn - pv);
+        let lengths = libm::sqrtf(dot(into, into) * dot(out, out));
+        (count == 2 && lengths > 0.0 && dot(into, out) >= CREASE_TURN_COSINE * lengths)
+            .then_some((p, n))
+    }
+
     /// Whether any edge at vertex `v` is a crease.
     #[must_use]
     pub fn touches_crease(&self, v: u32) -> bool {
+        if !self.has_creases {
+            return false;
+        }
         let mut crease = false;
         self.for_each_outgoing(v, |he| {
             crease |= self.is_crease(he) || self.is_crease(Self::prev(he));

@@ -42,6 +42,9 @@ pub struct HalfEdgeMesh<'a> {
     pub(super) twins: &'a mut [u32],
     pub(super) vertex_half_edges: &'a mut [u32],
     pub(super) creases: &'a mut [bool],
+    /// Whether any half-edge may be a crease: false until one is marked, so meshes without
+    /// creases skip looking for them.
+    pub(super) has_creases: bool,
     pub(super) vertex_count: usize,
     pub(super) triangle_count: usize,
 }
@@ -111,6 +114,7 @@ impl<'a> HalfEdgeMesh<'a> {
             twins: buffers.twins,
             vertex_half_edges: buffers.vertex_half_edges,
             creases: buffers.creases,
+            has_creases: false,
             vertex_count: v,
             triangle_count: t,
         };

@@ -14,8 +14,12 @@ mod config;
 mod creases;
 mod edit;
 mod half_edges;
+mod moves;
 mod quality;
+mod relax;
 mod remesher;
+mod report;
+mod shape;
 
 pub use capacity::RemeshCapacity;
 #[cfg(feature = "alloc")]
@@ -24,7 +28,5 @@ pub use check::HalfEdgeDefect;
 pub use config::RemeshConfig;
 pub use half_edges::{HalfEdgeBuffers, HalfEdgeMesh, NO_HALF_EDGE};
 pub use quality::MeshQuality;
-pub use remesher::{
-    RemeshObserver, RemeshReport, RemeshStep, mean_edge_length, remesh, remesh_observed,
-    remesh_with_progress,
-};
+pub use remesher::{mean_edge_length, remesh, remesh_observed, remesh_with_progress};
+pub use report::{RemeshObserver, RemeshReport, RemeshStep};

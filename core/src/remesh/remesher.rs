@@ -5,71 +5,13 @@ use glam::Vec3;
 
 use super::config::RemeshConfig;
 use super::half_edges::HalfEdgeMesh;
+use super::moves::{closest_on, is_free, moves_safely};
+use super::relax::relax_small_angles;
+use super::report::{Progress, RemeshObserver, RemeshReport, RemeshStep};
+use super::shape::{FLATTEST, flat_enough, flatness, smallest_angle_sine};
 use crate::error::{RemeshBuffer, RemeshError};
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
-
-/// What a [`remesh`] run did.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct RemeshReport {
-    /// Iterations run.
-    pub iterations: u32,
-    /// Edges split.
-    pub splits: usize,
-    /// Edges collapsed.
-    pub collapses: usize,
-    /// Edges flipped.
-    pub flips: usize,
-    /// Crease edges marked at the start.
-    pub creases: usize,
-    /// The most vertices the mesh held at once (after a split pass): buffers of this many
-    /// vertices and [`peak_triangles`](Self::peak_triangles) triangles are enough to repeat
-    /// the run.
-    pub peak_vertices: usize,
-    /// The most triangles the mesh held at once.
-    pub peak_triangles: usize,
-}
-
-/// One step of a remeshing run, as [`RemeshObserver::edited`] sees it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum RemeshStep {
-    /// An edge was split at its midpoint.
-    Split,
-    /// An edge was collapsed (the last vertex and triangles moved into the freed slots).
-    Collapse,
-    /// An edge was flipped.
-    Flip,
-    /// Every free vertex moved toward its one-ring centroid.
-    Smooth,
-    /// The smoothed vertices were put on the reference surface.
-    Project,
-}
-
-/// Watches a [`remesh_observed`] run: called after every edit and every iteration, with
-/// the mesh as it then is. It cannot change the run. Checking invariants after every edit
-/// ([`HalfEdgeMesh::check`] and the topology) is what the tests use it for; drawing the
-/// steps is another use.
-pub trait RemeshObserver {
-    /// After each split, collapse and flip, and after each smoothing and projection pass.
-    fn edited(&mut self, step: RemeshStep, mesh: &HalfEdgeMesh<'_>) {
-        let _ = (step, mesh);
-    }
-
-    /// After each iteration, with the report so far.
-    fn iterated(&mut self, report: &RemeshReport) {
-        let _ = report;
-    }
-}
-
-/// A progress callback as an observer.
-struct Progress<F>(F);
-
-impl<F: FnMut(&RemeshReport)> RemeshObserver for Progress<F> {
-    fn iterated(&mut self, report: &RemeshReport) {
-        (self.0)(report);
-    }
-}
 
 /// The mean length of the mesh's edges (each counted once); 0 for a mesh without edges.
 #[must_use]
@@ -99,9 +41,17 @@ pub fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 /// over, or change the topology, flips edges that bring the four vertices' valences nearer
 /// 6 (4 on the boundary), moves every free vertex toward the area-weighted centroid of its
 /// one-ring within its tangent plane, and projects the moved vertices onto `reference`.
-/// Boundary vertices and crease vertices never move and are never removed, so boundaries
-/// and creases keep their shape (their edges are still split). Vertices no triangle uses
-/// are dropped first. `positions_scratch` holds the smoothed positions: at least one entry
+/// After the iterations, edges are flipped where that widens the pair's smallest angle
+/// without worsening valences, and the vertices of triangles with an angle under about 40°
+/// are moved, one at a time, where the angles around them are wider (see
+/// [`RemeshReport::relaxed`]).
+///
+/// Boundary vertices never move and are never removed, so boundaries keep their shape
+/// (their edges are still split). Crease edges are never flipped; a vertex inside a nearly
+/// straight crease line (turning by at most about 20°) may only be collapsed into its
+/// crease neighbour or, in the final pass, slide along the line; corners where creases meet
+/// and sharp bends stay. So creases keep their shape too. Vertices no triangle uses are
+/// dropped first. `positions_scratch` holds the smoothed positions: at least one entry
 /// per vertex the buffers can hold.
 ///
 /// The result depends only on the inputs: every operation runs in a fixed order with plain
@@ -203,6 +153,7 @@ pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     }
     if config.iterations > 0 {
         report.flips += improve_angles(mesh, observer);
+        report.relaxed = relax_small_angles(mesh, reference, low, observer);
     }
     Ok(report)
 }
@@ -249,8 +200,8 @@ fn split_long_edges<O: RemeshObserver + ?Sized>(
     Ok(splits)
 }
 
-/// Collapses edges shorter than `low` where [`stays_short`] and [`keeps_orientation`] allow, each in the
-/// direction that removes an interior vertex.
+/// Collapses edges shorter than `low` where [`stays_short`] and [`keeps_orientation`]
+/// allow, each in a direction that removes a vertex [`HalfEdgeMesh::may_remove`] allows.
 ///
 /// `GUARD_LONG_EDGES` false drops the rule that a collapse may not make an edge longer than
 /// `high` — wrong, kept only so a test can show it matters.
@@ -284,7 +235,7 @@ fn try_collapse<const GUARD_LONG_EDGES: bool>(
     for w in [Some(he), mesh.twin(he)].into_iter().flatten() {
         let (a, b) = mesh.ends(w);
         // The cheap refusals first; `can_collapse` repeats them with the link condition.
-        if mesh.is_boundary_vertex(a) || mesh.touches_crease(a) {
+        if !mesh.may_remove(w) {
             continue;
         }
         let target = if mesh.is_boundary_vertex(b) || mesh.touches_crease(b) {
@@ -395,6 +346,9 @@ fn equalize_valences<O: RemeshObserver + ?Sized>(
 ) -> usize {
     let mut flips = 0usize;
     for he in 0..mesh.half_edge_count() as u32 {
+        if !an_end_has_edges_to_spare(mesh, he) {
+            continue;
+        }
         let Some(FlipCandidate {
             g, before, after, ..
         }) = flip_candidate(mesh, he)
@@ -408,6 +362,20 @@ fn equalize_valences<O: RemeshObserver + ?Sized>(
         }
     }
     flips
+}
+
+/// Whether an end of `he`'s edge has more edges than its target valence. A flip takes an
+/// edge from both ends and gives one to both opposite corners, each moving one step nearer
+/// or farther from its target: the total falls only when three of the four move nearer, so
+/// never when both ends are at or under their targets. Cheaper than [`flip_candidate`],
+/// which also counts the corners.
+fn an_end_has_edges_to_spare(mesh: &HalfEdgeMesh<'_>, he: u32) -> bool {
+    let (a, b) = mesh.ends(he);
+    // Each interior edge once, from its lower half-edge, as `flip_candidate` sees it.
+    mesh.twin(he).is_some_and(|g| g > he)
+        && [a, b]
+            .iter()
+            .any(|&v| i64::from(mesh.valence(v)) > target_valence(mesh, v))
 }
 
 /// Most sweeps of [`improve_angles`].
@@ -453,20 +421,6 @@ fn improve_angles<O: RemeshObserver + ?Sized>(
     flips
 }
 
-/// The sine of the smallest angle of corners `p` (the angle between the two longest edges;
-/// at most 60°, where the sine grows with the angle); 0 for a degenerate triangle.
-fn smallest_angle_sine(p: [Vec3; 3]) -> f32 {
-    let [x, y, z] = [p[1] - p[0], p[2] - p[1], p[0] - p[2]].map(|e| libm::sqrtf(dot(e, e)));
-    let n = normal_of(p);
-    // The two longest edges' product is the largest pairwise product.
-    let product = (x * y).max(y * z).max(z * x);
-    if product > 0.0 {
-        libm::sqrtf(dot(n, n)) / product
-    } else {
-        0.0
-    }
-}
-
 /// Whether flipping the edge of `he` (twin `g`) gives two triangles facing the way the old
 /// pair does: each new normal has a positive dot product with both old ones.
 fn flip_keeps_orientation(mesh: &HalfEdgeMesh<'_>, he: u32, g: u32) -> bool {
@@ -486,11 +440,6 @@ fn flip_keeps_orientation(mesh: &HalfEdgeMesh<'_>, he: u32, g: u32) -> bool {
         && [new0, new1]
             .iter()
             .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
-}
-
-/// Whether vertex `v` may move: not on the boundary, on no crease, used by a triangle.
-fn is_free(mesh: &HalfEdgeMesh<'_>, v: u32) -> bool {
-    mesh.vertex_half_edge(v).is_some() && !mesh.is_boundary_vertex(v) && !mesh.touches_crease(v)
 }
 
 /// Moves every free vertex toward the area-weighted centroid of its one-ring's triangles,
@@ -535,72 +484,20 @@ fn smooth_tangentially(mesh: &mut HalfEdgeMesh<'_>, scratch: &mut [[f32; 3]]) {
 /// of its triangles over or flatten it (a vertex beside a hole projects onto the
 /// hole's rim, in line with the rim's vertices): it then stays where smoothing put it.
 ///
-/// `before` holds each vertex's position before smoothing. A vertex that was on the surface
-/// then is at most as far from it as smoothing moved it, so the query first looks only that
-/// far (a much smaller search) and only on finding nothing looks everywhere: the closest
-/// point is the same either way, so the result does not depend on it.
+/// `before` holds each vertex's position before smoothing, where it was on the surface (see
+/// [`closest_on`]).
 fn project<Q: MeshQuery + ?Sized>(mesh: &mut HalfEdgeMesh<'_>, reference: &Q, before: &[[f32; 3]]) {
     for (v, old) in (0..mesh.vertex_count() as u32).zip(before) {
         if !is_free(mesh, v) {
             continue;
         }
         let p = mesh.position(v);
-        let moved = p - Vec3::from_array(*old);
-        let near = libm::sqrtf(dot(moved, moved)) * 1.001;
-        let found = reference
-            .closest_point(p, near)
-            .or_else(|| reference.closest_point(p, f32::INFINITY));
-        if let Some(hit) = found
-            && moves_safely(mesh, v, hit.point)
+        if let Some(to) = closest_on(reference, p, Vec3::from_array(*old))
+            && moves_safely(mesh, v, to)
         {
-            mesh.set_position(v, hit.point);
+            mesh.set_position(v, to);
         }
     }
-}
-
-/// How flat a triangle may get from a projection: its height over its longest edge, as a
-/// fraction of that edge (about the sine of its smallest angle; 0.05 is about 3°).
-const FLATTEST: f32 = 0.05;
-
-/// The normal of corners `p` (length: twice the area).
-fn normal_of(p: [Vec3; 3]) -> Vec3 {
-    cross(p[1] - p[0], p[2] - p[0])
-}
-
-/// How flat corners `p` are, squared: (height over the longest edge / that edge)², about the
-/// sine of the smallest angle squared; 0 for a degenerate triangle.
-fn flatness(p: [Vec3; 3]) -> f32 {
-    let n = normal_of(p);
-    let longest = [p[1] - p[0], p[2] - p[1], p[0] - p[2]]
-        .iter()
-        .map(|&e| dot(e, e))
-        .fold(0.0f32, f32::max);
-    if longest > 0.0 {
-        dot(n, n) / (longest * longest)
-    } else {
-        0.0
-    }
-}
-
-/// Whether an edit that replaces triangles as flat as `was` (the flattest of them) with
-/// ones as flat as `now` is allowed: not below [`FLATTEST`] unless no worse than before.
-fn flat_enough(now: f32, was: f32) -> bool {
-    now >= FLATTEST * FLATTEST || now >= was
-}
-
-/// Whether moving vertex `v` to `to` keeps each of its triangles facing the same way and no
-/// flatter than [`FLATTEST`] (unless it was flatter already and gets no worse).
-fn moves_safely(mesh: &HalfEdgeMesh<'_>, v: u32, to: Vec3) -> bool {
-    let mut safe = true;
-    mesh.for_each_outgoing(v, |he| {
-        let corners = mesh.triangle(he / 3);
-        let before = corners.map(|x| mesh.position(x));
-        let after = corners.map(|x| if x == v { to } else { mesh.position(x) });
-        let (was, now) = (flatness(before), flatness(after));
-        let (before, after) = (normal_of(before), normal_of(after));
-        safe &= dot(before, after) > 0.0 && flat_enough(now, was);
-    });
-    safe
 }
 
 #[cfg(test)]
