@@ -2,6 +2,7 @@
 //! closest-point queries from files, and remesh meshes.
 
 mod bake;
+mod check;
 mod closest;
 mod inspect;
 mod inspect_cells;
@@ -40,6 +41,8 @@ enum Command {
     Closest(closest::ClosestArgs),
     /// Remesh a mesh toward uniform, near-equilateral triangles on its surface.
     Remesh(remesh::RemeshArgs),
+    /// Find where a mesh meets itself, or another mesh.
+    Check(check::CheckArgs),
     /// Write a reproducible ray or point set for a mesh (the DESIGN.md workloads).
     Workload(workload::WorkloadArgs),
 }
@@ -53,6 +56,7 @@ fn main() -> ExitCode {
         Command::Raycast(args) => raycast::run(args),
         Command::Closest(args) => closest::run(args),
         Command::Remesh(args) => remesh::run(args),
+        Command::Check(args) => check::run(args),
         Command::Workload(args) => workload::run(args),
     };
     match result {

@@ -527,3 +527,98 @@ fn remesh_writes_a_better_mesh_and_refuses_a_non_manifold_one() {
         "unknown output format",
     );
 }
+
+#[test]
+fn check_reports_self_intersections_and_contacts_as_brute_force_finds_them() {
+    use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+    let spot = asset("spot.obj");
+    let parse = |s: String| serde_json::from_str::<serde_json::Value>(&s).unwrap();
+    let clean = parse(ok(&[&"check", &spot, &"--json"]));
+    assert_eq!(clean["self_intersecting_pairs"], 0, "{clean}");
+    assert!(clean.get("against").is_none());
+    // The same cow moved along x by a quarter of its width: count the meeting pairs by brute
+    // force over every pair of triangles.
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let tris: Vec<_> = (0..mesh.triangle_count() as u32)
+        .map(|t| mesh.triangle(t).unwrap())
+        .collect();
+    let (lo, hi) = loaded
+        .positions
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(l, h), p| (l.min(p[0]), h.max(p[0])));
+    let shift = (hi - lo) / 4.0;
+    let moved: Vec<_> = tris
+        .iter()
+        .map(|t| {
+            let d = Vec3::new(shift, 0.0, 0.0);
+            meshq::math::Triangle::new(t.a + d, t.b + d, t.c + d)
+        })
+        .collect();
+    let (mut meeting, mut crossing) = (0usize, 0usize);
+    for a in &tris {
+        for b in &moved {
+            match intersect_triangle_triangle(a, b) {
+                TriangleTriangle::Disjoint => {}
+                TriangleTriangle::Segment { .. } => {
+                    meeting += 1;
+                    crossing += 1;
+                }
+                TriangleTriangle::Coplanar => meeting += 1,
+            }
+        }
+    }
+    assert!(meeting > 0);
+    let transform = format!("1,0,0,0, 0,1,0,0, 0,0,1,0, {shift},0,0,1");
+    let both = parse(ok(&[
+        &"check",
+        &spot,
+        &"--against",
+        &spot,
+        &"--transform",
+        &transform,
+        &"--json",
+        &"--first",
+        &"3",
+    ]));
+    assert_eq!(both["against"]["intersecting_pairs"], meeting, "{both}");
+    assert_eq!(both["against"]["crossing_pairs"], crossing, "{both}");
+    assert_eq!(both["against"]["first_pairs"].as_array().unwrap().len(), 3);
+    let text = ok(&[
+        &"check",
+        &spot,
+        &"--against",
+        &spot,
+        &"--transform",
+        &transform,
+    ]);
+    assert!(
+        text.contains(&format!("{meeting} intersecting triangle pairs")),
+        "{text}"
+    );
+    fails(
+        &[
+            &"check",
+            &spot,
+            &"--against",
+            &spot,
+            &"--transform",
+            &"1,2,3",
+        ],
+        1,
+        "16 numbers",
+    );
+    fails(
+        &[
+            &"check",
+            &spot,
+            &"--against",
+            &spot,
+            &"--transform",
+            &"1,0,0,1,0,1,0,0,0,0,1,0,0,0,0,1",
+        ],
+        1,
+        "not an affine map",
+    );
+    fails(&[&"check", &spot, &"--transform", &"1"], 2, "--against");
+}

@@ -43,6 +43,10 @@
 //! - [`kdtree`], [`octree`], [`grid`]: the structures that cut space into cells, on what they
 //!   share in [`cells`] (reference padding, the depth-first build inside one references
 //!   buffer, packed references, figures).
+//! - [`collide`]: where meshes meet — two meshes (each with its BVH, the second placed by an
+//!   [`Affine`](collide::Affine) map) or one mesh with itself: yes/no, the triangle pairs,
+//!   the crossing segments.
+//! - [`remesh`]: isotropic remeshing in caller buffers.
 //! - [`error`]: [`MeshError`](error::MeshError), [`BuildError`](error::BuildError),
 //!   [`StructureError`](error::StructureError), [`BatchError`](error::BatchError).
 //! - [`prelude`]: the names most code needs, in one `use`.
@@ -86,6 +90,7 @@ extern crate alloc;
 pub mod blob;
 pub mod bvh;
 pub mod cells;
+pub mod collide;
 pub mod error;
 pub mod geom;
 pub mod grid;

@@ -1,5 +1,5 @@
 // Types of the meshq three.js drop-in (three.js / three.mjs).
-import type { BufferGeometry, Intersection, Mesh, Raycaster } from 'three';
+import type { BufferGeometry, Intersection, Matrix4, Mesh, Raycaster } from 'three';
 import type { MeshBvh } from './meshq_wasm';
 
 /**
@@ -25,6 +25,17 @@ export function disposeBoundsTree(this: BufferGeometry): void;
  */
 export function acceleratedRaycast(this: Mesh, raycaster: Raycaster, intersects: Intersection[]): void;
 export { MeshBvh };
+
+declare module './meshq_wasm' {
+  interface MeshBvh {
+    /**
+     * three-mesh-bvh's `intersectsGeometry`: whether `geometry`, placed in this tree's frame
+     * by `geometryToBvh`, meets this tree's mesh (touching counts). Uses
+     * `geometry.boundsTree` when present, else builds a temporary one.
+     */
+    intersectsGeometry(geometry: BufferGeometry, geometryToBvh: Matrix4): boolean;
+  }
+}
 
 declare module 'three' {
   interface BufferGeometry {

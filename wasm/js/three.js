@@ -17,9 +17,9 @@ import { MeshBvh } from './meshq_wasm.js';
 
 const threeRaycast = Mesh.prototype.raycast;
 
-/** Builds `this.boundsTree` (a MeshBvh) from a BufferGeometry's position and index arrays. */
-export function computeBoundsTree(options) {
-  const position = this.getAttribute('position');
+/** A MeshBvh built from a BufferGeometry's position and index arrays. */
+function buildFor(geometry, options) {
+  const position = geometry.getAttribute('position');
   let positions;
   if (!position.isInterleavedBufferAttribute && position.itemSize === 3 &&
       position.array instanceof Float32Array && !position.normalized) {
@@ -32,14 +32,34 @@ export function computeBoundsTree(options) {
       positions[3 * i + 2] = position.getZ(i);
     }
   }
-  let index = this.index ? this.index.array : null;
+  let index = geometry.index ? geometry.index.array : null;
   if (index && !(index instanceof Uint32Array || index instanceof Uint16Array)) {
     index = Uint32Array.from(index);
   }
+  return MeshBvh.build(positions, index, options);
+}
+
+/** Builds `this.boundsTree` (a MeshBvh) from a BufferGeometry's position and index arrays. */
+export function computeBoundsTree(options) {
   this.disposeBoundsTree?.();
-  this.boundsTree = MeshBvh.build(positions, index, options);
+  this.boundsTree = buildFor(this, options);
   return this.boundsTree;
 }
+
+/**
+ * three-mesh-bvh's `boundsTree.intersectsGeometry(geometry, geometryToBvh)`: whether
+ * `geometry`, placed in this tree's frame by the Matrix4 `geometryToBvh`, meets this tree's
+ * mesh (touching counts). Uses `geometry.boundsTree` when it has one, else builds one for
+ * the call and frees it.
+ */
+MeshBvh.prototype.intersectsGeometry = function intersectsGeometry(geometry, geometryToBvh) {
+  const temporary = geometry.boundsTree ? null : buildFor(geometry);
+  try {
+    return this.intersectsMesh(geometry.boundsTree ?? temporary, geometryToBvh.elements);
+  } finally {
+    temporary?.free();
+  }
+};
 
 /** Frees `this.boundsTree`. */
 export function disposeBoundsTree() {

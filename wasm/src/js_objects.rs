@@ -26,3 +26,10 @@ extern "C" {
         nz: f32,
     ) -> JsValue;
 }
+
+/// Sets `object[key] = value`.
+pub fn set(object: &js_sys::Object, key: &str, value: impl Into<JsValue>) -> Result<(), JsError> {
+    js_sys::Reflect::set(object, &JsValue::from_str(key), &value.into())
+        .map(|_| ())
+        .map_err(|_| JsError::new("cannot build the result object"))
+}

@@ -10,12 +10,7 @@ use meshq::remesh::{MeshQuality, RemeshConfig};
 use wasm_bindgen::prelude::*;
 
 use crate::build::read_indices;
-
-fn set(object: &Object, key: &str, value: impl Into<JsValue>) -> Result<(), JsError> {
-    Reflect::set(object, &JsValue::from_str(key), &value.into())
-        .map(|_| ())
-        .map_err(|_| JsError::new("cannot build the result object"))
-}
+use crate::js_objects::set;
 
 /// Reads `{ targetLength?, targetRatio?, iterations?, featureAngle? }` (all optional).
 fn config(options: &JsValue, mean_edge: impl FnOnce() -> f32) -> Result<RemeshConfig, JsError> {

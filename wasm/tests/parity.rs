@@ -373,3 +373,76 @@ fn remeshing_matches_the_golden_remesh_file() {
         assert_eq!(got, golden.result, "{name}: remeshed in WebAssembly");
     }
 }
+
+#[wasm_bindgen_test]
+fn mesh_mesh_checks_match_brute_force_here_too() {
+    use meshq::collide::Affine;
+    use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+    use meshq::math::Triangle;
+    let obj = include_str!("../../assets/uv-sphere.obj");
+    let (positions, indices) = load(obj);
+    let tris: Vec<Triangle> = indices
+        .chunks_exact(3)
+        .map(|t| {
+            let p = |i: u32| Vec3::from_slice(&positions[3 * i as usize..3 * i as usize + 3]);
+            Triangle::new(p(t[0]), p(t[1]), p(t[2]))
+        })
+        .collect();
+    // The second sphere moved by half its radius along x and turned a little about z.
+    let (s, c) = 0.3f32.sin_cos();
+    let matrix = [
+        c, s, 0.0, 0.0, -s, c, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.5, 0.0, 0.0, 1.0,
+    ];
+    let place = Affine::from_cols_4x4(&matrix).unwrap();
+    let (mut pairs, mut crossing) = (Vec::new(), 0usize);
+    for (i, a) in tris.iter().enumerate() {
+        for (j, b) in tris.iter().enumerate() {
+            match intersect_triangle_triangle(a, &place.apply_triangle(b)) {
+                TriangleTriangle::Disjoint => {}
+                how => {
+                    pairs.push((i as u32, j as u32));
+                    crossing += usize::from(matches!(how, TriangleTriangle::Segment { .. }));
+                }
+            }
+        }
+    }
+    pairs.sort_unstable();
+    assert!(!pairs.is_empty());
+    for options in [JsValue::UNDEFINED, option("structure", "octree")] {
+        let one = build(obj, &options);
+        let other = build(obj, &JsValue::UNDEFINED);
+        assert!(one.intersects_mesh(&other, Some(matrix.to_vec())).unwrap());
+        let found = one
+            .intersecting_pairs(&other, Some(matrix.to_vec()), None)
+            .unwrap();
+        assert_eq!(number(&found, &["total"]) as usize, pairs.len());
+        let flat = Uint32Array::from(Reflect::get(&found, &"pairs".into()).unwrap()).to_vec();
+        let mut got: Vec<(u32, u32)> = flat.chunks_exact(2).map(|p| (p[0], p[1])).collect();
+        got.sort_unstable();
+        assert_eq!(got, pairs);
+        let capped = one
+            .intersecting_pairs(&other, Some(matrix.to_vec()), Some(3))
+            .unwrap();
+        assert_eq!(number(&capped, &["total"]) as usize, pairs.len());
+        assert_eq!(
+            Reflect::get(&capped, &"overflowed".into()).unwrap(),
+            JsValue::TRUE
+        );
+        let segments = one
+            .intersection_segments(&other, Some(matrix.to_vec()))
+            .unwrap();
+        assert_eq!(segments.length() as usize, 6 * crossing);
+        let apart = one.intersects_mesh(
+            &other,
+            Some({
+                let mut m = matrix;
+                m[12] = 5.0;
+                m.to_vec()
+            }),
+        );
+        assert!(!apart.unwrap());
+        let itself = one.self_intersections(None).unwrap();
+        assert_eq!(number(&itself, &["total"]), 0.0);
+        assert!(one.intersects_mesh(&other, Some(vec![1.0; 3])).is_err());
+    }
+}

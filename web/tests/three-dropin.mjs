@@ -1,7 +1,8 @@
 // The three.js drop-in against three's own brute-force Raycaster (every triangle tested), in
 // Node, on the bundled bunny: same first hit for 10,000 random rays (DESIGN.md workload), the
 // same full intersection lists, material sides, near/far, a transformed mesh, draw ranges and
-// groups with an array of materials.
+// groups with an array of materials; intersectsGeometry and the mesh–mesh bindings on
+// spheres whose meeting is known from geometry.
 // Run after scripts/wasm.sh: node web/tests/three-dropin.mjs
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -229,6 +230,35 @@ brute.material = material;
   sphere.disposeBoundsTree();
 }
 
+// intersectsGeometry, judged by geometry: two unit spheres (inscribed polyhedra) whose
+// centres are 1 apart cross; 2.2 apart they cannot meet; a sphere of radius 0.4 inside one
+// of radius 1 meets nothing (the volumes overlap, the surfaces do not).
+{
+  const unit = new THREE.SphereGeometry(1, 32, 24);
+  const small = new THREE.SphereGeometry(0.4, 16, 12);
+  unit.computeBoundsTree();
+  const at = (x, y, z) => new THREE.Matrix4().makeRotationZ(0.3).setPosition(x, y, z);
+  assert.equal(unit.boundsTree.intersectsGeometry(unit, at(1, 0, 0)), true, 'crossing');
+  assert.equal(unit.boundsTree.intersectsGeometry(unit, at(0, 2.2, 0)), false, 'apart');
+  // `small` has no bounds tree: one is built for the call and freed.
+  assert.equal(unit.boundsTree.intersectsGeometry(small, at(0.1, 0, 0)), false, 'inside');
+  assert.equal(small.boundsTree, undefined);
+  assert.equal(unit.boundsTree.intersectsGeometry(small, at(0.8, 0, 0)), true, 'poking out');
+  // The pairs behind the answer, and the curve where the surfaces cross.
+  const found = unit.boundsTree.intersectingPairs(unit.boundsTree, at(1, 0, 0).elements);
+  assert.ok(found.total > 0 && found.pairs.length === 2 * found.total && !found.overflowed);
+  const segments = unit.boundsTree.intersectionSegments(unit.boundsTree, at(1, 0, 0).elements);
+  assert.ok(segments.length > 0 && segments.length % 6 === 0);
+  // Every segment end lies on the plane x = 0.5 where two unit spheres 1 apart meet, to
+  // within the polyhedra's sag.
+  for (let k = 0; k < segments.length; k += 3) {
+    assert.ok(Math.abs(segments[k] - 0.5) < 0.02, `segment end x ${segments[k]}`);
+  }
+  assert.equal(unit.boundsTree.selfIntersections().total, 0);
+  assert.throws(() => unit.boundsTree.intersectsMesh(unit.boundsTree, [1, 2, 3]), /16 numbers/);
+  unit.disposeBoundsTree();
+}
+
 indexed.disposeBoundsTree();
 assert.equal(indexed.boundsTree, null);
-console.log('three.js drop-in: full lists, sides, near/far and transforms agree with three');
+console.log('three.js drop-in: full lists, sides, near/far and transforms agree with three; intersectsGeometry judged by geometry');

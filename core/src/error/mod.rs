@@ -9,6 +9,7 @@ mod build;
 mod mesh;
 mod remesh;
 mod structure;
+mod transform;
 
 pub use batch::{BatchBuffer, BatchError};
 #[cfg(feature = "blob")]
@@ -17,3 +18,4 @@ pub use build::{BufferKind, BuildError};
 pub use mesh::{FlatSlice, MeshError};
 pub use remesh::{RemeshBuffer, RemeshError};
 pub use structure::StructureError;
+pub use transform::TransformError;

@@ -17,7 +17,8 @@ pub enum TriangleTriangle {
         /// Second end.
         b: Vec3,
     },
-    /// Both triangles lie in one plane and overlap in it (touching counts).
+    /// Both triangles lie in one plane (or in planes within about 0.06° of parallel, each
+    /// touching the other's) and overlap in it (touching counts).
     Coplanar,
 }
 
@@ -56,6 +57,9 @@ fn plane_cut(t: &Triangle, d: [f32; 3]) -> ([Vec3; 2], usize) {
     (out, n)
 }
 
+/// The sine of the angle under which two planes count as parallel (about 0.06°).
+const NEAR_PARALLEL: f32 = 1e-3;
+
 fn same_strict_side(d: [f32; 3]) -> bool {
     (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0)
 }
@@ -66,8 +70,10 @@ fn same_strict_side(d: [f32; 3]) -> bool {
 /// meet, and their overlap on that line is the intersection segment (the interval approach of
 /// Möller 1997, "A Fast Triangle-Triangle Intersection Test", written as explicit cuts). Corner
 /// distances within about 2⁻²¹ of the coordinate magnitude of a plane are treated as on it.
-/// Coplanar triangles are projected on the plane's dominant axes and tested for overlap with
-/// edge crossings and containment.
+/// Coplanar triangles, and triangles whose planes are within about 0.06° of parallel and
+/// each touch the other's plane (their common line is too ill-conditioned to use), are
+/// projected on the first plane's dominant axes and tested for overlap with edge crossings
+/// and containment.
 ///
 /// Degenerate triangles (segments and points) and non-finite input are reported as
 /// [`TriangleTriangle::Disjoint`].
@@ -108,12 +114,22 @@ pub fn intersect_triangle_triangle(t1: &Triangle, t2: &Triangle) -> TriangleTria
     if same_strict_side(d2) {
         return TriangleTriangle::Disjoint;
     }
+    let line = cross(n1, n2);
+    // Planes within about 0.06° of parallel meet on a line too ill-conditioned to place the
+    // cuts on (the snapping above moves a corner farther along it than the triangles are
+    // wide): such a pair, each touching the other's plane, is judged in the plane.
+    if dot(line, line) <= NEAR_PARALLEL * NEAR_PARALLEL * dot(n1, n1) * dot(n2, n2) {
+        return if coplanar_overlap(t1, t2, n1) {
+            TriangleTriangle::Coplanar
+        } else {
+            TriangleTriangle::Disjoint
+        };
+    }
     let (cut1, k1) = plane_cut(t1, d1);
     let (cut2, k2) = plane_cut(t2, d2);
     let (Some(cut1), Some(cut2)) = (cut1.get(..k1), cut2.get(..k2)) else {
         return TriangleTriangle::Disjoint;
     };
-    let line = cross(n1, n2);
     let interval = |pts: &[Vec3]| {
         pts.iter()
             .fold(None, |acc: Option<((f32, Vec3), (f32, Vec3))>, &p| {
@@ -257,6 +273,38 @@ mod tests {
         assert_eq!(
             intersect_triangle_triangle(&floor(), &far),
             TriangleTriangle::Disjoint
+        );
+    }
+
+    #[test]
+    fn nearly_coplanar_triangles_apart_in_their_plane_do_not_meet() {
+        // Two triangles of a flat strip (from fandisk), three hundred-thousandths out of one
+        // plane, with a triangle's width between them: their planes' line is ill-conditioned,
+        // and cutting along it once reported a touch.
+        let t1 = Triangle::new(
+            Vec3::new(1.68912, 15.3804, -1.37652),
+            Vec3::new(1.68912, 15.3644, -1.47466),
+            Vec3::new(1.58976, 15.3804, -1.37655),
+        );
+        let t2 = Triangle::new(
+            Vec3::new(1.4904, 15.3644, -1.47466),
+            Vec3::new(1.4904, 15.3804, -1.37657),
+            Vec3::new(1.58976, 15.3644, -1.47466),
+        );
+        assert_eq!(
+            intersect_triangle_triangle(&t1, &t2),
+            TriangleTriangle::Disjoint
+        );
+        assert_eq!(
+            intersect_triangle_triangle(&t2, &t1),
+            TriangleTriangle::Disjoint
+        );
+        // Slid over each other in the plane, they overlap.
+        let shift = Vec3::new(0.15, 0.0, 0.0);
+        let t3 = Triangle::new(t2.a + shift, t2.b + shift, t2.c + shift);
+        assert_eq!(
+            intersect_triangle_triangle(&t1, &t3),
+            TriangleTriangle::Coplanar
         );
     }
 

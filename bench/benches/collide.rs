@@ -1,0 +1,166 @@
+//! Mesh–mesh intersection against parry3d's `intersection_test` on two `TriMesh` shapes, and
+//! meshq's self-intersection check, in one run on the same meshes and placements.
+//!
+//! `MESHQ_BENCH_MESHES` picks the mesh (the first of its comma-separated bundled names or
+//! `.obj` paths; default the bunny). Three placements of a copy: overlapping (turned 20°
+//! about z and moved by a quarter of the width), a copy a fifth the size about the mean vertex
+//! (inside the bunny's body: the boxes overlap, the surfaces do not meet), and apart. The yes/no of both
+//! libraries is checked before timing. Throughput: triangle pairs tested.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use meshq::Traverse;
+use meshq::bvh::BuildConfig;
+use meshq::collide::{
+    Affine, TrianglePair, intersecting_pairs, meshes_intersect, self_intersecting_pairs,
+};
+use meshq::owned::MeshBvh;
+use meshq_tests::{LoadedMesh, load_mesh, load_obj};
+use parry3d::math::{Pose, Vector};
+use parry3d::query::intersection_test;
+use parry3d::shape::TriMesh;
+
+fn scene() -> LoadedMesh {
+    let names = std::env::var("MESHQ_BENCH_MESHES").unwrap_or_else(|_| "stanford-bunny".into());
+    let first = names.split(',').next().unwrap_or("stanford-bunny");
+    if first.ends_with(".obj") {
+        load_obj(std::path::Path::new(first))
+    } else {
+        load_mesh(first)
+    }
+}
+
+/// A placement of the copy: uniform `scale`, a turn of `degrees` about z, then `shift`.
+struct Placement {
+    name: &'static str,
+    scale: f32,
+    degrees: f32,
+    shift: [f32; 3],
+}
+
+impl Placement {
+    fn affine(&self) -> Affine {
+        let (s, c) = self.degrees.to_radians().sin_cos();
+        let k = self.scale;
+        Affine {
+            columns: [[k * c, k * s, 0.0], [-k * s, k * c, 0.0], [0.0, 0.0, k]],
+            translation: self.shift,
+        }
+    }
+}
+
+fn parry_mesh(m: &LoadedMesh, scale: f32) -> TriMesh {
+    let vertices = m
+        .positions
+        .iter()
+        .map(|p| Vector::new(p[0], p[1], p[2]) * scale)
+        .collect();
+    TriMesh::new(vertices, m.triangles.clone()).unwrap_or_else(|e| panic!("parry3d: {e:?}"))
+}
+
+fn collide(c: &mut Criterion) {
+    let scene = scene();
+    let mesh = scene.valid();
+    let bvh = MeshBvh::build(&mesh, &BuildConfig::default()).expect("builds");
+    let (lo, hi) = scene
+        .positions
+        .iter()
+        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+            )
+        });
+    let extent = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    // The mean vertex: inside a closed body like the bunny's.
+    let n = scene.positions.len() as f32;
+    let mean = scene.positions.iter().fold([0.0f32; 3], |m, p| {
+        [m[0] + p[0] / n, m[1] + p[1] / n, m[2] + p[2] / n]
+    });
+    const SMALL: f32 = 0.2;
+    let placements = [
+        Placement {
+            name: "overlapping",
+            scale: 1.0,
+            degrees: 20.0,
+            shift: [extent[0] / 4.0, extent[1] / 10.0, 0.0],
+        },
+        Placement {
+            name: "small copy inside",
+            scale: SMALL,
+            degrees: 0.0,
+            shift: mean.map(|m| m * (1.0 - SMALL)),
+        },
+        Placement {
+            name: "apart",
+            scale: 1.0,
+            degrees: 0.0,
+            shift: [extent[0] * 1.5, 0.0, 0.0],
+        },
+    ];
+    let tree = bvh.bvh();
+    let packed = bvh.packed();
+    let ours = tree.with(&packed);
+    let parry_a = parry_mesh(&scene, 1.0);
+    for p in &placements {
+        let place = p.affine();
+        let parry_b = parry_mesh(&scene, p.scale);
+        let pose_b = Pose::new(
+            Vector::from_array(p.shift),
+            Vector::new(0.0, 0.0, p.degrees.to_radians()),
+        );
+        let parry_says = |b: &TriMesh| {
+            intersection_test(&Pose::IDENTITY, &parry_a, &pose_b, b)
+                .expect("parry3d supports two meshes")
+                .intersecting
+        };
+        let meshq_says = meshes_intersect(ours, ours, Some(&place));
+        assert_eq!(
+            meshq_says,
+            parry_says(&parry_b),
+            "{}: the libraries disagree",
+            p.name
+        );
+        let mut pairs = vec![TrianglePair::default(); 1 << 16];
+        let found = intersecting_pairs(ours, ours, Some(&place), &mut pairs);
+        eprintln!(
+            "{} / {}: meets {meshq_says}, {} pairs of {} tested",
+            scene.name, p.name, found.total, found.tested
+        );
+        let mut group = c.benchmark_group(format!("collide/{}/{}", scene.name, p.name));
+        group.sample_size(10);
+        group.warm_up_time(Duration::from_millis(500));
+        group.measurement_time(Duration::from_secs(2));
+        group.bench_function("meshq_intersects", |b| {
+            b.iter(|| black_box(meshes_intersect(ours, ours, Some(&place))))
+        });
+        group.bench_function("parry3d_intersection_test", |b| {
+            b.iter(|| black_box(parry_says(&parry_b)))
+        });
+        group.throughput(Throughput::Elements(found.tested.max(1) as u64));
+        group.bench_function("meshq_all_pairs", |b| {
+            b.iter(|| black_box(intersecting_pairs(ours, ours, Some(&place), &mut pairs)))
+        });
+        group.finish();
+    }
+    let mut out = vec![TrianglePair::default(); 1 << 16];
+    let found = self_intersecting_pairs(&tree, &mesh, &mut out);
+    eprintln!(
+        "{} / self: {} pairs of {} tested",
+        scene.name, found.total, found.tested
+    );
+    let mut group = c.benchmark_group(format!("collide/{}/self", scene.name));
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(3));
+    group.throughput(Throughput::Elements(found.tested as u64));
+    group.bench_function("meshq_self_pairs", |b| {
+        b.iter(|| black_box(self_intersecting_pairs(&tree, &mesh, &mut out)))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, collide);
+criterion_main!(benches);

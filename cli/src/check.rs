@@ -1,0 +1,190 @@
+//! `meshq check`: where a mesh meets itself, and where it meets another mesh.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use meshq::Traverse;
+use meshq::bvh::BuildConfig;
+use meshq::collide::{
+    Affine, TrianglePair, intersecting_pairs, intersection_segments, self_intersecting_pairs,
+};
+use meshq::mesh::MeshRef;
+use meshq::owned::MeshBvh;
+use serde::Serialize;
+
+use crate::mesh_file::read_mesh;
+use crate::output;
+
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq check assets/spot.obj\n  \
+    meshq check a.obj --against b.obj --transform 1,0,0,0,0,1,0,0,0,0,1,0,0.2,0,0,1 --json")]
+pub struct CheckArgs {
+    /// The mesh: OBJ, PLY or STL.
+    pub mesh: PathBuf,
+    /// A second mesh to test against the first.
+    #[arg(long)]
+    pub against: Option<PathBuf>,
+    /// Where the second mesh sits in the first one's frame: a 4×4 matrix of 16 numbers in
+    /// column-major order (three.js `Matrix4.elements`), separated by commas or spaces;
+    /// bottom row 0 0 0 1. Default: the identity.
+    #[arg(long, requires = "against")]
+    pub transform: Option<String>,
+    /// How many intersecting pairs to list.
+    #[arg(long, default_value_t = 10)]
+    pub first: usize,
+    /// Print the result as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// What the command found, as printed.
+#[derive(Serialize)]
+struct Report {
+    mesh: String,
+    triangles: usize,
+    /// Pairs of the mesh's triangles that meet beyond the corners or edge they share.
+    self_intersecting_pairs: usize,
+    /// The first of them, as triangle index pairs (lower index first).
+    self_first_pairs: Vec<[u32; 2]>,
+    /// Triangle pairs the self-check tested (the rest were ruled out by boxes).
+    self_pairs_tested: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    against: Option<Against>,
+    /// Time of the checks, BVH builds included, file reading not.
+    check_seconds: f64,
+}
+
+#[derive(Serialize)]
+struct Against {
+    mesh: String,
+    triangles: usize,
+    /// Pairs (triangle of the first mesh, triangle of the second) that meet.
+    intersecting_pairs: usize,
+    /// Of those, pairs whose planes cross (each has an intersection segment).
+    crossing_pairs: usize,
+    first_pairs: Vec<[u32; 2]>,
+    /// Triangle pairs tested.
+    pairs_tested: usize,
+}
+
+/// Reads `path` as a valid mesh and builds its BVH.
+fn load(path: &Path) -> Result<(crate::mesh_file::MeshData, String)> {
+    let data = read_mesh(path)?;
+    MeshRef::new(&data.positions, &data.triangles)
+        .validate()
+        .with_context(|| format!("{}: invalid mesh", path.display()))?;
+    Ok((data, path.display().to_string()))
+}
+
+fn bvh_of(data: &crate::mesh_file::MeshData, name: &str) -> Result<MeshBvh> {
+    let mesh = MeshRef::new(&data.positions, &data.triangles)
+        .validate()
+        .with_context(|| format!("{name}: invalid mesh"))?;
+    MeshBvh::build(&mesh, &BuildConfig::default())
+        .with_context(|| format!("{name}: cannot build its BVH"))
+}
+
+/// Parses the `--transform` text: 16 finite numbers, an affine matrix.
+fn parse_transform(text: &str) -> Result<Affine> {
+    let numbers: Vec<f32> = text
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.parse::<f32>()
+                .with_context(|| format!("--transform: `{s}` is not a number"))
+        })
+        .collect::<Result<_>>()?;
+    let Ok(matrix) = <[f32; 16]>::try_from(numbers.as_slice()) else {
+        bail!("--transform needs 16 numbers, got {}", numbers.len());
+    };
+    Affine::from_cols_4x4(&matrix).map_err(|e| anyhow::anyhow!("--transform: {e}"))
+}
+
+fn as_pairs(pairs: &[TrianglePair]) -> Vec<[u32; 2]> {
+    pairs.iter().map(|p| [p.a, p.b]).collect()
+}
+
+pub fn run(args: &CheckArgs) -> Result<()> {
+    let place = args.transform.as_deref().map(parse_transform).transpose()?;
+    let (data, name) = load(&args.mesh)?;
+    let other = args.against.as_deref().map(load).transpose()?;
+    let start = Instant::now();
+    let bvh = bvh_of(&data, &name)?;
+    let (mesh, tree) = (bvh.mesh(), bvh.bvh());
+    let mut first = vec![TrianglePair::default(); args.first];
+    let found = self_intersecting_pairs(&tree, &mesh, &mut first);
+    let self_first_pairs = as_pairs(&first[..found.written]);
+    let against = match &other {
+        None => None,
+        Some((other_data, other_name)) => {
+            let other_bvh = bvh_of(other_data, other_name)?;
+            let (other_mesh, other_tree) = (other_bvh.mesh(), other_bvh.bvh());
+            let (a, b) = (tree.with(&mesh), other_tree.with(&other_mesh));
+            let mut first = vec![TrianglePair::default(); args.first];
+            let pairs = intersecting_pairs(a, b, place.as_ref(), &mut first);
+            let crossing = intersection_segments(a, b, place.as_ref(), &mut []);
+            Some(Against {
+                mesh: other_name.clone(),
+                triangles: other_mesh.triangle_count(),
+                intersecting_pairs: pairs.total,
+                crossing_pairs: crossing.total,
+                first_pairs: as_pairs(&first[..pairs.written]),
+                pairs_tested: pairs.tested,
+            })
+        }
+    };
+    let report = Report {
+        mesh: name,
+        triangles: mesh.triangle_count(),
+        self_intersecting_pairs: found.total,
+        self_first_pairs,
+        self_pairs_tested: found.tested,
+        against,
+        check_seconds: start.elapsed().as_secs_f64(),
+    };
+    if args.json {
+        return output::json(&report);
+    }
+    print_report(&report);
+    Ok(())
+}
+
+fn print_report(r: &Report) {
+    let list = |pairs: &[[u32; 2]], total: usize| {
+        let shown: Vec<String> = pairs.iter().map(|[a, b]| format!("{a}–{b}")).collect();
+        let more = total.saturating_sub(pairs.len());
+        if more > 0 {
+            format!("{} and {more} more", shown.join(", "))
+        } else {
+            shown.join(", ")
+        }
+    };
+    println!("{}: {} triangles", r.mesh, r.triangles);
+    if r.self_intersecting_pairs == 0 {
+        println!("  no self-intersections");
+    } else {
+        println!(
+            "  {} self-intersecting triangle pairs: {}",
+            r.self_intersecting_pairs,
+            list(&r.self_first_pairs, r.self_intersecting_pairs)
+        );
+    }
+    if let Some(a) = &r.against {
+        println!("against {}: {} triangles", a.mesh, a.triangles);
+        if a.intersecting_pairs == 0 {
+            println!("  the meshes do not meet");
+        } else {
+            println!(
+                "  {} intersecting triangle pairs ({} crossing, {} coplanar): {}",
+                a.intersecting_pairs,
+                a.crossing_pairs,
+                a.intersecting_pairs - a.crossing_pairs,
+                list(&a.first_pairs, a.intersecting_pairs)
+            );
+        }
+    }
+    println!("  {:.3} s", r.check_seconds);
+}

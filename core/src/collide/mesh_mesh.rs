@@ -1,0 +1,151 @@
+//! Where two meshes meet: a walk down both BVHs at once, testing triangle pairs at the
+//! leaves.
+
+use core::ops::ControlFlow;
+
+use super::tree_pairs::for_each_leaf_pair;
+use super::{Affine, CrossingSegment, Found, TrianglePair};
+use crate::bvh::{BvhNode, TreeArrays};
+use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
+use crate::query::{LeafTriangles, With};
+
+/// Calls `on` with every pair of triangles, one of `a` and one of `b` (placed by `b_to_a`),
+/// that meets, and how; in walk order. Stops when `on` breaks.
+fn for_each_meeting_pair<A, SA, B, SB>(
+    a: With<'_, A, SA>,
+    b: With<'_, B, SB>,
+    b_to_a: Option<&Affine>,
+    tested: &mut usize,
+    mut on: impl FnMut(TrianglePair, TriangleTriangle) -> ControlFlow<()>,
+) -> ControlFlow<()>
+where
+    A: TreeArrays + ?Sized,
+    SA: LeafTriangles + ?Sized,
+    B: TreeArrays + ?Sized,
+    SB: LeafTriangles + ?Sized,
+{
+    let (tree_a, tris_a) = (a.structure(), a.triangles());
+    let (tree_b, tris_b) = (b.structure(), b.triangles());
+    for_each_leaf_pair(
+        tree_a,
+        tree_b,
+        b_to_a,
+        |leaf_a: BvhNode, leaf_b: BvhNode| {
+            let (Some(ids_a), Some(ids_b)) = (
+                tree_a.leaf_triangles(leaf_a.first as usize, leaf_a.count as usize),
+                tree_b.leaf_triangles(leaf_b.first as usize, leaf_b.count as usize),
+            ) else {
+                return ControlFlow::Continue(());
+            };
+            // `b`'s triangles outside, each placed once.
+            for (slot_b, id_b) in ids_b {
+                let Some(tb) = tris_b.corners(slot_b, id_b) else {
+                    continue;
+                };
+                let tb = b_to_a.map_or(tb, |m| m.apply_triangle(&tb));
+                let bounds_b = tb.bounds();
+                if !bounds_b.overlaps(&leaf_a.aabb()) {
+                    continue;
+                }
+                for (slot_a, id_a) in ids_a.clone() {
+                    let Some(ta) = tris_a.corners(slot_a, id_a) else {
+                        continue;
+                    };
+                    *tested += 1;
+                    let how = intersect_triangle_triangle(&ta, &tb);
+                    if how != TriangleTriangle::Disjoint {
+                        on(TrianglePair { a: id_a, b: id_b }, how)?;
+                    }
+                }
+            }
+            ControlFlow::Continue(())
+        },
+    )
+}
+
+/// Whether any triangle of `a` meets any triangle of `b`, with `b` placed in `a`'s frame by
+/// `b_to_a` (`None`: as it is). Touching counts: a shared point, a corner on a face, a
+/// coplanar overlap (see
+/// [`intersect_triangle_triangle`](crate::geom::intersect_triangle_triangle) for the
+/// rules). Degenerate triangles and triangles with NaN corners meet nothing.
+///
+/// `a` and `b` are BVHs with their triangles (`bvh.with(&mesh)`, a blob's tree and mesh, or a
+/// tree with [`PackedTriangles`](crate::query::PackedTriangles)). Both trees are walked
+/// together from the roots, and the walk stops at the first meeting pair. No allocation: a
+/// fixed stack of about 1 KiB.
+#[must_use]
+pub fn meshes_intersect<A, SA, B, SB>(
+    a: With<'_, A, SA>,
+    b: With<'_, B, SB>,
+    b_to_a: Option<&Affine>,
+) -> bool
+where
+    A: TreeArrays + ?Sized,
+    SA: LeafTriangles + ?Sized,
+    B: TreeArrays + ?Sized,
+    SB: LeafTriangles + ?Sized,
+{
+    for_each_meeting_pair(a, b, b_to_a, &mut 0, |_, _| ControlFlow::Break(())).is_break()
+}
+
+/// Every pair of triangles, one of `a` and one of `b`, that meets (as in
+/// [`meshes_intersect`]), written to the front of `out` in walk order. Returns how many were
+/// found and how many were written: when `out` is too short, the first ones are written and
+/// the count goes on ([`Found::overflowed`]).
+pub fn intersecting_pairs<A, SA, B, SB>(
+    a: With<'_, A, SA>,
+    b: With<'_, B, SB>,
+    b_to_a: Option<&Affine>,
+    out: &mut [TrianglePair],
+) -> Found
+where
+    A: TreeArrays + ?Sized,
+    SA: LeafTriangles + ?Sized,
+    B: TreeArrays + ?Sized,
+    SB: LeafTriangles + ?Sized,
+{
+    let mut found = Found::default();
+    let mut tested = 0;
+    let _ = for_each_meeting_pair(a, b, b_to_a, &mut tested, |pair, _| {
+        found.push(out, pair);
+        ControlFlow::Continue(())
+    });
+    found.tested = tested;
+    found
+}
+
+/// Where the meshes cross: for every pair of triangles whose planes cross and that meet, the
+/// segment they share (a point for a touch), in `a`'s frame, written to the front of `out` in
+/// walk order, counted as in [`intersecting_pairs`]. Pairs that lie in one plane and overlap
+/// share an area, not a segment: they are left out here ([`intersecting_pairs`] lists them).
+/// Drawn together, the segments trace the curves where the surfaces cross.
+pub fn intersection_segments<A, SA, B, SB>(
+    a: With<'_, A, SA>,
+    b: With<'_, B, SB>,
+    b_to_a: Option<&Affine>,
+    out: &mut [CrossingSegment],
+) -> Found
+where
+    A: TreeArrays + ?Sized,
+    SA: LeafTriangles + ?Sized,
+    B: TreeArrays + ?Sized,
+    SB: LeafTriangles + ?Sized,
+{
+    let mut found = Found::default();
+    let mut tested = 0;
+    let _ = for_each_meeting_pair(a, b, b_to_a, &mut tested, |pair, how| {
+        if let TriangleTriangle::Segment { a, b } = how {
+            found.push(
+                out,
+                CrossingSegment {
+                    pair,
+                    start: a,
+                    end: b,
+                },
+            );
+        }
+        ControlFlow::Continue(())
+    });
+    found.tested = tested;
+    found
+}

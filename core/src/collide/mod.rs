@@ -1,0 +1,27 @@
+//! Where meshes meet: two meshes, each with its BVH, or one mesh with itself.
+//!
+//! - [`meshes_intersect`], [`intersecting_pairs`] and [`intersection_segments`] walk two
+//!   BVHs together from their roots, the second mesh placed in the first one's frame by an
+//!   optional [`Affine`] map, and test triangle pairs at the leaves with
+//!   [`intersect_triangle_triangle`](crate::geom::intersect_triangle_triangle): a yes/no that
+//!   stops at the first pair, every pair, or the crossing segments for drawing.
+//! - [`self_intersects`] and [`self_intersecting_pairs`] walk one BVH against itself and judge
+//!   neighbouring triangles by what they share: touching along a shared edge or corner is not
+//!   an intersection, crossing beyond it or folding over is.
+//!
+//! Results go into caller buffers with the true count ([`Found`]); nothing allocates, and
+//! the walks use fixed stacks bounded by the trees' depth.
+
+mod affine;
+mod found;
+mod mesh_mesh;
+mod neighbours;
+mod self_intersect;
+mod tree_pairs;
+
+pub use affine::Affine;
+pub use found::{CrossingSegment, Found, TrianglePair};
+pub use mesh_mesh::{intersecting_pairs, intersection_segments, meshes_intersect};
+#[doc(hidden)]
+pub use self_intersect::touching_pairs_unfiltered;
+pub use self_intersect::{self_intersecting_pairs, self_intersects};

@@ -1,0 +1,119 @@
+//! Where a mesh meets itself: its BVH walked against itself, neighbours judged by what they
+//! share.
+
+use core::ops::ControlFlow;
+
+use super::neighbours::meets_beyond_shared;
+use super::tree_pairs::for_each_self_leaf_pair;
+use super::{Found, TrianglePair};
+use crate::bvh::{BvhNode, TreeArrays};
+use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
+use crate::mesh::ValidMesh;
+
+/// Calls `on` with every pair of `mesh`'s triangles (`a < b`) that meets beyond what the two
+/// share; in walk order. Stops when `on` breaks.
+fn for_each_self_pair<A: TreeArrays + ?Sized>(
+    tree: &A,
+    mesh: &ValidMesh<'_>,
+    skip_shared: bool,
+    tested: &mut usize,
+    mut on: impl FnMut(TrianglePair) -> ControlFlow<()>,
+) -> ControlFlow<()> {
+    let triangles = mesh.triangles();
+    for_each_self_leaf_pair(tree, |one: BvhNode, other: BvhNode| {
+        let same_leaf = one.first == other.first;
+        let (Some(ids_one), Some(ids_other)) = (
+            tree.leaf_triangles(one.first as usize, one.count as usize),
+            tree.leaf_triangles(other.first as usize, other.count as usize),
+        ) else {
+            return ControlFlow::Continue(());
+        };
+        for (k, (_, i)) in ids_one.enumerate() {
+            let (Some(ti), Some(&ci)) = (mesh.triangle(i), triangles.get(i as usize)) else {
+                continue;
+            };
+            // Within one leaf, each unordered pair once: the entries after this one.
+            let partners = ids_other.clone().skip(if same_leaf { k + 1 } else { 0 });
+            for (_, j) in partners {
+                let (Some(tj), Some(&cj)) = (mesh.triangle(j), triangles.get(j as usize)) else {
+                    continue;
+                };
+                // The lower index first, whatever the walk's order: borderline touches are
+                // then decided the same way by any tree.
+                let ((t1, c1), (t2, c2)) = if i < j {
+                    ((ti, ci), (tj, cj))
+                } else {
+                    ((tj, cj), (ti, ci))
+                };
+                *tested += 1;
+                let how = intersect_triangle_triangle(&t1, &t2);
+                let meets = if skip_shared {
+                    meets_beyond_shared(&t1, &t2, c1, c2, how)
+                } else {
+                    how != TriangleTriangle::Disjoint
+                };
+                if meets {
+                    on(TrianglePair {
+                        a: i.min(j),
+                        b: i.max(j),
+                    })?;
+                }
+            }
+        }
+        ControlFlow::Continue(())
+    })
+}
+
+/// Whether `mesh` meets itself: whether two of its triangles meet somewhere besides the
+/// corners or edge they share. Neighbours touch along what they share, which does not count;
+/// they count when they cross beyond a shared corner, or lie in one plane and overlap with
+/// positive area (a face folded onto its neighbour). Triangles sharing nothing count when
+/// they meet at all, touching included. A corner is shared by index or by position (within
+/// about 2⁻²⁰ of the coordinates' magnitude), so the seams of an unwelded mesh do not count. Each pair is tested lower index first, so
+/// the answer does not depend on the tree. Degenerate triangles and triangles with NaN
+/// corners meet nothing.
+///
+/// `tree` is a BVH built over `mesh` (a [`Bvh`](crate::bvh::Bvh), or a blob's tree with the
+/// blob's mesh). It is walked against itself, and the walk stops at the first pair. No
+/// allocation: a fixed stack of about 2 KiB.
+#[must_use]
+pub fn self_intersects<A: TreeArrays + ?Sized>(tree: &A, mesh: &ValidMesh<'_>) -> bool {
+    for_each_self_pair(tree, mesh, true, &mut 0, |_| ControlFlow::Break(())).is_break()
+}
+
+/// Every pair of `mesh`'s triangles that meets itself (as in [`self_intersects`]), `a < b`,
+/// written to the front of `out` in walk order; counted as
+/// [`intersecting_pairs`](super::intersecting_pairs) counts.
+pub fn self_intersecting_pairs<A: TreeArrays + ?Sized>(
+    tree: &A,
+    mesh: &ValidMesh<'_>,
+    out: &mut [TrianglePair],
+) -> Found {
+    let mut found = Found::default();
+    let mut tested = 0;
+    let _ = for_each_self_pair(tree, mesh, true, &mut tested, |pair| {
+        found.push(out, pair);
+        ControlFlow::Continue(())
+    });
+    found.tested = tested;
+    found
+}
+
+/// [`self_intersecting_pairs`] without the rule for neighbours: every pair that meets at
+/// all, so every pair of triangles sharing a corner too. Wrong for a self-intersection check,
+/// and kept only so that a test can show the rule matters.
+#[doc(hidden)]
+pub fn touching_pairs_unfiltered<A: TreeArrays + ?Sized>(
+    tree: &A,
+    mesh: &ValidMesh<'_>,
+    out: &mut [TrianglePair],
+) -> Found {
+    let mut found = Found::default();
+    let mut tested = 0;
+    let _ = for_each_self_pair(tree, mesh, false, &mut tested, |pair| {
+        found.push(out, pair);
+        ControlFlow::Continue(())
+    });
+    found.tested = tested;
+    found
+}

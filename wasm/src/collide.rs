@@ -1,0 +1,154 @@
+//! Where meshes meet: two `MeshBvh`s (the second placed by a 4×4 matrix), or one with itself.
+
+use std::borrow::Cow;
+
+use js_sys::{Float32Array, Object, Uint32Array};
+use meshq::Traverse;
+use meshq::bvh::BuildConfig;
+use meshq::collide::{
+    Affine, CrossingSegment, Found, TrianglePair, intersecting_pairs, intersection_segments,
+    meshes_intersect, self_intersecting_pairs,
+};
+use meshq::owned::{MeshBvh as CoreBvh, MeshIndex};
+use wasm_bindgen::prelude::*;
+
+use crate::MeshBvh;
+use crate::js_objects::set;
+
+/// The BVH the checks walk: the structure itself when it is one, else one built here over the
+/// same mesh (a k-d tree, octree or grid is not a tree of boxes).
+fn bvh_of(index: &MeshIndex) -> Result<Cow<'_, CoreBvh>, JsError> {
+    match index {
+        MeshIndex::Bvh(bvh) => Ok(Cow::Borrowed(bvh)),
+        other => CoreBvh::build(&other.mesh(), &BuildConfig::default())
+            .map(Cow::Owned)
+            .map_err(|e| JsError::new(&e.to_string())),
+    }
+}
+
+/// The placement from `matrix`: 16 numbers in column-major order (three.js
+/// `Matrix4.elements`), or the identity when absent.
+fn placement(matrix: Option<Vec<f32>>) -> Result<Option<Affine>, JsError> {
+    let Some(values) = matrix else {
+        return Ok(None);
+    };
+    let Ok(m) = <[f32; 16]>::try_from(values.as_slice()) else {
+        return Err(JsError::new(&format!(
+            "matrix must hold 16 numbers (column-major, like Matrix4.elements), got {}",
+            values.len()
+        )));
+    };
+    Affine::from_cols_4x4(&m)
+        .map(Some)
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// `{ pairs: Uint32Array (a, b per pair), total, tested, overflowed }`.
+fn pairs_object(pairs: &[TrianglePair], found: Found) -> Result<Object, JsError> {
+    let flat: Vec<u32> = pairs[..found.written]
+        .iter()
+        .flat_map(|p| [p.a, p.b])
+        .collect();
+    let out = Object::new();
+    set(&out, "pairs", Uint32Array::from(flat.as_slice()))?;
+    set(&out, "total", found.total as f64)?;
+    set(&out, "tested", found.tested as f64)?;
+    set(&out, "overflowed", found.overflowed())?;
+    Ok(out)
+}
+
+/// Room for results: `limit` when given (at most 2³² pairs), else as many as were found (the
+/// count comes from a first pass that stores none).
+fn room(limit: Option<u32>, count: impl FnOnce() -> usize) -> usize {
+    limit.map_or_else(count, |l| l as usize)
+}
+
+#[wasm_bindgen]
+impl MeshBvh {
+    /// Whether this mesh meets `other`, placed in this mesh's frame by `matrix` (16 numbers,
+    /// column-major like three.js `Matrix4.elements`; omitted: as it is). Touching counts:
+    /// a shared point, a corner on a face, a coplanar overlap. Stops at the first pair found.
+    /// Throws on a matrix that is not 16 finite numbers with a bottom row `0, 0, 0, 1`.
+    #[wasm_bindgen(js_name = intersectsMesh)]
+    pub fn intersects_mesh(
+        &self,
+        other: &MeshBvh,
+        matrix: Option<Vec<f32>>,
+    ) -> Result<bool, JsError> {
+        let place = placement(matrix)?;
+        let (a, b) = (bvh_of(&self.storage.scene)?, bvh_of(&other.storage.scene)?);
+        let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
+        Ok(meshes_intersect(ta.with(&pa), tb.with(&pb), place.as_ref()))
+    }
+
+    /// Every pair of triangles (this mesh's, `other`'s) that meets, with `other` placed by
+    /// `matrix` as in `intersectsMesh`: `{ pairs: Uint32Array, total, tested, overflowed }`,
+    /// `pairs` holding triangle indices two by two. `maxPairs` caps how many are returned
+    /// (`total` still counts all, `overflowed` says some were left out); default: all.
+    #[wasm_bindgen(js_name = intersectingPairs)]
+    pub fn intersecting_pairs(
+        &self,
+        other: &MeshBvh,
+        matrix: Option<Vec<f32>>,
+        max_pairs: Option<u32>,
+    ) -> Result<Object, JsError> {
+        let place = placement(matrix)?;
+        let (a, b) = (bvh_of(&self.storage.scene)?, bvh_of(&other.storage.scene)?);
+        let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
+        let (wa, wb) = (ta.with(&pa), tb.with(&pb));
+        let n = room(max_pairs, || {
+            intersecting_pairs(wa, wb, place.as_ref(), &mut []).total
+        });
+        let mut pairs = vec![TrianglePair::default(); n];
+        let found = intersecting_pairs(wa, wb, place.as_ref(), &mut pairs);
+        pairs_object(&pairs, found)
+    }
+
+    /// Where this mesh and `other` (placed by `matrix`) cross, for drawing: a `Float32Array`
+    /// with 6 numbers per segment (start x, y, z, end x, y, z) in this mesh's frame, one
+    /// segment per pair of crossing triangles. Coplanar overlaps have no segment and are
+    /// left out.
+    #[wasm_bindgen(js_name = intersectionSegments)]
+    pub fn intersection_segments(
+        &self,
+        other: &MeshBvh,
+        matrix: Option<Vec<f32>>,
+    ) -> Result<Float32Array, JsError> {
+        let place = placement(matrix)?;
+        let (a, b) = (bvh_of(&self.storage.scene)?, bvh_of(&other.storage.scene)?);
+        let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
+        let (wa, wb) = (ta.with(&pa), tb.with(&pb));
+        let n = intersection_segments(wa, wb, place.as_ref(), &mut []).total;
+        let empty = CrossingSegment {
+            pair: TrianglePair::default(),
+            start: glam::Vec3::ZERO,
+            end: glam::Vec3::ZERO,
+        };
+        let mut segments = vec![empty; n];
+        let found = intersection_segments(wa, wb, place.as_ref(), &mut segments);
+        let flat: Vec<f32> = segments[..found.written]
+            .iter()
+            .flat_map(|s| [s.start.to_array(), s.end.to_array()])
+            .flatten()
+            .collect();
+        Ok(Float32Array::from(flat.as_slice()))
+    }
+
+    /// Where this mesh meets itself: pairs of its triangles (lower index first) that meet
+    /// beyond the corners or edge they share (crossing beyond a shared corner, or folded over
+    /// a neighbour); triangles sharing nothing count when they touch at all. Corners are shared
+    /// by index or by position (within about 2⁻²⁰ of the coordinates' magnitude), so an
+    /// unwelded mesh's seams do not count. Returns
+    /// `{ pairs, total, tested, overflowed }` as `intersectingPairs` does.
+    #[wasm_bindgen(js_name = selfIntersections)]
+    pub fn self_intersections(&self, max_pairs: Option<u32>) -> Result<Object, JsError> {
+        let bvh = bvh_of(&self.storage.scene)?;
+        let (tree, mesh) = (bvh.bvh(), bvh.mesh());
+        let n = room(max_pairs, || {
+            self_intersecting_pairs(&tree, &mesh, &mut []).total
+        });
+        let mut pairs = vec![TrianglePair::default(); n];
+        let found = self_intersecting_pairs(&tree, &mesh, &mut pairs);
+        pairs_object(&pairs, found)
+    }
+}
