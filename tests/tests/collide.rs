@@ -470,3 +470,76 @@ fn displaced_vertices_make_intersections_that_match_brute_force() {
     let got = check_self("displaced spot", &mesh);
     assert!(!got.is_empty());
 }
+
+/// A soup of `n` random triangles in the unit cube, with every ninth one degenerate (a corner
+/// repeated) and every seventh sharing corners with the one before, as indices into
+/// positions.
+fn soup(rng: &mut meshq_tests::SplitMix64, n: usize) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for k in 0..n {
+        let base = positions.len() as u32;
+        let centre = [rng.next_f32(), rng.next_f32(), rng.next_f32()];
+        for _ in 0..3 {
+            positions.push(centre.map(|c| c + rng.range(-0.2, 0.2)));
+        }
+        let mut t = [base, base + 1, base + 2];
+        if k % 9 == 8 {
+            t[2] = t[1];
+        } else if k % 7 == 6 && base >= 3 {
+            t[0] = base - 3;
+            t[1] = base - 2;
+        }
+        triangles.push(t);
+    }
+    (positions, triangles)
+}
+
+#[test]
+fn random_soups_under_any_affine_map_match_brute_force_and_never_panic() {
+    let mut rng = meshq_tests::SplitMix64::new(0x5eed);
+    let mut meeting = 0;
+    for round in 0..40 {
+        let (pa, ta) = soup(&mut rng, 60 + round);
+        let (pb, tb) = soup(&mut rng, 50);
+        let (ma, mb) = (
+            MeshRef::new(&pa, &ta).validate().unwrap(),
+            MeshRef::new(&pb, &tb).validate().unwrap(),
+        );
+        let (ba, bb) = (
+            MeshBvh::build(&ma, &BuildConfig::default()).unwrap(),
+            MeshBvh::build(&mb, &BuildConfig::default()).unwrap(),
+        );
+        // A map with scale and shear, or a wild one: huge, tiny, or flattening.
+        let mut columns = [[0.0f32; 3]; 3];
+        for c in &mut columns {
+            *c = [
+                rng.range(-1.5, 1.5),
+                rng.range(-1.5, 1.5),
+                rng.range(-1.5, 1.5),
+            ];
+        }
+        match round % 8 {
+            5 => columns[2] = [0.0; 3],
+            6 => columns = columns.map(|c| c.map(|x| x * 1e30)),
+            7 => columns = columns.map(|c| c.map(|x| x * 1e-30)),
+            _ => {}
+        }
+        // Centred on the first soup's cube, so that the soups overlap.
+        let linear = Affine {
+            columns,
+            translation: [0.0; 3],
+        };
+        let image = linear.apply(Vec3::splat(0.5));
+        let place = Affine {
+            columns,
+            translation: (Vec3::splat(0.5) - image).to_array(),
+        };
+        let expected = brute_pairs(&triangles_of(&ma), &triangles_of(&mb), &place, None);
+        check_two_meshes(&format!("soup {round}"), &ba, &bb, &place, &expected, None);
+        meeting += expected.len();
+        // One soup against itself: the library's self pairs against the oracle's.
+        check_self(&format!("soup {round}"), &ma);
+    }
+    assert!(meeting > 100, "{meeting} meeting pairs in all");
+}

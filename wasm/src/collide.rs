@@ -4,12 +4,13 @@ use std::borrow::Cow;
 
 use js_sys::{Float32Array, Object, Uint32Array};
 use meshq::Traverse;
-use meshq::bvh::BuildConfig;
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::collide::{
     Affine, CrossingSegment, Found, TrianglePair, intersecting_pairs, intersection_segments,
     meshes_intersect, self_intersecting_pairs,
 };
 use meshq::owned::{MeshBvh as CoreBvh, MeshIndex};
+use meshq::query::{PackedTriangles, With};
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
@@ -41,6 +42,20 @@ fn placement(matrix: Option<Vec<f32>>) -> Result<Option<Affine>, JsError> {
     Affine::from_cols_4x4(&m)
         .map(Some)
         .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// The two meshes' trees with their packed triangles, as the mesh–mesh queries take them.
+type Walked<'a> = With<'a, Bvh<'a>, PackedTriangles<'a>>;
+
+/// Runs `query` on the trees of `one` and `other` (see [`bvh_of`]).
+fn on_both<R>(
+    one: &MeshBvh,
+    other: &MeshBvh,
+    query: impl FnOnce(Walked<'_>, Walked<'_>) -> R,
+) -> Result<R, JsError> {
+    let (a, b) = (bvh_of(&one.storage.scene)?, bvh_of(&other.storage.scene)?);
+    let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
+    Ok(query(ta.with(&pa), tb.with(&pb)))
 }
 
 /// `{ pairs: Uint32Array (a, b per pair), total, tested, overflowed }`.
@@ -76,9 +91,7 @@ impl MeshBvh {
         matrix: Option<Vec<f32>>,
     ) -> Result<bool, JsError> {
         let place = placement(matrix)?;
-        let (a, b) = (bvh_of(&self.storage.scene)?, bvh_of(&other.storage.scene)?);
-        let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
-        Ok(meshes_intersect(ta.with(&pa), tb.with(&pb), place.as_ref()))
+        on_both(self, other, |a, b| meshes_intersect(a, b, place.as_ref()))
     }
 
     /// Every pair of triangles (this mesh's, `other`'s) that meets, with `other` placed by
@@ -93,14 +106,14 @@ impl MeshBvh {
         max_pairs: Option<u32>,
     ) -> Result<Object, JsError> {
         let place = placement(matrix)?;
-        let (a, b) = (bvh_of(&self.storage.scene)?, bvh_of(&other.storage.scene)?);
-        let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
-        let (wa, wb) = (ta.with(&pa), tb.with(&pb));
-        let n = room(max_pairs, || {
-            intersecting_pairs(wa, wb, place.as_ref(), &mut []).total
-        });
-        let mut pairs = vec![TrianglePair::default(); n];
-        let found = intersecting_pairs(wa, wb, place.as_ref(), &mut pairs);
+        let (pairs, found) = on_both(self, other, |a, b| {
+            let n = room(max_pairs, || {
+                intersecting_pairs(a, b, place.as_ref(), &mut []).total
+            });
+            let mut pairs = vec![TrianglePair::default(); n];
+            let found = intersecting_pairs(a, b, place.as_ref(), &mut pairs);
+            (pairs, found)
+        })?;
         pairs_object(&pairs, found)
     }
 
@@ -115,18 +128,19 @@ impl MeshBvh {
         matrix: Option<Vec<f32>>,
     ) -> Result<Float32Array, JsError> {
         let place = placement(matrix)?;
-        let (a, b) = (bvh_of(&self.storage.scene)?, bvh_of(&other.storage.scene)?);
-        let (ta, tb, pa, pb) = (a.bvh(), b.bvh(), a.packed(), b.packed());
-        let (wa, wb) = (ta.with(&pa), tb.with(&pb));
-        let n = intersection_segments(wa, wb, place.as_ref(), &mut []).total;
-        let empty = CrossingSegment {
-            pair: TrianglePair::default(),
-            start: glam::Vec3::ZERO,
-            end: glam::Vec3::ZERO,
-        };
-        let mut segments = vec![empty; n];
-        let found = intersection_segments(wa, wb, place.as_ref(), &mut segments);
-        let flat: Vec<f32> = segments[..found.written]
+        let segments = on_both(self, other, |a, b| {
+            let n = intersection_segments(a, b, place.as_ref(), &mut []).total;
+            let empty = CrossingSegment {
+                pair: TrianglePair::default(),
+                start: glam::Vec3::ZERO,
+                end: glam::Vec3::ZERO,
+            };
+            let mut segments = vec![empty; n];
+            let found = intersection_segments(a, b, place.as_ref(), &mut segments);
+            segments.truncate(found.written);
+            segments
+        })?;
+        let flat: Vec<f32> = segments
             .iter()
             .flat_map(|s| [s.start.to_array(), s.end.to_array()])
             .flatten()

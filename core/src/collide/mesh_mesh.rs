@@ -104,14 +104,7 @@ where
     B: TreeArrays + ?Sized,
     SB: LeafTriangles + ?Sized,
 {
-    let mut found = Found::default();
-    let mut tested = 0;
-    let _ = for_each_meeting_pair(a, b, b_to_a, &mut tested, |pair, _| {
-        found.push(out, pair);
-        ControlFlow::Continue(())
-    });
-    found.tested = tested;
-    found
+    collect(a, b, b_to_a, out, |pair, _| Some(pair))
 }
 
 /// Where the meshes cross: for every pair of triangles whose planes cross and that meet, the
@@ -131,18 +124,36 @@ where
     B: TreeArrays + ?Sized,
     SB: LeafTriangles + ?Sized,
 {
+    collect(a, b, b_to_a, out, |pair, how| match how {
+        TriangleTriangle::Segment { a, b } => Some(CrossingSegment {
+            pair,
+            start: a,
+            end: b,
+        }),
+        _ => None,
+    })
+}
+
+/// Writes `keep(pair, how)` of every meeting pair that it keeps to the front of `out`,
+/// counting them all.
+fn collect<A, SA, B, SB, T>(
+    a: With<'_, A, SA>,
+    b: With<'_, B, SB>,
+    b_to_a: Option<&Affine>,
+    out: &mut [T],
+    keep: impl Fn(TrianglePair, TriangleTriangle) -> Option<T>,
+) -> Found
+where
+    A: TreeArrays + ?Sized,
+    SA: LeafTriangles + ?Sized,
+    B: TreeArrays + ?Sized,
+    SB: LeafTriangles + ?Sized,
+{
     let mut found = Found::default();
     let mut tested = 0;
     let _ = for_each_meeting_pair(a, b, b_to_a, &mut tested, |pair, how| {
-        if let TriangleTriangle::Segment { a, b } = how {
-            found.push(
-                out,
-                CrossingSegment {
-                    pair,
-                    start: a,
-                    end: b,
-                },
-            );
+        if let Some(item) = keep(pair, how) {
+            found.push(out, item);
         }
         ControlFlow::Continue(())
     });

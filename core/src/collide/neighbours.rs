@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::geom::TriangleTriangle;
+use crate::geom::onto_dominant_plane;
 use crate::math::Triangle;
 
 /// Whether triangles `t1` and `t2` of one mesh, with corner indices `i1` and `i2`, meet
@@ -62,16 +63,8 @@ fn magnitude(t1: &Triangle, t2: &Triangle) -> f32 {
 /// either separates them, touching (within about 2⁻²⁰ of the coordinates' magnitude)
 /// counting as separated. Projected onto the plane of `t1`'s two minor normal axes.
 fn overlap_with_area(t1: &Triangle, t2: &Triangle) -> bool {
-    let n = t1.normal().abs();
-    let flat = |p: Vec3| {
-        if n.x >= n.y && n.x >= n.z {
-            Vec2::new(p.y, p.z)
-        } else if n.y >= n.z {
-            Vec2::new(p.z, p.x)
-        } else {
-            Vec2::new(p.x, p.y)
-        }
-    };
+    let n = t1.normal();
+    let flat = |p: Vec3| onto_dominant_plane(n, p);
     let p = [t1.a, t1.b, t1.c].map(flat);
     let q = [t2.a, t2.b, t2.c].map(flat);
     let tol = magnitude(t1, t2) * (1.0 / 1_048_576.0);

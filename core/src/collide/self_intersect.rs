@@ -89,14 +89,7 @@ pub fn self_intersecting_pairs<A: TreeArrays + ?Sized>(
     mesh: &ValidMesh<'_>,
     out: &mut [TrianglePair],
 ) -> Found {
-    let mut found = Found::default();
-    let mut tested = 0;
-    let _ = for_each_self_pair(tree, mesh, true, &mut tested, |pair| {
-        found.push(out, pair);
-        ControlFlow::Continue(())
-    });
-    found.tested = tested;
-    found
+    collect_self_pairs(tree, mesh, true, out)
 }
 
 /// [`self_intersecting_pairs`] without the rule for neighbours: every pair that meets at
@@ -108,9 +101,19 @@ pub fn touching_pairs_unfiltered<A: TreeArrays + ?Sized>(
     mesh: &ValidMesh<'_>,
     out: &mut [TrianglePair],
 ) -> Found {
+    collect_self_pairs(tree, mesh, false, out)
+}
+
+/// Writes the pairs [`for_each_self_pair`] finds to the front of `out`, counting them all.
+fn collect_self_pairs<A: TreeArrays + ?Sized>(
+    tree: &A,
+    mesh: &ValidMesh<'_>,
+    skip_shared: bool,
+    out: &mut [TrianglePair],
+) -> Found {
     let mut found = Found::default();
     let mut tested = 0;
-    let _ = for_each_self_pair(tree, mesh, false, &mut tested, |pair| {
+    let _ = for_each_self_pair(tree, mesh, skip_shared, &mut tested, |pair| {
         found.push(out, pair);
         ControlFlow::Continue(())
     });

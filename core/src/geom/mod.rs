@@ -35,6 +35,7 @@ pub use ray_triangle::{CullMode, TriangleHit, intersect_ray_triangle};
 pub use ray_triangle_watertight::intersect_ray_triangle_watertight;
 pub use segment_segment::{SegmentSegment, closest_points_segment_segment};
 pub use triangle_aabb::overlap_triangle_aabb;
+pub(crate) use triangle_triangle::onto_dominant_plane;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
 
 pub(crate) use closest_point_triangle::closest_point_regions;

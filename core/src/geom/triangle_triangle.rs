@@ -154,19 +154,23 @@ pub fn intersect_triangle_triangle(t1: &Triangle, t2: &Triangle) -> TriangleTria
     TriangleTriangle::Segment { a: lo.1, b: hi.1 }
 }
 
+/// `v` projected onto the coordinate plane most nearly parallel to the plane with normal `n`
+/// (the normal's dominant axis dropped: the projection with the largest area), keeping the
+/// orientation of the other two axes in cyclic order.
+pub(crate) fn onto_dominant_plane(n: Vec3, v: Vec3) -> Vec2 {
+    let a = n.abs();
+    if a.x >= a.y && a.x >= a.z {
+        Vec2::new(v.y, v.z)
+    } else if a.y >= a.z {
+        Vec2::new(v.z, v.x)
+    } else {
+        Vec2::new(v.x, v.y)
+    }
+}
+
 /// Overlap of two triangles known to share the plane with normal `n`, decided in 2D.
 fn coplanar_overlap(t1: &Triangle, t2: &Triangle, n: Vec3) -> bool {
-    let a = n.abs();
-    // Drop the dominant axis of the normal: the projection with the largest area.
-    let project = |v: Vec3| {
-        if a.x >= a.y && a.x >= a.z {
-            Vec2::new(v.y, v.z)
-        } else if a.y >= a.z {
-            Vec2::new(v.z, v.x)
-        } else {
-            Vec2::new(v.x, v.y)
-        }
-    };
+    let project = |v: Vec3| onto_dominant_plane(n, v);
     let [p0, p1, p2] = [t1.a, t1.b, t1.c].map(project);
     let [q0, q1, q2] = [t2.a, t2.b, t2.c].map(project);
     for (a, b) in [(p0, p1), (p1, p2), (p2, p0)] {
