@@ -28,12 +28,13 @@
 //! ```
 //!
 //! ## Modules
-//! - [`math`]: [`Aabb`], [`Aabb4`](math::Aabb4), [`Ray`],
+//! - [`math`]: [`Aabb`], [`Aabb4`](math::Aabb4), [`Obb`](math::Obb), [`Ray`],
 //!   [`Triangle`](math::Triangle), [`PackedTriangle`](math::PackedTriangle),
 //!   [`RayHit`], [`ClosestPoint`].
 //! - [`geom`]: exact pairwise tests, `<op>_<a>_<b>` (ray–plane, ray–box, ray–triangle in
 //!   Möller–Trumbore and watertight forms, closest points on plane/segment/triangle,
-//!   point-in-triangle, segment–segment, line–line, triangle–triangle, triangle–box).
+//!   point-in-triangle, segment–segment, line–line, triangle–triangle, triangle–box,
+//!   triangle–oriented box).
 //! - [`mesh`]: [`MeshRef`] and its validation into [`ValidMesh`].
 //! - [`query`]: the query layer every structure shares: [`Traverse`] (what a
 //!   structure implements), [`Visitor`](query::Visitor) (what a query is),

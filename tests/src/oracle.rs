@@ -3,10 +3,11 @@
 
 use glam::Vec3;
 use meshq::geom::{
-    closest_point_triangle, intersect_ray_aabb, intersect_ray_triangle,
-    intersect_ray_triangle_watertight, overlap_triangle_aabb,
+    TriangleTriangle, closest_point_triangle, intersect_ray_aabb, intersect_ray_triangle,
+    intersect_ray_triangle_watertight, intersect_triangle_triangle, overlap_triangle_aabb,
+    overlap_triangle_obb,
 };
-use meshq::math::{Aabb, ClosestPoint, Ray, RayHit, Triangle};
+use meshq::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle};
 use meshq::mesh::ValidMesh;
 use meshq::query::{RayOptions, TriangleTest};
 
@@ -142,6 +143,31 @@ impl BruteForce {
     pub fn overlap_aabb(&self, aabb: &Aabb) -> Vec<u32> {
         self.indexed()
             .filter(|(_, t)| !t.is_degenerate() && overlap_triangle_aabb(t, aabb))
+            .map(|(i, _)| i)
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect()
+    }
+
+    /// Indices of non-degenerate triangles meeting triangle `query`, ascending.
+    #[must_use]
+    pub fn overlap_triangle(&self, query: &Triangle) -> Vec<u32> {
+        self.indexed()
+            .filter(|(_, t)| {
+                !t.is_degenerate()
+                    && intersect_triangle_triangle(t, query) != TriangleTriangle::Disjoint
+            })
+            .map(|(i, _)| i)
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect()
+    }
+
+    /// Indices of non-degenerate triangles sharing a point with `obb`, ascending.
+    #[must_use]
+    pub fn overlap_obb(&self, obb: &Obb) -> Vec<u32> {
+        self.indexed()
+            .filter(|(_, t)| !t.is_degenerate() && overlap_triangle_obb(t, obb))
             .map(|(i, _)| i)
             .collect::<std::collections::BTreeSet<_>>()
             .into_iter()

@@ -7,7 +7,7 @@ use meshq::MeshQuery;
 use meshq::blob::BlobView;
 use meshq::geom::CullMode;
 use meshq::math::Ray;
-use meshq::math::{Aabb, Vec3};
+use meshq::math::{Aabb, Obb, Triangle, Vec3};
 use meshq::query::{RayOptions, TriangleTest};
 
 use crate::oracle::BruteForce;
@@ -108,6 +108,7 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
         );
     }
 
+    let mut overlapped = 0;
     for (i, p) in workload::closest_points(&loaded.positions, OVERLAPS, 7)
         .into_iter()
         .enumerate()
@@ -140,7 +141,46 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
             ControlFlow::Break(())
         });
         assert_eq!(seen, usize::from(!want.is_empty()), "{what}: break {i}");
+
+        // A triangle around the point, turned by the index, and an oriented box turned the
+        // same way: each touching triangle reported once.
+        let (sin, cos) = (0.7 * i as f32).sin_cos();
+        let (u, v) = (
+            Vec3::new(cos, sin, 0.3).normalize(),
+            Vec3::new(-sin, cos, 0.0),
+        );
+        let w = u.cross(v).normalize();
+        let v = w.cross(u);
+        let size = radius * 0.04 * (1 + i % 3) as f32;
+        let query = Triangle::new(p - u * size, p + v * size, p + (u + w) * size);
+        let want = brute.overlap_triangle(&query);
+        let mut out = vec![0u32; want.len() + 2];
+        let count = q.overlap_triangle_into(&query, &mut out);
+        let mut got = out[..count.written].to_vec();
+        got.sort_unstable();
+        assert_eq!(
+            (got, count.total),
+            (want.clone(), want.len()),
+            "{what}: triangle {i}"
+        );
+        let obb = Obb::new(p, [u, v, w], Vec3::new(1.0, 0.5, 2.0) * size);
+        let want = brute.overlap_obb(&obb);
+        let mut out = vec![0u32; want.len() + 2];
+        let count = q.overlap_obb_into(&obb, &mut out);
+        let mut got = out[..count.written].to_vec();
+        got.sort_unstable();
+        assert_eq!(
+            (got, count.total),
+            (want.clone(), want.len()),
+            "{what}: oriented box {i}"
+        );
+        overlapped += usize::from(!want.is_empty());
     }
+    // Not vacuous: some of the boxes, placed around points of the workload, meet the mesh.
+    assert!(
+        overlapped >= 3,
+        "{what}: {overlapped} oriented boxes met the mesh"
+    );
     let _ = c;
 }
 

@@ -1,5 +1,5 @@
 // Types of the meshq three.js drop-in (three.js / three.mjs).
-import type { BufferGeometry, Intersection, Matrix4, Mesh, Raycaster } from 'three';
+import type { Box3, BufferGeometry, Intersection, Matrix4, Mesh, Raycaster, Sphere } from 'three';
 import type { MeshBvh } from './meshq_wasm';
 
 /**
@@ -34,6 +34,13 @@ declare module './meshq_wasm' {
      * `geometry.boundsTree` when present, else builds a temporary one.
      */
     intersectsGeometry(geometry: BufferGeometry, geometryToBvh: Matrix4): boolean;
+    /** three-mesh-bvh's `intersectsSphere`: whether a triangle touches the sphere. */
+    intersectsSphere(sphere: Sphere): boolean;
+    /**
+     * three-mesh-bvh's `intersectsBox`: whether a triangle touches `box` placed by
+     * `boxToMesh` (rotation, translation and scale; shear throws).
+     */
+    intersectsBox(box: Box3, boxToMesh: Matrix4): boolean;
   }
 }
 

@@ -61,6 +61,38 @@ MeshBvh.prototype.intersectsGeometry = function intersectsGeometry(geometry, geo
   }
 };
 
+/**
+ * three-mesh-bvh's `boundsTree.intersectsSphere(sphere)`: whether a triangle comes within the
+ * `Sphere`'s radius of its centre (touching counts).
+ */
+MeshBvh.prototype.intersectsSphere = function intersectsSphere(sphere) {
+  const c = sphere.center;
+  return this.overlapsSphere([c.x, c.y, c.z], sphere.radius);
+};
+
+/**
+ * three-mesh-bvh's `boundsTree.intersectsBox(box, boxToMesh)`: whether a triangle shares a
+ * point with the `Box3` placed in the mesh's frame by the Matrix4 `boxToMesh` (rotation,
+ * translation and scale; a matrix with shear or a zero scale throws, since the box is then
+ * no longer a box).
+ */
+MeshBvh.prototype.intersectsBox = function intersectsBox(box, boxToMesh) {
+  const e = boxToMesh.elements;
+  const columns = [[e[0], e[1], e[2]], [e[4], e[5], e[6]], [e[8], e[9], e[10]]];
+  const lengths = columns.map((c) => Math.hypot(c[0], c[1], c[2]));
+  const dotOf = (p, q) => p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+  for (const [i, j] of [[0, 1], [1, 2], [0, 2]]) {
+    if (!(lengths[i] > 0) || Math.abs(dotOf(columns[i], columns[j])) > 1e-5 * lengths[i] * lengths[j]) {
+      throw new Error('intersectsBox: boxToMesh must be a rotation, translation and scale (no shear, no zero scale)');
+    }
+  }
+  const center = box.getCenter(new Vector3()).applyMatrix4(boxToMesh);
+  const half = box.getSize(new Vector3()).multiplyScalar(0.5);
+  const axes = columns.flatMap((c, i) => c.map((x) => x / lengths[i]));
+  const halfExtents = [half.x * lengths[0], half.y * lengths[1], half.z * lengths[2]];
+  return this.overlapsOrientedBox([center.x, center.y, center.z], axes, halfExtents);
+};
+
 /** Frees `this.boundsTree`. */
 export function disposeBoundsTree() {
   if (this.boundsTree) this.boundsTree.free();

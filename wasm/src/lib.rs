@@ -15,6 +15,7 @@ mod js_objects;
 mod levels;
 mod mesh_bvh;
 mod options;
+mod overlaps;
 mod remesh;
 mod storage;
 mod workload;

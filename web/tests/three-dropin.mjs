@@ -256,6 +256,18 @@ brute.material = material;
   }
   assert.equal(unit.boundsTree.selfIntersections().total, 0);
   assert.throws(() => unit.boundsTree.intersectsMesh(unit.boundsTree, [1, 2, 3]), /16 numbers/);
+  // intersectsSphere and intersectsBox: only the surface counts, not the volume inside.
+  const tree = unit.boundsTree;
+  assert.equal(tree.intersectsSphere(new THREE.Sphere(new THREE.Vector3(), 0.5)), false, 'sphere inside');
+  assert.equal(tree.intersectsSphere(new THREE.Sphere(new THREE.Vector3(0.5, 0, 0), 0.6)), true, 'sphere across');
+  const slab = new THREE.Box3(new THREE.Vector3(-0.55, -0.55, -0.05), new THREE.Vector3(0.55, 0.55, 0.05));
+  // Turned 45° its corners stay 0.78 from the centre, inside the sphere, though its
+  // axis-aligned bounds reach past the surface: the box, not its bounds, is tested.
+  const turned = new THREE.Matrix4().makeRotationZ(Math.PI / 4);
+  assert.equal(tree.intersectsBox(slab, turned), false, 'turned slab inside');
+  assert.equal(tree.intersectsBox(slab, turned.clone().scale(new THREE.Vector3(1.5, 1.5, 1))), true, 'scaled past the surface');
+  assert.equal(tree.intersectsBox(slab, new THREE.Matrix4().makeTranslation(0.6, 0, 0)), true, 'moved across');
+  assert.throws(() => tree.intersectsBox(slab, new THREE.Matrix4().makeShear(0.5, 0, 0, 0, 0, 0)), /shear/);
   unit.disposeBoundsTree();
 }
 

@@ -20,6 +20,7 @@ mod ray_triangle_watertight_lanes;
 mod segment_segment;
 mod triangle_aabb;
 mod triangle_lanes;
+mod triangle_obb;
 mod triangle_triangle;
 
 pub use clip_triangle_aabb::{ClippedTriangle, clip_triangle_aabb};
@@ -35,6 +36,7 @@ pub use ray_triangle::{CullMode, TriangleHit, intersect_ray_triangle};
 pub use ray_triangle_watertight::intersect_ray_triangle_watertight;
 pub use segment_segment::{SegmentSegment, closest_points_segment_segment};
 pub use triangle_aabb::overlap_triangle_aabb;
+pub use triangle_obb::overlap_triangle_obb;
 pub(crate) use triangle_triangle::onto_dominant_plane;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
 

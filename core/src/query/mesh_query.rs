@@ -5,11 +5,11 @@ use core::ops::ControlFlow;
 use glam::Vec3;
 
 use super::{
-    LeafTriangles, OverlapCount, RayOptions, Traverse, closest, closest_batch, overlap, ray,
-    raycast_batch,
+    LeafTriangles, OverlapCount, RayOptions, Traverse, closest, closest_batch, overlap,
+    overlap_shapes, ray, raycast_batch,
 };
 use crate::error::BatchError;
-use crate::math::{Aabb, ClosestPoint, Ray, RayHit};
+use crate::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle};
 
 /// The queries of meshq, answered by a structure together with the triangles it indexes.
 ///
@@ -159,6 +159,35 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     /// its end, so the result says how large a buffer would have been needed.
     fn overlap_sphere_into(&self, center: Vec3, radius: f32, out: &mut [u32]) -> OverlapCount {
         overlap::overlap_sphere_into(self, self, center, radius, out)
+    }
+
+    /// Calls `report` with the index of every non-degenerate triangle that meets triangle
+    /// `query` (as [`intersect_triangle_triangle`](crate::geom::intersect_triangle_triangle)
+    /// decides: touching and coplanar overlap count), in traversal order, until it returns
+    /// `Break`. A degenerate or non-finite `query` reports nothing. (Each mesh triangle is
+    /// reported once, also by structures that reference it from several cells.)
+    fn overlap_triangle<F: FnMut(u32) -> ControlFlow<()>>(&self, query: &Triangle, report: F) {
+        overlap_shapes::overlap_triangle(self, self, query, report);
+    }
+
+    /// Calls `report` with the index of every non-degenerate triangle that shares a point
+    /// with the oriented box `obb` ([`overlap_triangle_obb`](crate::geom::overlap_triangle_obb);
+    /// touching counts), in traversal order, until it returns `Break`. A box that is not
+    /// [valid](Obb::is_valid) reports nothing.
+    fn overlap_obb<F: FnMut(u32) -> ControlFlow<()>>(&self, obb: &Obb, report: F) {
+        overlap_shapes::overlap_obb(self, self, obb, report);
+    }
+
+    /// [`MeshQuery::overlap_triangle`] writing triangle indices into `out`; keeps counting
+    /// past its end, so the result says how large a buffer would have been needed.
+    fn overlap_triangle_into(&self, query: &Triangle, out: &mut [u32]) -> OverlapCount {
+        overlap_shapes::overlap_triangle_into(self, self, query, out)
+    }
+
+    /// [`MeshQuery::overlap_obb`] writing triangle indices into `out`; keeps counting past its
+    /// end, so the result says how large a buffer would have been needed.
+    fn overlap_obb_into(&self, obb: &Obb, out: &mut [u32]) -> OverlapCount {
+        overlap_shapes::overlap_obb_into(self, self, obb, out)
     }
 }
 

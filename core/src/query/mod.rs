@@ -87,6 +87,7 @@ mod leaf_batches;
 mod mailbox;
 mod mesh_query;
 mod overlap;
+mod overlap_shapes;
 mod ray;
 mod raycast_batch;
 mod traverse;

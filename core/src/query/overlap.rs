@@ -29,12 +29,12 @@ impl OverlapCount {
 /// Visits leaves whose box passes `enter_box`, reporting triangles that pass `hits`. In a leaf
 /// with a [`Cell`](super::Cell) a triangle is reported only when the cell owns its `witness`: a
 /// point of the triangle and the query, the same in every cell, so exactly one cell reports it.
-struct Overlap<'m, S: ?Sized, B, T, W, F> {
-    source: &'m S,
-    enter_box: B,
-    hits: T,
-    witness: W,
-    report: F,
+pub(super) struct Overlap<'m, S: ?Sized, B, T, W, F> {
+    pub(super) source: &'m S,
+    pub(super) enter_box: B,
+    pub(super) hits: T,
+    pub(super) witness: W,
+    pub(super) report: F,
 }
 
 impl<S, B, T, W, F> Visitor for Overlap<'_, S, B, T, W, F>
@@ -69,7 +69,7 @@ where
 /// The point that decides which cell reports triangle `t` overlapping box `query`: the
 /// lexicographically smallest corner of the part of `t` inside `query`, kept inside both the
 /// query and the triangle's bounds, so it lies in a cell the query enters and that holds `t`.
-fn box_witness(t: &Triangle, query: &Aabb) -> Vec3 {
+pub(super) fn box_witness(t: &Triangle, query: &Aabb) -> Vec3 {
     let part = clip_triangle_aabb(t, query);
     let first = part.corners().iter().copied().reduce(|best, p| {
         let (a, b) = (p.to_array(), best.to_array());
@@ -82,7 +82,7 @@ fn box_witness(t: &Triangle, query: &Aabb) -> Vec3 {
     first.unwrap_or(t.a).clamp(lo, hi.max(lo))
 }
 
-fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> {
+pub(super) fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> {
     if let Some(slot) = out.get_mut(count.written) {
         *slot = tri;
         count.written += 1;
