@@ -77,6 +77,21 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
         );
     }
 
+    // Segments from each ray's origin to half or one and a half times its first hit (or a
+    // fixed length on a miss): some end before the surface, some cross it.
+    for (i, r) in rays.iter().take(100).enumerate() {
+        let o = RayOptions::default();
+        let reach = brute.raycast(r, &o).map_or(1.0, |h| h.t) * [0.5, 1.5][i % 2];
+        let segment = Ray::segment(r.origin, r.at(reach));
+        let want = brute.raycast(&segment, &o);
+        assert_eq!(bits(q.raycast(&segment)), bits(want), "{what}: segment {i}");
+        assert_eq!(
+            q.raycast_any(&segment),
+            want.is_some(),
+            "{what}: segment any {i}"
+        );
+    }
+
     let (c, radius, _) = workload::centre_radius(&loaded.positions);
     let points = workload::closest_points(&loaded.positions, POINTS, 6);
     let key = |p: Option<meshq::math::ClosestPoint>| {

@@ -47,6 +47,23 @@ impl Ray {
         }
     }
 
+    /// The segment from `from` to `to`, as a ray: origin `from`, direction `to − from`, `t` in
+    /// `[0, 1]` (both ends inclusive), so a hit's `t` is the fraction of the way to `to`. Any
+    /// query takes it (closest hit, any hit, batches), on every structure. A segment of zero
+    /// length, or with a non-finite end, hits nothing.
+    ///
+    /// ```
+    /// use meshq::math::{Ray, Vec3};
+    /// let s = Ray::segment(Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.0, -3.0));
+    /// assert_eq!((s.dir, s.t_min, s.t_max), (Vec3::new(0.0, 0.0, -4.0), 0.0, 1.0));
+    /// assert_eq!(s.at(0.25), Vec3::ZERO);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn segment(from: Vec3, to: Vec3) -> Self {
+        Self::new(from, to - from).with_range(0.0, 1.0)
+    }
+
     /// A ray over `[0, +∞]` whose direction is `dir` scaled to unit length (so `t` is a
     /// distance). A zero or non-finite `dir` is kept as is, which makes the ray invalid.
     #[must_use]
