@@ -1,5 +1,5 @@
 // Types of the meshq three.js drop-in (three.js / three.mjs).
-import type { Box3, BufferGeometry, Intersection, Matrix4, Mesh, Raycaster, Sphere } from 'three';
+import type { Box3, BufferGeometry, Intersection, Matrix4, Mesh, Raycaster, Sphere, Triangle } from 'three';
 import type { MeshBvh } from './meshq_wasm';
 
 /**
@@ -26,6 +26,18 @@ export function disposeBoundsTree(this: BufferGeometry): void;
 export function acceleratedRaycast(this: Mesh, raycaster: Raycaster, intersects: Intersection[]): void;
 export { MeshBvh };
 
+/** `shapecast`'s answers from `intersectsBounds`, as in three-mesh-bvh. */
+export const NOT_INTERSECTED: 0;
+export const INTERSECTED: 1;
+export const CONTAINED: 2;
+
+/** The callbacks of `shapecast` (three-mesh-bvh's, without `intersectsRange`). */
+export interface ShapecastCallbacks {
+  intersectsBounds: (box: Box3, isLeaf: boolean, score: number, depth: number, nodeIndex: number) => boolean | 0 | 1 | 2;
+  intersectsTriangle?: (triangle: Triangle, triangleIndex: number, contained: boolean, depth: number) => boolean | void;
+  boundsTraverseOrder?: (box: Box3) => number;
+}
+
 declare module './meshq_wasm' {
   interface MeshBvh {
     /**
@@ -41,6 +53,8 @@ declare module './meshq_wasm' {
      * `boxToMesh` (rotation, translation and scale; shear throws).
      */
     intersectsBox(box: Box3, boxToMesh: Matrix4): boolean;
+    /** three-mesh-bvh's `shapecast`: true when `intersectsTriangle` ended the walk. */
+    shapecast(callbacks: ShapecastCallbacks): boolean;
   }
 }
 

@@ -12,7 +12,7 @@
 // tested with its own material's side and reported with its materialIndex). Meshes without a
 // bounds tree, with morph targets or skinning, instanced meshes, and draw ranges or groups that
 // do not start on a whole triangle fall back to three's own raycast.
-import { DoubleSide, FrontSide, Mesh, Matrix4, Triangle, Vector2, Vector3 } from 'three';
+import { Box3, DoubleSide, FrontSide, Mesh, Matrix4, Triangle, Vector2, Vector3 } from 'three';
 import { MeshBvh } from './meshq_wasm.js';
 
 const threeRaycast = Mesh.prototype.raycast;
@@ -91,6 +91,73 @@ MeshBvh.prototype.intersectsBox = function intersectsBox(box, boxToMesh) {
   const axes = columns.flatMap((c, i) => c.map((x) => x / lengths[i]));
   const halfExtents = [half.x * lengths[0], half.y * lengths[1], half.z * lengths[2]];
   return this.overlapsOrientedBox([center.x, center.y, center.z], axes, halfExtents);
+};
+
+/** `shapecast`'s answers from `intersectsBounds`, as in three-mesh-bvh. */
+export const NOT_INTERSECTED = 0;
+export const INTERSECTED = 1;
+export const CONTAINED = 2;
+
+/**
+ * three-mesh-bvh's `boundsTree.shapecast({ intersectsBounds, intersectsTriangle,
+ * boundsTraverseOrder })`: walks the BVH depth first. `intersectsBounds(box, isLeaf, score,
+ * depth, nodeIndex)` answers `NOT_INTERSECTED` (or false: skip the node), `INTERSECTED` (or
+ * true: go in) or `CONTAINED` (every triangle below is offered with `contained` true, no more
+ * boxes asked). `intersectsTriangle(triangle, triangleIndex, contained, depth)` gets a
+ * `THREE.Triangle` (reused between calls) and ends the walk by returning true, which
+ * `shapecast` then returns. With `boundsTraverseOrder(box)`, the child with the lower score
+ * is walked first. `intersectsRange` is not supported (throws): triangles are offered one by
+ * one.
+ */
+MeshBvh.prototype.shapecast = function shapecast(callbacks) {
+  const { intersectsBounds, intersectsTriangle, boundsTraverseOrder, intersectsRange } = callbacks;
+  if (intersectsRange) throw new Error('shapecast: intersectsRange is not supported; use intersectsTriangle');
+  if (typeof intersectsBounds !== 'function') throw new Error('shapecast: intersectsBounds is required');
+  const tree = (this._meshqTree ??= this.treeArrays());
+  const positions = (this._meshqPositions ??= this.vertexPositions());
+  const indices = (this._meshqIndices ??= this.indices());
+  const { boxes, first, count, order } = tree;
+  const box = new Box3();
+  const triangle = new Triangle();
+  const setBox = (node) => {
+    box.min.set(boxes[6 * node], boxes[6 * node + 1], boxes[6 * node + 2]);
+    box.max.set(boxes[6 * node + 3], boxes[6 * node + 4], boxes[6 * node + 5]);
+    return box;
+  };
+  const offer = (slot, contained, depth) => {
+    const t = order[slot];
+    const corner = (k, target) => {
+      const v = indices[3 * t + k];
+      return target.set(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    };
+    corner(0, triangle.a); corner(1, triangle.b); corner(2, triangle.c);
+    return Boolean(intersectsTriangle?.(triangle, t, contained, depth));
+  };
+  // Every triangle below `node`, offered as contained.
+  const offerAll = (node, depth) => {
+    if (count[node] > 0) {
+      for (let s = first[node]; s < first[node] + count[node]; s++) if (offer(s, true, depth)) return true;
+      return false;
+    }
+    return offerAll(first[node], depth + 1) || offerAll(first[node] + 1, depth + 1);
+  };
+  const visit = (node, depth) => {
+    const isLeaf = count[node] > 0;
+    const score = boundsTraverseOrder ? boundsTraverseOrder(setBox(node)) : 0;
+    const answer = intersectsBounds(setBox(node), isLeaf, score, depth, node);
+    if (!answer) return false;
+    if (answer === CONTAINED) return offerAll(node, depth);
+    if (isLeaf) {
+      for (let s = first[node]; s < first[node] + count[node]; s++) if (offer(s, false, depth)) return true;
+      return false;
+    }
+    let [near, far] = [first[node], first[node] + 1];
+    if (boundsTraverseOrder && boundsTraverseOrder(setBox(far)) < boundsTraverseOrder(setBox(near))) {
+      [near, far] = [far, near];
+    }
+    return visit(near, depth + 1) || visit(far, depth + 1);
+  };
+  return count.length > 0 && visit(0, 0);
 };
 
 /** Frees `this.boundsTree`. */

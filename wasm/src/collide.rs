@@ -4,7 +4,7 @@ use std::borrow::Cow;
 
 use js_sys::{Float32Array, Object, Uint32Array};
 use meshq::Traverse;
-use meshq::bvh::{BuildConfig, Bvh};
+use meshq::bvh::{BuildConfig, Bvh, BvhNode, TreeArrays};
 use meshq::collide::{
     Affine, CrossingSegment, Found, TrianglePair, intersecting_pairs, intersection_segments,
     meshes_intersect, self_intersecting_pairs,
@@ -164,5 +164,46 @@ impl MeshBvh {
         let mut pairs = vec![TrianglePair::default(); n];
         let found = self_intersecting_pairs(&tree, &mesh, &mut pairs);
         pairs_object(&pairs, found)
+    }
+}
+
+#[wasm_bindgen]
+impl MeshBvh {
+    /// The BVH as flat arrays, for walks written in JavaScript (the three.js drop-in's
+    /// `shapecast`): `{ boxes: Float32Array (minX, minY, minZ, maxX, maxY, maxZ per node),
+    /// first: Uint32Array, count: Uint32Array, order: Uint32Array }`. Node 0 is the root; an
+    /// inner node (`count` 0) has children `first` and `first + 1`; a leaf holds the
+    /// triangles `order[first .. first + count]`. Boxes are padded slightly, so they hold
+    /// their triangles despite rounding. For a k-d tree, octree or grid, the BVH is built
+    /// over the same mesh for the call.
+    #[wasm_bindgen(js_name = treeArrays)]
+    pub fn tree_arrays(&self) -> Result<Object, JsError> {
+        let bvh = bvh_of(&self.storage.scene)?;
+        let tree = bvh.bvh();
+        let nodes: Vec<BvhNode> = (0..tree.node_count())
+            .filter_map(|i| tree.node(i))
+            .collect();
+        let mut order = vec![0u32; tree.slot_count()];
+        for n in nodes.iter().filter(|n| n.is_leaf()) {
+            let ids = tree.leaf_triangles(n.first as usize, n.count as usize);
+            for (slot, tri) in ids.into_iter().flatten() {
+                if let Some(s) = order.get_mut(slot) {
+                    *s = tri;
+                }
+            }
+        }
+        let boxes: Vec<f32> = nodes
+            .iter()
+            .flat_map(|n| [n.min, n.max])
+            .flatten()
+            .collect();
+        let first: Vec<u32> = nodes.iter().map(|n| n.first).collect();
+        let count: Vec<u32> = nodes.iter().map(|n| n.count).collect();
+        let out = Object::new();
+        set(&out, "boxes", Float32Array::from(boxes.as_slice()))?;
+        set(&out, "first", Uint32Array::from(first.as_slice()))?;
+        set(&out, "count", Uint32Array::from(count.as_slice()))?;
+        set(&out, "order", Uint32Array::from(order.as_slice()))?;
+        Ok(out)
     }
 }

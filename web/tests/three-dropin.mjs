@@ -11,7 +11,7 @@ import { Worker, isMainThread, parentPort, workerData } from 'node:worker_thread
 import * as THREE from 'three';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { mergeVertices } from 'three/addons/utils/BufferGeometryUtils.js';
-import { acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from '../../wasm/pkg-nodejs/three.mjs';
+import { CONTAINED, INTERSECTED, NOT_INTERSECTED, acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from '../../wasm/pkg-nodejs/three.mjs';
 import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
@@ -269,6 +269,64 @@ brute.material = material;
   assert.equal(tree.intersectsBox(slab, new THREE.Matrix4().makeTranslation(0.6, 0, 0)), true, 'moved across');
   assert.throws(() => tree.intersectsBox(slab, new THREE.Matrix4().makeShear(0.5, 0, 0, 0, 0, 0)), /shear/);
   unit.disposeBoundsTree();
+}
+
+// shapecast against brute force: the triangles of the bunny within a sphere, found with
+// three's own box and triangle maths, once with INTERSECTED only and once letting contained
+// boxes pass their triangles through; an early stop; the order callback.
+{
+  const tree = indexed.boundsTree;
+  const position = indexed.getAttribute('position');
+  const index = indexed.index;
+  const corner = (t, k) => new THREE.Vector3().fromBufferAttribute(position, index.getX(3 * t + k));
+  const bounds = new THREE.Box3().setFromBufferAttribute(position);
+  const size = bounds.getSize(new THREE.Vector3()).length();
+  const closest = new THREE.Vector3();
+  for (let k = 0; k < 6; k++) {
+    const centre = bounds.getCenter(new THREE.Vector3()).add(new THREE.Vector3(Math.sin(k), Math.cos(k), 0.3).multiplyScalar(0.2 * size));
+    const sphere = new THREE.Sphere(centre, size * (0.05 + 0.04 * k));
+    const want = [];
+    for (let t = 0; t < index.count / 3; t++) {
+      const tri = new THREE.Triangle(corner(t, 0), corner(t, 1), corner(t, 2));
+      if (tri.getArea() > 0 && tri.closestPointToPoint(sphere.center, closest).distanceTo(sphere.center) <= sphere.radius) want.push(t);
+    }
+    let fullWalk = 0;
+    for (const useContained of [false, true]) {
+      const got = [];
+      let containedSeen = 0;
+      const stopped = tree.shapecast({
+        intersectsBounds: (box) => {
+          if (!box.intersectsSphere(sphere)) return NOT_INTERSECTED;
+          if (useContained) {
+            const far = box.getCenter(new THREE.Vector3()).distanceTo(sphere.center) + box.getSize(new THREE.Vector3()).length() / 2;
+            if (far <= sphere.radius) return CONTAINED;
+          }
+          return INTERSECTED;
+        },
+        intersectsTriangle: (tri, t, contained) => {
+          containedSeen += Number(contained);
+          if (!useContained) fullWalk++;
+          if (tri.getArea() > 0 && (contained || tri.closestPointToPoint(sphere.center, closest).distanceTo(sphere.center) <= sphere.radius)) got.push(t);
+          return false;
+        },
+      });
+      assert.equal(stopped, false);
+      got.sort((a, b) => a - b);
+      assert.deepEqual(got, want, `shapecast sphere ${k}, contained ${useContained}`);
+      if (useContained && k === 5) assert.ok(containedSeen > 0, 'some boxes were contained');
+    }
+    // Stopping at the first triangle inside the sphere.
+    let offered = 0;
+    const stopped = tree.shapecast({
+      intersectsBounds: (box) => box.intersectsSphere(sphere),
+      intersectsTriangle: (tri) => { offered++; return tri.closestPointToPoint(sphere.center, closest).distanceTo(sphere.center) <= sphere.radius; },
+      boundsTraverseOrder: (box) => box.distanceToPoint(sphere.center),
+    });
+    assert.equal(stopped, want.length > 0, `shapecast stop ${k}`);
+    assert.ok(want.length === 0 || offered < fullWalk, `stopped early: ${offered} of ${fullWalk} offered`);
+  }
+  assert.throws(() => tree.shapecast({ intersectsBounds: () => true, intersectsRange: () => false }), /intersectsRange/);
+  console.log('shapecast: triangles within 6 spheres equal to brute force, with and without contained boxes');
 }
 
 indexed.disposeBoundsTree();
