@@ -8,7 +8,7 @@ use clap::Args;
 use meshq::Traverse;
 use meshq::bvh::BuildConfig;
 use meshq::collide::{
-    Affine, TrianglePair, intersecting_pairs, intersection_segments, self_intersecting_pairs,
+    Affine, Found, TrianglePair, intersecting_pairs, intersection_segments, self_intersecting_pairs,
 };
 use meshq::mesh::MeshRef;
 use meshq::owned::MeshBvh;
@@ -103,6 +103,23 @@ fn parse_transform(text: &str) -> Result<Affine> {
     Affine::from_cols_4x4(&matrix).map_err(|e| anyhow::anyhow!("--transform: {e}"))
 }
 
+/// Runs `query` to count the pairs, then, when there are any, again into a buffer of the
+/// first `wanted` of them (never larger than the count, so a huge `--first` allocates
+/// nothing more).
+fn first_pairs(
+    wanted: usize,
+    query: impl Fn(&mut [TrianglePair]) -> Found,
+) -> (Found, Vec<TrianglePair>) {
+    let counted = query(&mut []);
+    if counted.total == 0 || wanted == 0 {
+        return (counted, Vec::new());
+    }
+    let mut first = vec![TrianglePair::default(); wanted.min(counted.total)];
+    let found = query(&mut first);
+    first.truncate(found.written);
+    (found, first)
+}
+
 fn as_pairs(pairs: &[TrianglePair]) -> Vec<[u32; 2]> {
     pairs.iter().map(|p| [p.a, p.b]).collect()
 }
@@ -114,24 +131,24 @@ pub fn run(args: &CheckArgs) -> Result<()> {
     let start = Instant::now();
     let bvh = bvh_of(&data, &name)?;
     let (mesh, tree) = (bvh.mesh(), bvh.bvh());
-    let mut first = vec![TrianglePair::default(); args.first];
-    let found = self_intersecting_pairs(&tree, &mesh, &mut first);
-    let self_first_pairs = as_pairs(&first[..found.written]);
+    let (found, first) = first_pairs(args.first, |out| self_intersecting_pairs(&tree, &mesh, out));
+    let self_first_pairs = as_pairs(&first);
     let against = match &other {
         None => None,
         Some((other_data, other_name)) => {
             let other_bvh = bvh_of(other_data, other_name)?;
             let (other_mesh, other_tree) = (other_bvh.mesh(), other_bvh.bvh());
             let (a, b) = (tree.with(&mesh), other_tree.with(&other_mesh));
-            let mut first = vec![TrianglePair::default(); args.first];
-            let pairs = intersecting_pairs(a, b, place.as_ref(), &mut first);
+            let (pairs, first) = first_pairs(args.first, |out| {
+                intersecting_pairs(a, b, place.as_ref(), out)
+            });
             let crossing = intersection_segments(a, b, place.as_ref(), &mut []);
             Some(Against {
                 mesh: other_name.clone(),
                 triangles: other_mesh.triangle_count(),
                 intersecting_pairs: pairs.total,
                 crossing_pairs: crossing.total,
-                first_pairs: as_pairs(&first[..pairs.written]),
+                first_pairs: as_pairs(&first),
                 pairs_tested: pairs.tested,
             })
         }

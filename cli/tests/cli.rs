@@ -596,6 +596,20 @@ fn check_reports_self_intersections_and_contacts_as_brute_force_finds_them() {
         text.contains(&format!("{meeting} intersecting triangle pairs")),
         "{text}"
     );
+    // A huge --first allocates no more than the pairs found.
+    let huge = parse(ok(&[
+        &"check",
+        &spot,
+        &"--against",
+        &spot,
+        &"--transform",
+        &transform,
+        &"--json",
+        &"--first",
+        &"100000000000",
+    ]));
+    let listed = huge["against"]["first_pairs"].as_array().unwrap().len();
+    assert_eq!(listed, meeting, "{huge}");
     fails(
         &[
             &"check",

@@ -72,10 +72,11 @@ fn pairs_object(pairs: &[TrianglePair], found: Found) -> Result<Object, JsError>
     Ok(out)
 }
 
-/// Room for results: `limit` when given (at most 2³² pairs), else as many as were found (the
-/// count comes from a first pass that stores none).
+/// Room for results: as many as were found (counted by a first pass that stores none), at
+/// most `limit` when given, so a large `maxPairs` allocates nothing more.
 fn room(limit: Option<u32>, count: impl FnOnce() -> usize) -> usize {
-    limit.map_or_else(count, |l| l as usize)
+    let found = count();
+    limit.map_or(found, |l| found.min(l as usize))
 }
 
 #[wasm_bindgen]

@@ -424,6 +424,12 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
             .intersecting_pairs(&other, Some(matrix.to_vec()), Some(3))
             .unwrap();
         assert_eq!(number(&capped, &["total"]) as usize, pairs.len());
+        // The largest cap allocates no more than the pairs found.
+        let all = one
+            .intersecting_pairs(&other, Some(matrix.to_vec()), Some(u32::MAX))
+            .unwrap();
+        let listed = Uint32Array::from(Reflect::get(&all, &"pairs".into()).unwrap()).length();
+        assert_eq!(listed as usize, 2 * pairs.len());
         assert_eq!(
             Reflect::get(&capped, &"overflowed".into()).unwrap(),
             JsValue::TRUE

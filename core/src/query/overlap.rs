@@ -82,7 +82,7 @@ pub(super) fn box_witness(t: &Triangle, query: &Aabb) -> Vec3 {
     first.unwrap_or(t.a).clamp(lo, hi.max(lo))
 }
 
-pub(super) fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> {
+fn push(out: &mut [u32], count: &mut OverlapCount, tri: u32) -> ControlFlow<()> {
     if let Some(slot) = out.get_mut(count.written) {
         *slot = tri;
         count.written += 1;
@@ -143,6 +143,20 @@ where
     tree.traverse(&mut v);
 }
 
+/// Runs an overlap query (`run` passes its report on to the query), writing the reported
+/// triangle indices to the front of `out` and counting past its end.
+pub(super) fn into_buffer(
+    out: &mut [u32],
+    run: impl FnOnce(&mut dyn FnMut(u32) -> ControlFlow<()>),
+) -> OverlapCount {
+    let mut count = OverlapCount {
+        written: 0,
+        total: 0,
+    };
+    run(&mut |tri| push(out, &mut count, tri));
+    count
+}
+
 /// [`overlap_aabb`] into a buffer.
 pub(crate) fn overlap_aabb_into<A, S>(
     tree: &A,
@@ -154,12 +168,7 @@ where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
 {
-    let mut count = OverlapCount {
-        written: 0,
-        total: 0,
-    };
-    overlap_aabb(tree, source, aabb, |tri| push(out, &mut count, tri));
-    count
+    into_buffer(out, |report| overlap_aabb(tree, source, aabb, report))
 }
 
 /// [`overlap_sphere`] into a buffer.
@@ -174,12 +183,7 @@ where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
 {
-    let mut count = OverlapCount {
-        written: 0,
-        total: 0,
-    };
-    overlap_sphere(tree, source, center, radius, |tri| {
-        push(out, &mut count, tri)
-    });
-    count
+    into_buffer(out, |report| {
+        overlap_sphere(tree, source, center, radius, report);
+    })
 }

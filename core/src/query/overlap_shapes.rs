@@ -2,7 +2,7 @@
 
 use core::ops::ControlFlow;
 
-use super::overlap::{Overlap, box_witness, push};
+use super::overlap::{Overlap, box_witness, into_buffer};
 use super::{LeafTriangles, OverlapCount, Traverse};
 use crate::geom::{TriangleTriangle, intersect_triangle_triangle, overlap_triangle_obb};
 use crate::math::{Aabb, Obb, Triangle};
@@ -64,12 +64,7 @@ where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
 {
-    let mut count = OverlapCount {
-        written: 0,
-        total: 0,
-    };
-    overlap_triangle(tree, source, query, |tri| push(out, &mut count, tri));
-    count
+    into_buffer(out, |report| overlap_triangle(tree, source, query, report))
 }
 
 /// [`overlap_obb`] into a buffer.
@@ -83,10 +78,5 @@ where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
 {
-    let mut count = OverlapCount {
-        written: 0,
-        total: 0,
-    };
-    overlap_obb(tree, source, obb, |tri| push(out, &mut count, tri));
-    count
+    into_buffer(out, |report| overlap_obb(tree, source, obb, report))
 }
