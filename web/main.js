@@ -1,7 +1,8 @@
 // The meshq demo: the bundled bunny loaded as a prebuilt blob, click-to-pick, a closest-point
 // probe, a structure selector (BVH, k-d tree, octree, grid) drawing its levels and cells,
-// remeshing with the quality before and after, and a batched benchmark. Everything geometric is answered by meshq
-// (WebAssembly); three.js only draws.
+// remeshing with the quality before and after, a collision mode (a dragged second copy, with
+// the triangles where the two meet and the curve where they cross) and a batched benchmark.
+// Everything geometric is answered by meshq (WebAssembly); three.js only draws.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
@@ -9,6 +10,7 @@ import { PLYLoader } from 'three/addons/loaders/PLYLoader.js';
 import { STLLoader } from 'three/addons/loaders/STLLoader.js';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
 import init, { MeshBvh, randomRays, remesh } from 'meshq';
+import { setUpCollide } from './collide.js';
 
 const $ = (id) => document.getElementById(id);
 const demo = { ready: false, source: null, triangles: 0, lastRay: null, lastHit: null, bench: null };
@@ -95,6 +97,7 @@ function show(bvh, source, timeLabel, ms, blobBytes) {
   $('stat-blob').textContent = `${(blobBytes ?? bvh.toBlob().length).toLocaleString('en')} bytes`;
   for (const id of ['hit-triangle', 'hit-distance', 'hit-normal', 'probe-distance', 'bench-result']) $(id).textContent = '—';
   Object.assign(demo, { source, structure: bvh.structure, triangles: bvh.triangleCount, lastRay: null, lastHit: null, bench: null });
+  collide.meshChanged();
 }
 
 /** Shows the input or the remeshed mesh (after a remesh), with its wireframe if asked. */
@@ -184,7 +187,7 @@ function pick(event) {
 let down = null;
 canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
 canvas.addEventListener('pointerup', (e) => {
-  if (down && Math.hypot(e.clientX - down[0], e.clientY - down[1]) < 4) pick(e);
+  if (down && !collide.dragging() && Math.hypot(e.clientX - down[0], e.clientY - down[1]) < 4) pick(e);
   down = null;
 });
 
@@ -352,8 +355,13 @@ window.addEventListener('drop', (e) => {
   if (e.dataTransfer.files.length) loadFile(e.dataTransfer.files[0]);
 });
 
+const collide = setUpCollide({
+  scene, camera, controls, canvas, pointerRay, demo, current: () => state,
+});
+
 function frame() {
   updateProbe();
+  collide.frame();
   controls.update();
   renderer.render(scene, camera);
   requestAnimationFrame(frame);

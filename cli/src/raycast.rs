@@ -6,7 +6,8 @@ use std::time::Instant;
 use anyhow::Result;
 use clap::Args;
 use meshq::MeshQuery;
-use meshq::math::{Ray, Vec3};
+use meshq::math::{Ray, RayHit, Vec3};
+use meshq::query::RayOptions;
 use serde::Serialize;
 
 use crate::records::{RecordReader, ResultWriter};
@@ -28,8 +29,13 @@ pub struct RaycastArgs {
     pub out: PathBuf,
     /// Any-hit (occlusion) queries: a hit is recorded as t = 0 and triangle 0 (any-hit says
     /// only that something is hit, not what).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "hits")]
     pub any: bool,
+    /// Record the nearest N hits of each ray (every triangle the ray crosses, once, nearest
+    /// first; on equal t the lower triangle first): N records per ray, those past its last
+    /// hit written as misses.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub hits: Option<u32>,
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -52,6 +58,14 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
         let (mut floats, mut rays) = (Vec::new(), Vec::with_capacity(CHUNK));
         let mut results: Vec<(f32, u32)> = Vec::with_capacity(CHUNK);
         let (mut hits, mut query_seconds) = (0u64, 0.0f64);
+        let per_ray = args.hits.map_or(1, |n| n as usize);
+        let miss = RayHit {
+            t: f32::INFINITY,
+            tri: u32::MAX,
+            u: 0.0,
+            v: 0.0,
+        };
+        let mut nearest = vec![miss; per_ray];
         while reader.next_chunk(CHUNK, &mut floats)? > 0 {
             rays.clear();
             let (records, _) = floats.as_chunks::<6>();
@@ -60,7 +74,14 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             }));
             results.clear();
             let start = Instant::now();
-            if args.any {
+            if args.hits.is_some() {
+                for r in &rays {
+                    let found = s.scene.raycast_all(r, &RayOptions::default(), &mut nearest);
+                    let (written, _) = nearest.split_at(found.written);
+                    results.extend(written.iter().map(|h| (h.t, h.tri)));
+                    results.extend((found.written..per_ray).map(|_| (miss.t, miss.tri)));
+                }
+            } else if args.any {
                 results.extend(rays.iter().map(|r| {
                     if s.scene.raycast_any(r) {
                         (0.0, 0)
@@ -99,7 +120,11 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             "{} rays, {} hits ({}), prepared in {:.3} s, queries {:.3} s: {:.2} M rays/s",
             summary.rays,
             summary.hits,
-            if args.any { "any-hit" } else { "closest hit" },
+            match (args.any, args.hits) {
+                (true, _) => "any-hit".to_owned(),
+                (false, Some(n)) => format!("nearest {n} per ray"),
+                (false, None) => "closest hit".to_owned(),
+            },
             summary.build_seconds,
             summary.query_seconds,
             summary.rays_per_second / 1e6

@@ -11,6 +11,7 @@ use meshq::math::{Ray, Vec3};
 use meshq::mesh::MeshRef;
 use meshq::query::RayOptions;
 use meshq::{MeshQuery, Traverse};
+use meshq_tests::oracle::BruteForce;
 use meshq_tests::{checked_bvh, load_mesh, workload};
 
 fn meshq(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
@@ -145,6 +146,28 @@ fn bake_inspect_raycast_and_closest_agree_with_the_library_and_brute_force() {
             };
             assert_eq!(*a, expect);
         }
+
+        // The nearest three hits of each ray, misses padding the rest, as brute force has them.
+        let nearest = dir.path().join("nearest.bin");
+        ok(&[
+            &"raycast", input, &"--rays", &ray_file, &"--out", &nearest, &"--hits", &"3",
+        ]);
+        let got = read_records(&nearest);
+        assert_eq!(got.len(), 3 * rays.len());
+        let brute = BruteForce::new(&mesh);
+        let mut several = 0;
+        for (r, records) in rays.iter().zip(got.chunks(3)).step_by(10) {
+            let mut want: Vec<(f32, u32)> = brute
+                .raycast_all(r, &RayOptions::default())
+                .iter()
+                .take(3)
+                .map(|h| (h.t, h.tri))
+                .collect();
+            several += usize::from(want.len() >= 2);
+            want.resize(3, (f32::INFINITY, u32::MAX));
+            assert_eq!(key(records), key(&want));
+        }
+        assert!(several > 20, "{several} sampled rays hit twice or more");
     }
     // Brute force on a sample: every triangle, watertight test, lower index on ties.
     for (r, e) in rays.iter().zip(&expected).step_by(25) {

@@ -62,6 +62,12 @@ impl BruteForce {
         Self { tris, chunks }
     }
 
+    /// The number of triangles of the mesh (degenerate ones included).
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
     fn indexed(&self) -> impl Iterator<Item = (u32, &Triangle)> {
         self.tris.iter().map(|(i, t)| (*i, t))
     }
@@ -105,6 +111,31 @@ impl BruteForce {
             }
         }
         best
+    }
+
+    /// Every hit on a non-degenerate triangle, nearest first (lower index on equal `t`).
+    #[must_use]
+    pub fn raycast_all(&self, ray: &Ray, options: &RayOptions) -> Vec<RayHit> {
+        let mut hits: Vec<RayHit> = self
+            .chunked(|b| intersect_ray_aabb(ray, b).is_some())
+            .filter(|(_, t)| !t.is_degenerate())
+            .filter_map(|(tri, t)| {
+                let hit = match options.test {
+                    TriangleTest::Watertight => {
+                        intersect_ray_triangle_watertight(ray, t, options.cull)
+                    }
+                    TriangleTest::MollerTrumbore => intersect_ray_triangle(ray, t, options.cull),
+                };
+                hit.map(|h| RayHit {
+                    t: h.t,
+                    tri,
+                    u: h.u,
+                    v: h.v,
+                })
+            })
+            .collect();
+        hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.tri.cmp(&b.tri)));
+        hits
     }
 
     /// The closest point over all non-degenerate triangles within `max_distance` (lower index

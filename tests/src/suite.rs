@@ -6,9 +6,10 @@ use std::ops::ControlFlow;
 use meshq::MeshQuery;
 use meshq::blob::BlobView;
 use meshq::geom::CullMode;
+use meshq::geom::closest_point_triangle;
 use meshq::math::Ray;
 use meshq::math::{Aabb, Obb, Triangle, Vec3};
-use meshq::query::{RayOptions, TriangleTest};
+use meshq::query::{BoundsOverlap, RayOptions, ShapeCast, TriangleTest};
 
 use crate::oracle::BruteForce;
 use crate::{LoadedMesh, workload};
@@ -75,6 +76,40 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
             brute.raycast(r, &RayOptions::default()).is_some(),
             "{i}"
         );
+    }
+
+    // Every hit along each ray, into a buffer that holds them all, exactly as many, or fewer
+    // (the nearest ones, and the flag). On the closed test meshes about a third of the rays hit
+    // two triangles or more, and cell structures offer repeats that must be dropped.
+    let hit_bits =
+        |h: &[meshq::math::RayHit]| -> Vec<_> { h.iter().map(|&h| bits(Some(h))).collect() };
+    for (i, r) in rays.iter().enumerate() {
+        let o = &options[i % 2];
+        let want = brute.raycast_all(r, o);
+        for size in [
+            want.len() + 2,
+            want.len(),
+            want.len().saturating_sub(1),
+            want.len() / 2,
+            1,
+        ] {
+            let mut out = vec![
+                meshq::math::RayHit {
+                    t: -1.0,
+                    tri: u32::MAX,
+                    u: 0.0,
+                    v: 0.0
+                };
+                size
+            ];
+            let got = q.raycast_all(r, o, &mut out);
+            let fits = size.min(want.len());
+            assert_eq!(
+                (hit_bits(&out[..got.written]), got.more),
+                (hit_bits(&want[..fits]), want.len() > size),
+                "{what}: all hits of ray {i} into {size}"
+            );
+        }
     }
 
     // Segments from each ray's origin to half or one and a half times its first hit (or a
@@ -157,6 +192,22 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
         });
         assert_eq!(seen, usize::from(!want.is_empty()), "{what}: break {i}");
 
+        // The same sphere as a shape cast of the caller's own: every triangle it offers once
+        // (shapecast_once), or at least once (shapecast), and the nearest cells first.
+        let mut cast = SphereCast::new(p, r);
+        q.shapecast(&mut cast);
+        let mut got = cast.found.clone();
+        got.sort_unstable();
+        got.dedup();
+        assert_eq!(got, want, "{what}: sphere shape cast {i}");
+        assert!(cast.contained_ok, "{what}: contained flag {i}");
+        let mut cast = SphereCast::new(p, r);
+        let mut seen = vec![u64::MAX; brute.triangle_count().div_ceil(64)];
+        q.shapecast_once(&mut cast, &mut seen);
+        let mut got = cast.found.clone();
+        got.sort_unstable();
+        assert_eq!(got, want, "{what}: sphere shape cast once {i}");
+
         // A triangle around the point, turned by the index, and an oriented box turned the
         // same way: each touching triangle reported once.
         let (sin, cos) = (0.7 * i as f32).sin_cos();
@@ -223,4 +274,64 @@ pub fn exercise(view: &BlobView<'_>) -> usize {
         .total;
     view.overlap_sphere(c, 0.5 * r, |_| ControlFlow::Continue(()));
     found
+}
+
+/// A sphere cast through [`ShapeCast`], recording the triangles within its radius and whether
+/// every triangle offered as contained really lies inside.
+struct SphereCast {
+    center: Vec3,
+    radius: f32,
+    found: Vec<u32>,
+    contained_ok: bool,
+}
+
+impl SphereCast {
+    fn new(center: Vec3, radius: f32) -> Self {
+        Self {
+            center,
+            radius,
+            found: Vec::new(),
+            contained_ok: true,
+        }
+    }
+}
+
+impl ShapeCast for SphereCast {
+    fn bounds(&mut self, aabb: &Aabb) -> BoundsOverlap {
+        let near = self.center.clamp(aabb.min, aabb.max);
+        let far = Vec3::select(
+            (self.center - aabb.min).cmpgt(aabb.max - self.center),
+            aabb.min,
+            aabb.max,
+        );
+        let r2 = self.radius * self.radius;
+        if near.distance_squared(self.center) > r2 {
+            BoundsOverlap::Outside
+        } else if far.distance_squared(self.center) <= r2 {
+            BoundsOverlap::Inside
+        } else {
+            BoundsOverlap::Crosses
+        }
+    }
+
+    fn score(&mut self, aabb: &Aabb) -> f32 {
+        self.center
+            .clamp(aabb.min, aabb.max)
+            .distance_squared(self.center)
+    }
+
+    fn triangle(&mut self, tri: u32, corners: &Triangle, contained: bool) -> ControlFlow<()> {
+        if closest_point_triangle(self.center, corners).distance_squared
+            <= self.radius * self.radius
+        {
+            self.found.push(tri);
+        }
+        if contained {
+            let r2 = self.radius * self.radius;
+            self.contained_ok &= [corners.a, corners.b, corners.c]
+                .iter()
+                .all(|c| c.distance_squared(self.center) <= r2);
+        }
+        ControlFlow::Continue(())
+    }
 }

@@ -1,10 +1,10 @@
 //! What a [`crate::MeshBvh`] holds: the core's owned [`MeshIndex`] (mesh, structure of any kind,
 //! packed triangles) and, for a loaded blob, its bytes.
 
+use meshq::MeshQuery;
 use meshq::math::{ClosestPoint, Ray, RayHit, Triangle};
 use meshq::owned::MeshIndex;
-use meshq::query::{RayOptions, Visitor};
-use meshq::{MeshQuery, Traverse};
+use meshq::query::RayOptions;
 use wasm_bindgen::JsError;
 
 /// A mesh with its structure, and the blob it was loaded from (handed back as is by `toBlob`).
@@ -22,6 +22,27 @@ impl Storage {
 
     pub fn raycast_any(&self, ray: &Ray, options: &RayOptions) -> bool {
         self.scene.raycast_any_with(ray, options)
+    }
+
+    /// Every hit along `ray`, nearest first: the core writes into a buffer that grows until
+    /// every hit fits (it can never need more than one place per triangle).
+    pub fn raycast_all(&self, ray: &Ray, options: &RayOptions) -> Vec<RayHit> {
+        let most = self.scene.mesh().triangle_count().max(1);
+        let empty = RayHit {
+            t: 0.0,
+            tri: 0,
+            u: 0.0,
+            v: 0.0,
+        };
+        let mut hits = vec![empty; most.min(16)];
+        loop {
+            let found = self.scene.raycast_all(ray, options, &mut hits);
+            if found.is_complete() || hits.len() >= most {
+                hits.truncate(found.written);
+                return hits;
+            }
+            hits.resize(most.min(hits.len() * 4), empty);
+        }
     }
 
     pub fn closest_point(&self, point: glam::Vec3, max_distance: f32) -> Option<ClosestPoint> {
@@ -64,12 +85,6 @@ impl Storage {
         self.scene
             .raycast_any_batch(rays, options, &mut keys, out)
             .map_err(batch_error)
-    }
-
-    /// Runs `visitor` over the structure. A cell structure may offer a triangle once per cell
-    /// it lies in.
-    pub fn traverse<V: Visitor>(&self, visitor: &mut V) {
-        self.scene.traverse(visitor);
     }
 
     pub fn triangle(&self, index: u32) -> Option<Triangle> {

@@ -1,8 +1,9 @@
 // End to end in real headless Chromium (Debian's chromium, driven by playwright-core): open
 // the demo, wait for the bunny blob, click the canvas centre, check that the displayed hit
 // equals the native answer for that exact ray (the meshq command, run on the same blob), load
-// another blob through the file input, run the benchmark button, remesh it (equal to the
-// native command bit for bit), and save screenshots.
+// the collision mode (pairs and curve equal to `meshq check`, before and after a drag), another
+// blob through the file input, run the benchmark button, remesh it (equal to the native
+// command bit for bit), and save screenshots.
 // Run after scripts/build-web.sh: node web/tests/e2e.mjs (MESHQ_BIN: the native meshq binary).
 import assert from 'node:assert/strict';
 import { spawn, execFileSync } from 'node:child_process';
@@ -113,6 +114,39 @@ try {
     await page.screenshot({ path: join(out, `demo-bunny-${structure}.png`) });
     console.log(`${structure}: ${await page.textContent('#bvh-level-text')}, pick equal to native`);
   }
+
+  // Collision mode: a second copy of the bunny beside the first; the pairs where they meet and
+  // the crossing segments equal the native check's for the same f32 placement, before and
+  // after dragging the copy with the mouse.
+  const nativeCheck = (matrix) => {
+    const bunny = join(root, 'assets/stanford-bunny.obj');
+    const report = JSON.parse(execFileSync(meshq, ['check', bunny, '--against', bunny,
+      '--transform', matrix.map(String).join(','), '--json']));
+    return report.against;
+  };
+  await page.check('#collide');
+  await page.waitForFunction(() => window.meshqDemo.collide?.updates >= 1, null, { timeout: 60000 });
+  const placed = await page.evaluate(() => window.meshqDemo.collide);
+  let against = nativeCheck(placed.matrix);
+  assert.ok(placed.pairs > 0, 'the copy overlaps the bunny');
+  assert.equal(placed.pairs, against.intersecting_pairs, 'pairs = native');
+  assert.equal(placed.segments, against.crossing_pairs, 'segments = native');
+  assert.equal(await page.textContent('#collide-pairs'), placed.pairs.toLocaleString('en'));
+  await page.screenshot({ path: join(out, 'demo-collide.png') });
+  const [ax, ay] = placed.anchor;
+  await page.mouse.move(box.x + ax, box.y + ay);
+  await page.mouse.down();
+  for (let step = 1; step <= 5; step++) await page.mouse.move(box.x + ax + 12 * step, box.y + ay + 4 * step);
+  await page.mouse.up();
+  await page.waitForFunction((n) => window.meshqDemo.collide.updates > n, placed.updates, { timeout: 60000 });
+  const dragged = await page.evaluate(() => window.meshqDemo.collide);
+  assert.ok(dragged.matrix[12] > placed.matrix[12], 'the drag moved the copy right');
+  against = nativeCheck(dragged.matrix);
+  assert.equal(dragged.pairs, against.intersecting_pairs, 'pairs after the drag = native');
+  assert.equal(dragged.segments, against.crossing_pairs, 'segments after the drag = native');
+  await page.screenshot({ path: join(out, 'demo-collide-dragged.png') });
+  console.log(`collide mode: ${placed.pairs} pairs, dragged: ${dragged.pairs} pairs (${dragged.ms.toFixed(1)} ms), equal to native`);
+  await page.uncheck('#collide');
 
   // Another blob through the file input: spot, baked by the command.
   const spot = join(scratch, 'spot.meshq');

@@ -4,9 +4,11 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
+use super::ray_all::RayHits;
+use super::shapecast::ShapeCast;
 use super::{
     LeafTriangles, OverlapCount, RayOptions, Traverse, closest, closest_batch, overlap,
-    overlap_shapes, ray, raycast_batch,
+    overlap_shapes, ray, ray_all, raycast_batch, shapecast,
 };
 use crate::error::BatchError;
 use crate::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle};
@@ -57,6 +59,21 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     #[inline]
     fn raycast_any_with(&self, ray: &Ray, options: &RayOptions) -> bool {
         ray::raycast_any_with(self, self, ray, options)
+    }
+
+    /// Every hit of `ray` within `[t_min, t_max]`, nearest first, written to `out`: each
+    /// non-degenerate triangle the ray meets is written once (also by structures that
+    /// reference it from several cells), in ascending `t`, the lower triangle index first on
+    /// equal `t`. When the ray hits more triangles than `out` holds, `out` gets the nearest
+    /// `out.len()` of them and [`RayHits::more`] is set; grow the buffer, or cast again from
+    /// beyond the last hit, for the rest.
+    ///
+    /// Exactly what a scan of all triangles with the same test returns, bits included: the
+    /// first hit written is [`MeshQuery::raycast_with`]'s. An invalid ray hits nothing.
+    /// Elements of `out` past [`RayHits::written`] are unspecified. For a segment (from one
+    /// point to another), pass [`Ray::segment`].
+    fn raycast_all(&self, ray: &Ray, options: &RayOptions, out: &mut [RayHit]) -> RayHits {
+        ray_all::raycast_all(self, self, ray, options, out)
     }
 
     /// The point of the mesh closest to `point`, if one lies within `max_distance`
@@ -188,6 +205,27 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     /// end, so the result says how large a buffer would have been needed.
     fn overlap_obb_into(&self, obb: &Obb, out: &mut [u32]) -> OverlapCount {
         overlap_shapes::overlap_obb_into(self, self, obb, out)
+    }
+
+    /// Casts a shape of the caller's own (see [`ShapeCast`]), in the style of three-mesh-bvh's
+    /// `shapecast`: boxes the shape judges `Outside` are skipped, the others entered in
+    /// ascending [`score`](ShapeCast::score), and every non-degenerate triangle inside them is
+    /// offered until the cast breaks.
+    ///
+    /// A BVH (and a blob of one) offers each triangle at most once. A structure that
+    /// references a triangle from several cells (k-d tree, octree, grid) drops most repeats
+    /// but may offer a triangle again; [`MeshQuery::shapecast_once`] offers each once on every
+    /// structure.
+    fn shapecast<C: ShapeCast + ?Sized>(&self, cast: &mut C) {
+        shapecast::shapecast(self, self, cast, None);
+    }
+
+    /// [`MeshQuery::shapecast`] offering each triangle at most once on every structure, with
+    /// `seen` as the record of triangles offered: one bit per triangle index, so
+    /// ⌈triangle count / 64⌉ words (cleared by the call; its contents afterwards are
+    /// unspecified). A triangle whose index lies beyond `seen` may be offered more than once.
+    fn shapecast_once<C: ShapeCast + ?Sized>(&self, cast: &mut C, seen: &mut [u64]) {
+        shapecast::shapecast(self, self, cast, Some(seen));
     }
 }
 

@@ -5,9 +5,9 @@
 //!   your own) implements [`Traverse`]: it walks its boxes (or cells) and leaves, asking a
 //!   [`Visitor`] which boxes to enter and in what order, and when deferred work is no longer
 //!   worth doing.
-//! - The layer supplies the visitors — closest hit, any hit, closest point, box and sphere
-//!   overlap — with the leaf tests (four triangles at a time in SIMD lanes where the target
-//!   has them), the tie rule and the Morton-ordered batches.
+//! - The layer supplies the visitors — closest hit, any hit, every hit, closest point, box,
+//!   sphere, triangle and oriented-box overlap — with the leaf tests (four triangles at a time
+//!   in SIMD lanes where the target has them), the tie rule and the Morton-ordered batches.
 //! - [`Traverse::with`] pairs a structure with its triangles ([`LeafTriangles`]: the mesh, or
 //!   [`PackedTriangles`] in the structure's slot order), and the pair answers every query of
 //!   [`MeshQuery`].
@@ -89,7 +89,9 @@ mod mesh_query;
 mod overlap;
 mod overlap_shapes;
 mod ray;
+mod ray_all;
 mod raycast_batch;
+mod shapecast;
 mod traverse;
 
 pub use cell::Cell;
@@ -98,4 +100,6 @@ pub use mailbox::Mailbox;
 pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
+pub use ray_all::RayHits;
+pub use shapecast::{BoundsOverlap, ShapeCast};
 pub use traverse::{Traverse, Visitor, With};

@@ -33,7 +33,7 @@ pub struct RayOptions {
 }
 
 /// A ray–triangle test with an adjustable upper bound.
-trait Kernel {
+pub(super) trait Kernel {
     /// Whether leaves are first filtered four triangles at a time with [`Self::may_hit`].
     const LANES: bool = false;
     fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit>;
@@ -93,7 +93,7 @@ fn enter_box(slab: &SlabRay, aabb: &Aabb) -> Option<f32> {
 }
 
 /// What a ray query keeps of the hits its kernel finds.
-trait Goal {
+pub(super) trait Goal {
     /// Whether a closer hit bounds the walk (deferred boxes beyond it are skipped).
     const PRUNES: bool;
 
@@ -274,7 +274,7 @@ pub(crate) fn raycast_any_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
 
 /// Walks `tree` with the kernel the options name — chosen once per ray, each kernel with its
 /// own monomorphized traversal — and returns the goal.
-fn walk<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, G: Goal>(
+pub(super) fn walk<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, G: Goal>(
     tree: &A,
     source: &S,
     ray: &Ray,
