@@ -93,14 +93,16 @@ echo "static RAM (.data + .bss): $((data + bss)) bytes"
 echo "stack high-water mark, validation and queries: BVH $stack bytes, octree $octree_stack bytes"
 echo "remeshing (--features remesh): code $remesh_code bytes; stack high-water $remesh_stack bytes, of which the mesh arrays $remesh_arrays"
 echo "heap: 0 bytes (no allocator linked)"
+# Code: 25 KiB (24 KiB until validation also checked that a BVH's order is a permutation and
+# named the section a cut blob ends in, which added about 400 bytes).
 # The BVH keeps the 2 KiB stack budget. The octree's walk keeps up to seven sibling cells per
 # level on its stack: its cost is reported, and held to what it measured, 8 KiB.
 # Remeshing keeps its arrays on the stack: held to what it measured, 44 KiB of code (40 KiB
 # until the final angle pass, which moves single vertices to widen small angles, added about
 # 2.5 KiB) and 48 KiB of stack in the 64 KiB of RAM.
-if [ "$code" -gt 24576 ] || [ "$stack" -gt 2048 ] || [ "$octree_stack" -gt 8192 ] ||
+if [ "$code" -gt 25600 ] || [ "$stack" -gt 2048 ] || [ "$octree_stack" -gt 8192 ] ||
   [ "$remesh_code" -gt 45056 ] || [ "$remesh_stack" -gt 49152 ]; then
-  echo "over budget: code must be <= 24 KiB, the BVH's stack <= 2 KiB, the octree's <= 8 KiB," \
+  echo "over budget: code must be <= 25 KiB, the BVH's stack <= 2 KiB, the octree's <= 8 KiB," \
     "remeshing's code <= 44 KiB and its stack <= 48 KiB" >&2
   exit 1
 fi

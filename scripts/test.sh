@@ -48,6 +48,9 @@ MESHQ_BIN=target/debug/meshq ./scripts/build-web.sh
 step "three.js drop-in against three's brute-force Raycaster, in Node"
 node web/tests/three-dropin.mjs
 
+step "the Node package under misuse: bad arguments refused by name, nothing left borrowed"
+node web/tests/misuse.mjs
+
 step "demo end to end in headless Chromium"
 MESHQ_BIN=target/debug/meshq node web/tests/e2e.mjs
 

@@ -1,5 +1,6 @@
 //! `meshq bake`: a mesh file in, a blob out.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -11,7 +12,9 @@ use meshq::mesh::MeshRef;
 use meshq::owned::{MeshIndex, StructureKind};
 use serde::Serialize;
 
+use crate::atomic::AtomicFile;
 use crate::mesh_file::read_mesh;
+use crate::output::say;
 use crate::quality::Quality;
 use crate::structure_arg::StructureArg;
 use crate::{output, progress};
@@ -59,6 +62,7 @@ struct Summary {
 }
 
 pub fn run(args: &BakeArgs) -> Result<()> {
+    crate::atomic::refuse_inputs(&args.output, &[&args.mesh])?;
     let spinner = progress::spinner("reading mesh");
     let data = read_mesh(&args.mesh)?;
     let mesh = MeshRef::new(&data.positions, &data.triangles)
@@ -86,8 +90,10 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     let len = bytes.len();
     let encode_seconds = start.elapsed().as_secs_f64();
     spinner.set_message("writing");
-    std::fs::write(&args.output, &bytes)
+    let mut file = AtomicFile::create(&args.output, &[&args.mesh])?;
+    file.write_all(&bytes)
         .with_context(|| format!("cannot write {}", args.output.display()))?;
+    file.commit()?;
     spinner.finish_and_clear();
 
     let (nodes, references, depth) = match (&scene, scene.cell_stats()) {
@@ -115,8 +121,8 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     if args.json {
         return output::json(&summary);
     }
-    println!("baked {} -> {}", args.mesh.display(), args.output.display());
-    println!(
+    say!("baked {} -> {}", args.mesh.display(), args.output.display());
+    say!(
         "  {}: {} triangles, {} vertices, {} nodes, {} references, depth {}, mesh {}",
         summary.structure,
         summary.triangles,
@@ -126,7 +132,7 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         summary.depth,
         summary.mesh_layout
     );
-    println!(
+    say!(
         "  build {:.1} ms, encode {:.1} ms, {} bytes ({:.1} bytes/triangle)",
         build_seconds * 1e3,
         encode_seconds * 1e3,

@@ -16,6 +16,7 @@ use serde::Serialize;
 
 use crate::mesh_file::read_mesh;
 use crate::output;
+use crate::output::say;
 
 #[derive(Args, Debug)]
 #[command(after_help = "Examples:\n  \
@@ -165,11 +166,10 @@ pub fn run(args: &CheckArgs) -> Result<()> {
     if args.json {
         return output::json(&report);
     }
-    print_report(&report);
-    Ok(())
+    print_report(&report)
 }
 
-fn print_report(r: &Report) {
+fn print_report(r: &Report) -> Result<()> {
     let list = |pairs: &[[u32; 2]], total: usize| {
         let shown: Vec<String> = pairs.iter().map(|[a, b]| format!("{a}–{b}")).collect();
         let more = total.saturating_sub(pairs.len());
@@ -179,22 +179,22 @@ fn print_report(r: &Report) {
             shown.join(", ")
         }
     };
-    println!("{}: {} triangles", r.mesh, r.triangles);
+    say!("{}: {} triangles", r.mesh, r.triangles);
     if r.self_intersecting_pairs == 0 {
-        println!("  no self-intersections");
+        say!("  no self-intersections");
     } else {
-        println!(
+        say!(
             "  {} self-intersecting triangle pairs: {}",
             r.self_intersecting_pairs,
             list(&r.self_first_pairs, r.self_intersecting_pairs)
         );
     }
     if let Some(a) = &r.against {
-        println!("against {}: {} triangles", a.mesh, a.triangles);
+        say!("against {}: {} triangles", a.mesh, a.triangles);
         if a.intersecting_pairs == 0 {
-            println!("  the meshes do not meet");
+            say!("  the meshes do not meet");
         } else {
-            println!(
+            say!(
                 "  {} intersecting triangle pairs ({} crossing, {} coplanar): {}",
                 a.intersecting_pairs,
                 a.crossing_pairs,
@@ -203,5 +203,6 @@ fn print_report(r: &Report) {
             );
         }
     }
-    println!("  {:.3} s", r.check_seconds);
+    say!("  {:.3} s", r.check_seconds);
+    Ok(())
 }

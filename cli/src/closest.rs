@@ -9,6 +9,7 @@ use meshq::MeshQuery;
 use meshq::math::Vec3;
 use serde::Serialize;
 
+use crate::output::say;
 use crate::raycast::per_second;
 use crate::records::{RecordReader, ResultWriter};
 use crate::structure::{QueryInput, with_structure};
@@ -43,9 +44,11 @@ struct Summary {
 
 pub fn run(args: &ClosestArgs) -> Result<()> {
     let mut reader = RecordReader::open(&args.points, 3, "point")?;
-    let mut writer = ResultWriter::create(&args.out)?;
+    let mut inputs = args.input.paths();
+    inputs.push(&args.points);
+    let mut writer = ResultWriter::create(&args.out, &inputs)?;
     let summary = with_structure(&args.input, |s| {
-        let bar = progress::bar(reader.count, "points");
+        let bar = progress::bar(reader.expected, "points");
         let mut floats = Vec::new();
         let (mut points, mut keys, mut results) = (Vec::new(), Vec::new(), Vec::new());
         let mut query_seconds = 0.0f64;
@@ -81,7 +84,7 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
     if args.json {
         output::json(&summary)
     } else {
-        println!(
+        say!(
             "{} points, prepared in {:.3} s, queries {:.3} s: {:.2} M points/s",
             summary.points,
             summary.build_seconds,

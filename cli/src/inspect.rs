@@ -17,6 +17,7 @@ use serde::Serialize;
 use crate::inspect_cells::{cell_blob_report, print_cell_blob};
 use crate::mesh_file::read_mesh;
 use crate::output;
+use crate::output::say;
 use crate::structure::check_blob_kind;
 use crate::structure_arg::StructureArg;
 
@@ -90,15 +91,13 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         if args.json {
             return output::json(&report);
         }
-        print_cell_blob(&report);
-        return Ok(());
+        return print_cell_blob(&report);
     };
     let report = report(&header, &tree, config, bytes.len());
     if args.json {
         return output::json(&report);
     }
-    print(&report);
-    Ok(())
+    print(&report)
 }
 
 fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usize) -> Report {
@@ -150,41 +149,58 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
     }
 }
 
-fn print(r: &Report) {
-    println!(
+fn print(r: &Report) -> Result<()> {
+    say!(
         "meshq blob, format version {}: {} with mesh {}",
-        r.format_version, r.structure, r.mesh_layout
+        r.format_version,
+        r.structure,
+        r.mesh_layout
     );
-    println!(
+    say!(
         "  {} triangles, {} vertices, {} nodes ({} leaves), depth {}",
-        r.triangles, r.vertices, r.nodes, r.leaves, r.depth
+        r.triangles,
+        r.vertices,
+        r.nodes,
+        r.leaves,
+        r.depth
     );
-    println!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
+    say!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
     let c = &r.config;
     if c.split == "centre" {
-        println!(
+        say!(
             "  built with centre splits, leaves up to {}, max depth {}",
-            c.max_leaf_size, c.max_depth
+            c.max_leaf_size,
+            c.max_depth
         );
     } else {
-        println!(
+        say!(
             "  built with binned SAH: {} bins, leaves up to {}, max depth {}, costs traversal {} / triangle {}",
-            c.bins, c.max_leaf_size, c.max_depth, c.traversal_cost, c.triangle_cost
+            c.bins,
+            c.max_leaf_size,
+            c.max_depth,
+            c.traversal_cost,
+            c.triangle_cost
         );
     }
-    println!("  SAH cost {:.2}", r.sah_cost);
+    say!("  SAH cost {:.2}", r.sah_cost);
     let sizes: Vec<String> = r
         .leaf_sizes
         .iter()
         .map(|[size, n]| format!("{size}: {n}"))
         .collect();
-    println!("  leaf sizes (triangles: leaves) {}", sizes.join(", "));
+    say!("  leaf sizes (triangles: leaves) {}", sizes.join(", "));
     let b = &r.bytes;
-    println!(
+    say!(
         "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, mesh {}",
-        b.total, b.per_triangle, b.header, b.nodes, b.order, b.mesh
+        b.total,
+        b.per_triangle,
+        b.header,
+        b.nodes,
+        b.order,
+        b.mesh
     );
-    println!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);
+    say!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);
+    Ok(())
 }
 
 /// The shape of a structure built over a mesh file.
@@ -248,20 +264,25 @@ fn inspect_mesh(args: &InspectArgs) -> Result<()> {
         return output::json(&report);
     }
     let r = &report;
-    println!(
+    say!(
         "{} over {} ({} triangles), built in {:.1} ms",
         r.structure,
         args.blob.display(),
         r.triangles,
         r.build_seconds * 1e3
     );
-    println!(
+    say!(
         "  {} nodes, {} cells ({} empty), depth {}",
-        r.nodes, r.cells, r.empty_cells, r.max_depth
+        r.nodes,
+        r.cells,
+        r.empty_cells,
+        r.max_depth
     );
-    println!(
+    say!(
         "  {} references ({:.2} per triangle), at most {} in one cell",
-        r.references, r.references_per_triangle, r.max_cell_references
+        r.references,
+        r.references_per_triangle,
+        r.max_cell_references
     );
     Ok(())
 }

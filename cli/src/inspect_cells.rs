@@ -1,5 +1,6 @@
 //! `meshq inspect` on a blob holding a k-d tree, octree or grid: its config and cell figures.
 
+use crate::output::say;
 use meshq::blob::{BlobHeader, BlobStructure, StructureConfig};
 use serde::Serialize;
 
@@ -92,25 +93,36 @@ fn config_pairs(config: &StructureConfig) -> Vec<(String, String)> {
     }
 }
 
-pub fn print_cell_blob(r: &CellBlobReport) {
-    println!(
+pub fn print_cell_blob(r: &CellBlobReport) -> anyhow::Result<()> {
+    say!(
         "meshq blob, format version {}: {} with mesh {}",
-        r.format_version, r.structure, r.mesh_layout
+        r.format_version,
+        r.structure,
+        r.mesh_layout
     );
-    println!(
+    say!(
         "  {} triangles, {} vertices, {} nodes, {} cells ({} empty), depth {}",
-        r.triangles, r.vertices, r.nodes, r.cells, r.empty_cells, r.max_depth
+        r.triangles,
+        r.vertices,
+        r.nodes,
+        r.cells,
+        r.empty_cells,
+        r.max_depth
     );
-    println!(
+    say!(
         "  {} references ({:.2} per triangle), at most {} in one cell",
-        r.references, r.references_per_triangle, r.max_cell_references
+        r.references,
+        r.references_per_triangle,
+        r.max_cell_references
     );
-    println!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
+    say!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
     let settings: Vec<String> = r.config.iter().map(|(k, v)| format!("{k} {v}")).collect();
-    println!("  built with {}", settings.join(", "));
-    println!(
+    say!("  built with {}", settings.join(", "));
+    say!(
         "  {} bytes ({:.1} per triangle)",
-        r.bytes, r.bytes_per_triangle
+        r.bytes,
+        r.bytes_per_triangle
     );
-    println!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);
+    say!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);
+    Ok(())
 }

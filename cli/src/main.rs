@@ -1,12 +1,12 @@
 //! `meshq`: bake acceleration-structure blobs offline, inspect them, run ray and
 //! closest-point queries from files, and remesh meshes.
 
+mod atomic;
 mod bake;
 mod check;
 mod closest;
 mod inspect;
 mod inspect_cells;
-mod mesh_file;
 mod mesh_write;
 mod output;
 mod progress;
@@ -18,6 +18,8 @@ mod structure;
 mod structure_arg;
 mod workload;
 
+use meshq_cli::mesh_file;
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -61,10 +63,25 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`meshq inspect blob | head -1`): stop quietly with the status
+        // a shell gives a command killed by SIGPIPE, as other Unix tools do.
+        Err(e) if closed_pipe(&e) => ExitCode::from(141),
         Err(e) => {
-            // One line: the context chain joined with ": ".
-            eprintln!("meshq: error: {e:#}");
+            // One line: the context chain joined with ": ", with any line breaks or tabs a
+            // parser put in its message flattened. If even stderr fails, the status says it.
+            let message = format!("{e:#}");
+            let line: Vec<&str> = message.split_whitespace().collect();
+            let _ = writeln!(std::io::stderr(), "meshq: error: {}", line.join(" "));
             ExitCode::FAILURE
         }
     }
+}
+
+/// Whether `e` is a write to standard output that failed because its reader closed the pipe.
+fn closed_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|cause| {
+        cause
+            .downcast_ref::<output::StdoutError>()
+            .is_some_and(|s| s.0.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }

@@ -1,15 +1,20 @@
 //! Writing a triangle mesh as OBJ (text) or PLY (binary little-endian), by extension.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 
-/// Writes `positions` and `triangles` to `path`: `.obj` or `.ply`. The file is written beside
-/// `path` under a temporary name and renamed over it only once complete, so a failed write
-/// never leaves a truncated file (or clobbers the input when `path` is the input).
-pub fn write_mesh(path: &Path, positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Result<()> {
+use crate::atomic::AtomicFile;
+
+/// Writes `positions` and `triangles` to `path`: `.obj` or `.ply`, whole or not at all (see
+/// [`AtomicFile`]); refused when `path` is one of `inputs`.
+pub fn write_mesh(
+    path: &Path,
+    inputs: &[&Path],
+    positions: &[[f32; 3]],
+    triangles: &[[u32; 3]],
+) -> Result<()> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -21,25 +26,14 @@ pub fn write_mesh(path: &Path, positions: &[[f32; 3]], triangles: &[[u32; 3]]) -
             path.display()
         );
     }
-    let mut partial = path.as_os_str().to_owned();
-    partial.push(".partial");
-    let partial = Path::new(&partial);
-    let written = (|| -> Result<()> {
-        let file = File::create(partial)?;
-        let mut out = BufWriter::new(file);
-        if ext == "obj" {
-            write_obj(&mut out, positions, triangles)?;
-        } else {
-            write_ply(&mut out, positions, triangles)?;
-        }
-        out.flush()?;
-        std::fs::rename(partial, path)?;
-        Ok(())
-    })();
-    if written.is_err() {
-        let _ = std::fs::remove_file(partial);
+    let mut out = AtomicFile::create(path, inputs)?;
+    if ext == "obj" {
+        write_obj(&mut out, positions, triangles)
+    } else {
+        write_ply(&mut out, positions, triangles)
     }
-    written.with_context(|| format!("cannot write {}", path.display()))
+    .with_context(|| format!("cannot write {}", path.display()))?;
+    out.commit()
 }
 
 fn write_obj(out: &mut impl Write, positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Result<()> {

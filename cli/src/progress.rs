@@ -2,12 +2,19 @@
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// A bar over `total` items named `what`.
-pub fn bar(total: u64, what: &str) -> ProgressBar {
-    let bar = ProgressBar::new(total);
-    if let Ok(style) = ProgressStyle::with_template(&format!(
-        "{{spinner}} {what} [{{bar:30}}] {{pos}}/{{len}} ({{per_sec}}, {{eta}} left)"
-    )) {
+/// A bar over `total` items named `what`; a counter when the total is not known (a stream).
+pub fn bar(total: Option<u64>, what: &str) -> ProgressBar {
+    let (bar, template) = match total {
+        Some(total) => (
+            ProgressBar::new(total),
+            format!("{{spinner}} {what} [{{bar:30}}] {{pos}}/{{len}} ({{per_sec}}, {{eta}} left)"),
+        ),
+        None => (
+            ProgressBar::no_length(),
+            format!("{{spinner}} {what}: {{pos}} ({{per_sec}})"),
+        ),
+    };
+    if let Ok(style) = ProgressStyle::with_template(&template) {
         bar.set_style(style.progress_chars("=> "));
     }
     bar

@@ -10,6 +10,7 @@ use meshq::math::{Ray, RayHit, Vec3};
 use meshq::query::RayOptions;
 use serde::Serialize;
 
+use crate::output::say;
 use crate::records::{RecordReader, ResultWriter};
 use crate::structure::{QueryInput, with_structure};
 use crate::{output, progress};
@@ -52,9 +53,11 @@ struct Summary {
 
 pub fn run(args: &RaycastArgs) -> Result<()> {
     let mut reader = RecordReader::open(&args.rays, 6, "ray")?;
-    let mut writer = ResultWriter::create(&args.out)?;
+    let mut inputs = args.input.paths();
+    inputs.push(&args.rays);
+    let mut writer = ResultWriter::create(&args.out, &inputs)?;
     let summary = with_structure(&args.input, |s| {
-        let bar = progress::bar(reader.count, "rays");
+        let bar = progress::bar(reader.expected, "rays");
         let (mut floats, mut rays) = (Vec::new(), Vec::with_capacity(CHUNK));
         let mut results: Vec<(f32, u32)> = Vec::with_capacity(CHUNK);
         let (mut hits, mut query_seconds) = (0u64, 0.0f64);
@@ -116,7 +119,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
     if args.json {
         output::json(&summary)
     } else {
-        println!(
+        say!(
             "{} rays, {} hits ({}), prepared in {:.3} s, queries {:.3} s: {:.2} M rays/s",
             summary.rays,
             summary.hits,

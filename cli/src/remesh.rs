@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use crate::mesh_file::read_mesh;
 use crate::mesh_write::write_mesh;
+use crate::output::say;
 use crate::{output, progress};
 
 #[derive(Args, Debug)]
@@ -86,6 +87,7 @@ struct Summary {
 }
 
 pub fn run(args: &RemeshArgs) -> Result<()> {
+    crate::atomic::refuse_inputs(&args.output, &[&args.mesh])?;
     let data = read_mesh(&args.mesh)?;
     let mesh = MeshRef::new(&data.positions, &data.triangles)
         .validate()
@@ -102,7 +104,7 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
         );
         config.target_length = ratio * mean_edge_length(&mesh);
     }
-    let bar = progress::bar(u64::from(config.iterations), "iterations");
+    let bar = progress::bar(Some(u64::from(config.iterations)), "iterations");
     let start = Instant::now();
     let remeshed =
         Remeshed::with_progress(&mesh, &config, |r| bar.set_position(r.iterations.into()))
@@ -110,7 +112,12 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
     let remesh_seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let hausdorff_relative = remeshed.distance_to(&mesh)?;
-    write_mesh(&args.output, &remeshed.positions, &remeshed.triangles)?;
+    write_mesh(
+        &args.output,
+        &[&args.mesh],
+        &remeshed.positions,
+        &remeshed.triangles,
+    )?;
     let r = remeshed.report;
     let summary = Summary {
         target_length: if config.target_length > 0.0 {
@@ -134,12 +141,12 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
     if args.json {
         return output::json(&summary);
     }
-    println!(
+    say!(
         "remeshed {} -> {}",
         args.mesh.display(),
         args.output.display()
     );
-    println!(
+    say!(
         "  target edge {:.6}, {} iterations: {} splits, {} collapses, {} flips, {} crease edges, {:.3} s",
         summary.target_length,
         r.iterations,
@@ -149,12 +156,17 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
         r.creases,
         remesh_seconds
     );
-    println!(
+    say!(
         "  {:<7} {:>10} {:>10} {:>12} {:>10} {:>8}",
-        "", "triangles", "valence 6", "min angle", "< 30°", "edge CV"
+        "",
+        "triangles",
+        "valence 6",
+        "min angle",
+        "< 30°",
+        "edge CV"
     );
     for (name, f) in [("before", &summary.before), ("after", &summary.after)] {
-        println!(
+        say!(
             "  {:<7} {:>10} {:>9.2}% {:>11.2}° {:>9.3}% {:>8.4}",
             name,
             f.triangles,
@@ -164,6 +176,6 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
             f.edge_length_cv
         );
     }
-    println!("  distance to the input: {hausdorff_relative:.2e} of the bounding-box diagonal");
+    say!("  distance to the input: {hausdorff_relative:.2e} of the bounding-box diagonal");
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! grid, as `--structure` says), or loaded from a blob (whichever structure it holds). Either
 //! way queries run on the owned structure over packed triangles, the fastest path.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
@@ -41,6 +41,15 @@ pub struct QueryInput {
     pub structure: Option<StructureArg>,
 }
 
+impl QueryInput {
+    /// The files this input reads.
+    pub fn paths(&self) -> Vec<&Path> {
+        let mut paths = vec![self.input.as_path()];
+        paths.extend(self.mesh.as_deref());
+        paths
+    }
+}
+
 /// Loads the input — a blob when the file starts with the blob magic, otherwise a mesh file
 /// built with the chosen quality — and runs `query` on it.
 pub fn with_structure<R>(
@@ -56,8 +65,7 @@ pub fn with_structure<R>(
     if bytes.starts_with(&MAGIC) {
         check_blob_kind(&bytes, args.structure, input)?;
         let external = mesh.map(read_mesh).transpose()?;
-        with_blob(&bytes, external.as_ref(), query)
-            .with_context(|| format!("{}: cannot use blob", input.display()))
+        with_blob(&bytes, external.as_ref(), input, query)
     } else {
         if mesh.is_some() {
             bail!(
@@ -69,6 +77,7 @@ pub fn with_structure<R>(
         let data = read_mesh(input)?;
         with_built(
             &data,
+            input,
             args.structure.unwrap_or_default().kind(),
             config,
             query,
@@ -97,15 +106,18 @@ pub fn check_blob_kind(
     Ok(())
 }
 
-/// Builds a structure of `kind` over `data` (a BVH with `config`, the others with their default
+/// Builds a structure of `kind` over `data`, read from `path` (a BVH with `config`, the others with their default
 /// configs) and runs `query`.
 pub fn with_built<R>(
     data: &MeshData,
+    path: &Path,
     kind: StructureKind,
     config: &BuildConfig,
     query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
-    let mesh = MeshRef::new(&data.positions, &data.triangles).validate()?;
+    let mesh = MeshRef::new(&data.positions, &data.triangles)
+        .validate()
+        .with_context(|| format!("{}: invalid mesh", path.display()))?;
     let start = Instant::now();
     let scene = match kind {
         StructureKind::Bvh => MeshIndex::Bvh(MeshBvh::build(&mesh, config)?),
@@ -122,19 +134,25 @@ pub fn with_built<R>(
 fn with_blob<R>(
     bytes: &[u8],
     external: Option<&MeshData>,
+    input: &Path,
     query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
     let start = Instant::now();
-    let scene = match external {
-        Some(data) => {
-            let mesh = MeshRef::new(&data.positions, &data.triangles).validate()?;
-            MeshIndex::from_blob_with_mesh(bytes, &mesh)?
-        }
-        None => MeshIndex::from_blob(bytes).map_err(|e| match e {
-            BlobError::MeshNotIncluded => anyhow!("{e} (pass it with --mesh)"),
-            e => e.into(),
-        })?,
-    };
+    let scene = (|| -> Result<MeshIndex> {
+        Ok(match external {
+            Some(data) => {
+                let mesh = MeshRef::new(&data.positions, &data.triangles)
+                    .validate()
+                    .context("the mesh given with --mesh is invalid")?;
+                MeshIndex::from_blob_with_mesh(bytes, &mesh)?
+            }
+            None => MeshIndex::from_blob(bytes).map_err(|e| match e {
+                BlobError::MeshNotIncluded => anyhow!("{e} (pass it with --mesh)"),
+                e => e.into(),
+            })?,
+        })
+    })()
+    .with_context(|| format!("{}: cannot use blob", input.display()))?;
     let prepare_seconds = start.elapsed().as_secs_f64();
     query(Prepared {
         scene,

@@ -1,15 +1,17 @@
 //! `meshq workload`: writes the DESIGN.md query workloads for a mesh as raw files that
 //! `raycast` and `closest` read.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
+use meshq::mesh::MeshRef;
 use meshq_workload::{CameraRays, QueryPoints, RandomRays, centre_radius};
 
+use crate::atomic::AtomicFile;
 use crate::mesh_file::read_mesh;
+use crate::output::say;
 
 /// `--kind`: which workload.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -44,11 +46,20 @@ pub struct WorkloadArgs {
 }
 
 pub fn run(args: &WorkloadArgs) -> Result<()> {
+    crate::atomic::refuse_inputs(&args.output, &[&args.mesh])?;
     let data = read_mesh(&args.mesh)?;
+    // The workloads are placed by the mesh's bounds: they need a valid, non-empty mesh.
+    let mesh = MeshRef::new(&data.positions, &data.triangles)
+        .validate()
+        .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
+    if mesh.triangle_count() == 0 {
+        bail!(
+            "{}: the mesh has no triangles, so no bounds to place a workload in",
+            args.mesh.display()
+        );
+    }
     let (_, _, bounds) = centre_radius(&data.positions);
-    let file = File::create(&args.output)
-        .with_context(|| format!("cannot create {}", args.output.display()))?;
-    let mut out = BufWriter::with_capacity(1 << 20, file);
+    let mut out = AtomicFile::create(&args.output, &[&args.mesh])?;
     let mut floats = |values: &[f32]| -> Result<()> {
         for v in values {
             out.write_all(&v.to_le_bytes())?;
@@ -84,7 +95,7 @@ pub fn run(args: &WorkloadArgs) -> Result<()> {
             args.count
         }
     };
-    out.flush()?;
-    println!("wrote {written} records to {}", args.output.display());
+    out.commit()?;
+    say!("wrote {written} records to {}", args.output.display());
     Ok(())
 }

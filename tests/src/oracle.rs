@@ -142,7 +142,7 @@ impl BruteForce {
     /// on equal distance).
     #[must_use]
     pub fn closest_point(&self, p: Vec3, max_distance: f32) -> Option<ClosestPoint> {
-        let limit = max_distance * max_distance;
+        let limit = (max_distance * max_distance).min(f32::MAX);
         let mut best: Option<ClosestPoint> = None;
         for (k, chunk) in self.chunks.iter().enumerate() {
             let bound = best.map_or(limit, |b| b.distance_squared);

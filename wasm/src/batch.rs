@@ -1,74 +1,93 @@
 //! Batched queries: a frame's worth of rays or points crosses the JavaScript ↔ WebAssembly
 //! boundary once, in one typed array, and the answers come back in caller-owned arrays.
+//!
+//! Output arrays must be of the exact type and length named; anything else throws a
+//! `TypeError` or `RangeError` before any work, and leaves the arrays untouched.
 
 use glam::Vec3;
+use js_sys::Float32Array;
 use meshq::math::Ray;
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
-use crate::options::ray_options;
+use crate::args::{
+    floats, max_distance, output_f32, output_u8, output_u32, range, range_error, side,
+};
 
-/// Distance written for a ray that hits nothing.
+/// Distance written for a ray that hits nothing (`MeshBvh.MISS_DISTANCE`).
 pub const MISS_DISTANCE: f32 = f32::INFINITY;
-/// Triangle index written for a ray that hits nothing (`0xFFFFFFFF`).
+/// Triangle index written for a ray that hits nothing, or a point that finds nothing
+/// (`0xFFFFFFFF`, `MeshBvh.MISS_TRIANGLE`).
 pub const MISS_TRIANGLE: u32 = u32::MAX;
 
-fn check_len(what: &str, got: usize, needed: usize) -> Result<(), JsError> {
-    if got < needed {
-        return Err(JsError::new(&format!(
-            "{what} holds {got} numbers; {needed} are needed"
-        )));
-    }
-    Ok(())
-}
-
-fn rays(rays: &[f32], near: f32, far: f32) -> Result<impl Iterator<Item = Ray> + '_, JsError> {
-    if !rays.len().is_multiple_of(6) {
-        return Err(JsError::new(&format!(
+/// The rays of a `Float32Array` of 6 numbers per ray, with `t` in `[near, far]`.
+fn read_rays(rays: &JsValue, near: &JsValue, far: &JsValue) -> Result<Vec<Ray>, JsValue> {
+    let values = floats(rays, "rays")?;
+    if !values.len().is_multiple_of(6) {
+        return Err(range_error(&format!(
             "rays hold {} numbers, not a multiple of 6 (origin x, y, z, direction x, y, z)",
-            rays.len()
+            values.len()
         )));
     }
-    Ok(rays.chunks_exact(6).map(move |r| {
-        Ray::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])).with_range(near, far)
-    }))
+    let (near, far) = range(near, far)?;
+    Ok(values
+        .chunks_exact(6)
+        .map(|r| {
+            Ray::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])).with_range(near, far)
+        })
+        .collect())
 }
 
 #[wasm_bindgen]
 impl MeshBvh {
-    /// Casts every ray of `rays` (6 numbers per ray: origin, then direction) with `t` in
-    /// `[near, far]`, writing ray `i`'s hit distance to `distances[i]` and its triangle to
-    /// `triangles[i]` (a miss writes `Infinity` and `0xFFFFFFFF`). `side` as in `raycast`.
-    /// Returns the number of hits.
+    /// `Infinity`: the distance a batch writes for a ray that hits nothing
+    /// (`MeshBvh.MISS_DISTANCE`).
+    #[wasm_bindgen(getter = MISS_DISTANCE)]
+    pub fn miss_distance() -> f32 {
+        MISS_DISTANCE
+    }
+
+    /// `0xFFFFFFFF`: the triangle a batch writes for a ray or point that finds nothing
+    /// (`MeshBvh.MISS_TRIANGLE`).
+    #[wasm_bindgen(getter = MISS_TRIANGLE)]
+    pub fn miss_triangle() -> u32 {
+        MISS_TRIANGLE
+    }
+
+    /// Casts every ray of `rays` (a `Float32Array`, 6 numbers per ray: origin, then
+    /// direction) with `t` in `[near, far]` (omitted: `0`, `Infinity`), writing ray `i`'s hit
+    /// parameter `t` to `distances[i]` (a `Float32Array` of one number per ray) and its
+    /// triangle to `triangles[i]` (a `Uint32Array`, one per ray); a miss writes
+    /// `MISS_DISTANCE` and `MISS_TRIANGLE`. `side` as in `raycast`. Returns the number of hits.
     #[wasm_bindgen(js_name = raycastBatch)]
     pub fn raycast_batch(
         &self,
-        rays_in: &[f32],
-        near: f32,
-        far: f32,
-        distances: &mut [f32],
-        triangles: &mut [u32],
-        side: Option<u8>,
-    ) -> Result<u32, JsError> {
-        self.batch(rays_in, near, far, distances, triangles, None, side)
+        rays: &JsValue,
+        near: &JsValue,
+        far: &JsValue,
+        distances: &JsValue,
+        triangles: &JsValue,
+        side: &JsValue,
+    ) -> Result<u32, JsValue> {
+        self.batch(rays, near, far, distances, triangles, None, side)
     }
 
     /// [`MeshBvh::raycast_batch`] that also writes each hit's barycentric weights `u, v` to
-    /// `barycentrics[2i..2i+2]` (`NaN` on a miss).
+    /// `barycentrics[2i..2i+2]` (a `Float32Array` of two numbers per ray; `NaN` on a miss).
     #[wasm_bindgen(js_name = raycastBatchBarycentric)]
     #[allow(clippy::too_many_arguments)]
     pub fn raycast_batch_barycentric(
         &self,
-        rays_in: &[f32],
-        near: f32,
-        far: f32,
-        distances: &mut [f32],
-        triangles: &mut [u32],
-        barycentrics: &mut [f32],
-        side: Option<u8>,
-    ) -> Result<u32, JsError> {
+        rays: &JsValue,
+        near: &JsValue,
+        far: &JsValue,
+        distances: &JsValue,
+        triangles: &JsValue,
+        barycentrics: &JsValue,
+        side: &JsValue,
+    ) -> Result<u32, JsValue> {
         self.batch(
-            rays_in,
+            rays,
             near,
             far,
             distances,
@@ -78,81 +97,85 @@ impl MeshBvh {
         )
     }
 
-    /// Any-hit for every ray of `rays` (6 numbers per ray): `hits[i]` becomes 1 when ray `i`
-    /// hits something in `[near, far]`, else 0. Returns the number of rays that hit.
+    /// Any-hit for every ray of `rays` (a `Float32Array`, 6 numbers per ray): `hits[i]` (a
+    /// `Uint8Array`, one per ray) becomes 1 when ray `i` hits something in `[near, far]`
+    /// (omitted: `0`, `Infinity`), else 0. Returns the number of rays that hit.
     #[wasm_bindgen(js_name = raycastAnyBatch)]
     pub fn raycast_any_batch(
         &self,
-        rays_in: &[f32],
-        near: f32,
-        far: f32,
-        hits: &mut [u8],
-        side: Option<u8>,
-    ) -> Result<u32, JsError> {
-        let options = ray_options(side)?;
-        check_len("hits", hits.len(), rays_in.len() / 6)?;
-        let views = &self.storage;
-        let rays: Vec<Ray> = rays(rays_in, near, far)?.collect();
+        rays: &JsValue,
+        near: &JsValue,
+        far: &JsValue,
+        hits: &JsValue,
+        side_in: &JsValue,
+    ) -> Result<u32, JsValue> {
+        let options = side(side_in)?;
+        let rays = read_rays(rays, near, far)?;
+        let hits = output_u8(hits, "hits", rays.len(), " (one per ray)")?;
         let mut answers = vec![false; rays.len()];
-        views.raycast_any_batch(&rays, &options, &mut answers)?;
-        let mut count = 0;
-        for (hit, out) in answers.into_iter().zip(hits.iter_mut()) {
-            count += u32::from(hit);
-            *out = u8::from(hit);
-        }
-        Ok(count)
+        self.storage
+            .raycast_any_batch(&rays, &options, &mut answers)?;
+        let flags: Vec<u8> = answers.iter().map(|&a| u8::from(a)).collect();
+        hits.copy_from(&flags);
+        Ok(answers.iter().map(|&a| u32::from(a)).sum())
     }
 
-    /// The closest surface point of every point of `points` (3 numbers per point) within
-    /// `maxDistance`: `closest[3i..3i+3]` receives the point, `triangles[i]` its triangle and
-    /// `distances[i]` the distance (not found: `NaN` coordinates, `0xFFFFFFFF`, `Infinity`).
-    /// Returns the number of points found.
+    /// The closest surface point of every point of `points` (a `Float32Array`, 3 numbers per
+    /// point) within `maxDistance` (omitted: any distance; otherwise a number ≥ 0):
+    /// `closest[3i..3i+3]` (a `Float32Array`, 3 per point) receives the point, `triangles[i]`
+    /// (a `Uint32Array`) its triangle and `distances[i]` (a `Float32Array`) the Euclidean
+    /// distance; a point that finds nothing writes `NaN` coordinates, `MISS_TRIANGLE` and
+    /// `Infinity`. Returns the number of points found.
     #[wasm_bindgen(js_name = closestPointBatch)]
     pub fn closest_point_batch(
         &self,
-        points: &[f32],
-        max_distance: f32,
-        closest: &mut [f32],
-        triangles: &mut [u32],
-        distances: &mut [f32],
-    ) -> Result<u32, JsError> {
-        if !points.len().is_multiple_of(3) {
-            return Err(JsError::new("points must hold 3 numbers per point"));
+        points: &JsValue,
+        max_distance_in: &JsValue,
+        closest: &JsValue,
+        triangles: &JsValue,
+        distances: &JsValue,
+    ) -> Result<u32, JsValue> {
+        let values = floats(points, "points")?;
+        if !values.len().is_multiple_of(3) {
+            return Err(range_error(&format!(
+                "points hold {} numbers, not a multiple of 3",
+                values.len()
+            )));
         }
-        let n = points.len() / 3;
-        check_len("closest", closest.len(), 3 * n)?;
-        check_len("triangles", triangles.len(), n)?;
-        check_len("distances", distances.len(), n)?;
-        let views = &self.storage;
-        let queries: Vec<Vec3> = points
+        let n = values.len() / 3;
+        let limit = max_distance(max_distance_in)?;
+        let closest = output_f32(closest, "closest", 3 * n, " (3 per point)")?;
+        let triangles = output_u32(triangles, "triangles", n, " (one per point)")?;
+        let distances = output_f32(distances, "distances", n, " (one per point)")?;
+        let queries: Vec<Vec3> = values
             .chunks_exact(3)
             .map(|p| Vec3::new(p[0], p[1], p[2]))
             .collect();
         // Answered in Morton order with seeded searches (the core's batch call): the same
-        // answers as one call per point, about 1.8 times as fast on the bunny's workload.
+        // answers as one call per point.
         let mut answers = vec![None; n];
-        views.closest_points(&queries, max_distance, &mut answers)?;
-        let mut found = 0;
-        let outputs = closest
-            .chunks_exact_mut(3)
-            .zip(triangles.iter_mut())
-            .zip(distances.iter_mut());
-        for (answer, ((c, t), d)) in answers.into_iter().zip(outputs) {
+        self.storage.closest_points(&queries, limit, &mut answers)?;
+        let mut points_out = Vec::with_capacity(3 * n);
+        let mut tris = Vec::with_capacity(n);
+        let mut dists = Vec::with_capacity(n);
+        for answer in &answers {
             match answer {
                 Some(hit) => {
-                    found += 1;
-                    c.copy_from_slice(&hit.point.to_array());
-                    *t = hit.tri;
-                    *d = hit.distance_squared.sqrt();
+                    points_out.extend_from_slice(&hit.point.to_array());
+                    tris.push(hit.tri);
+                    dists.push(hit.distance_squared.sqrt());
                 }
                 None => {
-                    c.fill(f32::NAN);
-                    *t = MISS_TRIANGLE;
-                    *d = f32::INFINITY;
+                    points_out.extend_from_slice(&[f32::NAN; 3]);
+                    tris.push(MISS_TRIANGLE);
+                    dists.push(f32::INFINITY);
                 }
             }
         }
-        Ok(found)
+        closest.copy_from(&points_out);
+        triangles.copy_from(&tris);
+        distances.copy_from(&dists);
+        Ok(answers.iter().filter(|a| a.is_some()).count() as u32)
     }
 }
 
@@ -160,37 +183,41 @@ impl MeshBvh {
     #[allow(clippy::too_many_arguments)]
     fn batch(
         &self,
-        rays_in: &[f32],
-        near: f32,
-        far: f32,
-        distances: &mut [f32],
-        triangles: &mut [u32],
-        mut barycentrics: Option<&mut [f32]>,
-        side: Option<u8>,
-    ) -> Result<u32, JsError> {
-        let options = ray_options(side)?;
-        let n = rays_in.len() / 6;
-        check_len("distances", distances.len(), n)?;
-        check_len("triangles", triangles.len(), n)?;
-        if let Some(uv) = &barycentrics {
-            check_len("barycentrics", uv.len(), 2 * n)?;
+        rays: &JsValue,
+        near: &JsValue,
+        far: &JsValue,
+        distances: &JsValue,
+        triangles: &JsValue,
+        barycentrics: Option<&JsValue>,
+        side_in: &JsValue,
+    ) -> Result<u32, JsValue> {
+        let options = side(side_in)?;
+        let rays = read_rays(rays, near, far)?;
+        let n = rays.len();
+        let distances = output_f32(distances, "distances", n, " (one per ray)")?;
+        let triangles = output_u32(triangles, "triangles", n, " (one per ray)")?;
+        let barycentrics: Option<Float32Array> = barycentrics
+            .map(|b| output_f32(b, "barycentrics", 2 * n, " (two per ray)"))
+            .transpose()?;
+        let mut answers = vec![None; n];
+        self.storage.raycast_batch(&rays, &options, &mut answers)?;
+        let ts: Vec<f32> = answers
+            .iter()
+            .map(|h| h.map_or(MISS_DISTANCE, |h| h.t))
+            .collect();
+        let tris: Vec<u32> = answers
+            .iter()
+            .map(|h| h.map_or(MISS_TRIANGLE, |h| h.tri))
+            .collect();
+        distances.copy_from(&ts);
+        triangles.copy_from(&tris);
+        if let Some(uv) = barycentrics {
+            let pairs: Vec<f32> = answers
+                .iter()
+                .flat_map(|h| h.map_or([f32::NAN; 2], |h| [h.u, h.v]))
+                .collect();
+            uv.copy_from(&pairs);
         }
-        let views = &self.storage;
-        let rays: Vec<Ray> = rays(rays_in, near, far)?.collect();
-        let mut answers = vec![None; rays.len()];
-        views.raycast_batch(&rays, &options, &mut answers)?;
-        let mut hits = 0;
-        let outputs = distances.iter_mut().zip(triangles.iter_mut());
-        for (i, (hit, (d, t))) in answers.into_iter().zip(outputs).enumerate() {
-            hits += u32::from(hit.is_some());
-            (*d, *t) = hit.map_or((MISS_DISTANCE, MISS_TRIANGLE), |h| (h.t, h.tri));
-            if let Some(uv) = barycentrics.as_deref_mut() {
-                let pair = hit.map_or([f32::NAN; 2], |h| [h.u, h.v]);
-                if let Some(out) = uv.get_mut(2 * i..2 * i + 2) {
-                    out.copy_from_slice(&pair);
-                }
-            }
-        }
-        Ok(hits)
+        Ok(answers.iter().filter(|a| a.is_some()).count() as u32)
     }
 }

@@ -70,6 +70,7 @@ pub fn build(
             indices.len()
         )));
     }
+    check_memory(positions.len() / 3, indices.len() / 3)?;
     let mesh = MeshRef::from_flat(&positions, &indices)
         .and_then(MeshRef::validate)
         .map_err(error)?;
@@ -78,6 +79,43 @@ pub fn build(
         other => MeshIndex::build(&mesh, other).map_err(error)?,
     };
     Ok(Storage { scene, blob: None })
+}
+
+/// A generous bound on what building takes per triangle and per vertex (structure, packed
+/// copy, mesh copy and build scratch; a BVH build peaks near 200 bytes per triangle).
+const BUILD_BYTES_PER_TRIANGLE: u64 = 256;
+const BUILD_BYTES_PER_VERTEX: u64 = 32;
+/// WebAssembly (32-bit) memory never grows past 4 GiB.
+const WASM_MEMORY_LIMIT: u64 = 1 << 32;
+
+/// Refuses a mesh whose build would need more memory than this module can still grow by: a
+/// failed allocation would abort the module (a trap), so the limit is checked first.
+fn check_memory(vertices: usize, triangles: usize) -> Result<(), JsError> {
+    let need = (triangles as u64)
+        .saturating_mul(BUILD_BYTES_PER_TRIANGLE)
+        .saturating_add((vertices as u64).saturating_mul(BUILD_BYTES_PER_VERTEX));
+    let left = WASM_MEMORY_LIMIT.saturating_sub(memory_in_use());
+    if need > left {
+        return Err(JsError::new(&format!(
+            "mesh too large for WebAssembly: {triangles} triangles and {vertices} vertices need \
+             about {} MB to build, and the module's memory can grow by only {} MB more (4 GiB \
+             at most); build it natively (`meshq bake`) and load the blob, or split the mesh",
+            need >> 20,
+            left >> 20
+        )));
+    }
+    Ok(())
+}
+
+/// Bytes of linear memory the module holds now.
+#[cfg(target_arch = "wasm32")]
+fn memory_in_use() -> u64 {
+    core::arch::wasm32::memory_size(0) as u64 * 65_536
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn memory_in_use() -> u64 {
+    0
 }
 
 /// Validates a blob of any structure once and decodes it into the buffers a build makes, so a loaded mesh is

@@ -8,6 +8,7 @@
 //! the same (the `parity` tests check this against the golden file).
 
 mod all_hits;
+mod args;
 mod batch;
 mod build;
 mod collide;

@@ -6,9 +6,14 @@ use meshq::blob::MeshLayout;
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use wasm_bindgen::prelude::*;
 
+use crate::args::{
+    finite_number, floats_or_numbers, max_distance, range_error, range_numbers, side_number,
+    type_error, vector,
+};
 use crate::js_objects::meshq_result;
-use crate::options::{build_config, ray_options, structure_kind};
+use crate::options::{build_config, structure_kind};
 use crate::storage::Storage;
+use wasm_bindgen::JsCast;
 
 /// A triangle mesh and its acceleration structure (a BVH unless `structure` picks a k-d tree,
 /// octree or grid), ready for ray and closest-point queries. Every structure gives the same
@@ -25,34 +30,50 @@ pub struct MeshBvh {
     pub(crate) storage: Storage,
 }
 
-pub(crate) fn vec3(values: &[f32], what: &str) -> Result<Vec3, JsError> {
-    match values {
-        [x, y, z] => Ok(Vec3::new(*x, *y, *z)),
-        _ => Err(JsError::new(&format!(
-            "{what} must hold exactly 3 numbers, got {}",
-            values.len()
-        ))),
+/// The ray `origin + t·direction`, `t` in `[near, far]`: origin and direction as `[x, y, z]` or
+/// `Vector3`s, the range omitted for `[0, Infinity]` (see [`crate::args`]).
+fn js_ray(
+    origin: &JsValue,
+    direction: &JsValue,
+    near: Option<f64>,
+    far: Option<f64>,
+) -> Result<Ray, JsValue> {
+    let origin = vector(origin, "origin")?;
+    let dir = vector(direction, "direction")?;
+    if dir == Vec3::ZERO {
+        return Err(range_error("direction must not be zero"));
     }
+    let (near, far) = range_numbers(near, far)?;
+    Ok(Ray::new(origin, dir).with_range(near, far))
 }
 
-/// The ray `origin + t·direction`, `t` in `[near, far]`, from two 3-number arrays.
-fn array_ray(origin: &[f32], direction: &[f32], near: f32, far: f32) -> Result<Ray, JsError> {
-    Ok(Ray::new(vec3(origin, "origin")?, vec3(direction, "direction")?).with_range(near, far))
-}
-
-/// The same ray from plain numbers.
+/// The same ray from plain numbers, each checked finite.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn xyz_ray(
-    ox: f32,
-    oy: f32,
-    oz: f32,
-    dx: f32,
-    dy: f32,
-    dz: f32,
-    near: f32,
-    far: f32,
-) -> Ray {
-    Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz)).with_range(near, far)
+    ox: f64,
+    oy: f64,
+    oz: f64,
+    dx: f64,
+    dy: f64,
+    dz: f64,
+    near: Option<f64>,
+    far: Option<f64>,
+) -> Result<Ray, JsValue> {
+    let origin = Vec3::new(
+        finite_number(ox, "ox")?,
+        finite_number(oy, "oy")?,
+        finite_number(oz, "oz")?,
+    );
+    let dir = Vec3::new(
+        finite_number(dx, "dx")?,
+        finite_number(dy, "dy")?,
+        finite_number(dz, "dz")?,
+    );
+    if dir == Vec3::ZERO {
+        return Err(range_error("direction must not be zero"));
+    }
+    let (near, far) = range_numbers(near, far)?;
+    Ok(Ray::new(origin, dir).with_range(near, far))
 }
 
 fn hit_object(views: &Storage, ray: &Ray, hit: RayHit) -> JsValue {
@@ -96,10 +117,11 @@ impl MeshBvh {
     /// sooner for somewhat slower rays. Throws on an invalid mesh (index out of range,
     /// non-finite position…) or an unknown option value with the core error's message.
     pub fn build(
-        positions: Vec<f32>,
+        positions: &JsValue,
         indices: JsValue,
         options: JsValue,
-    ) -> Result<MeshBvh, JsError> {
+    ) -> Result<MeshBvh, JsValue> {
+        let positions = floats_or_numbers(positions, "positions")?;
         let config = build_config(&options)?;
         let kind = structure_kind(&options)?;
         let indices = crate::build::read_indices(&indices)?;
@@ -113,15 +135,20 @@ impl MeshBvh {
     /// `toBlob`. Throws on a damaged blob, another format version, or a blob baked
     /// without its mesh.
     #[wasm_bindgen(js_name = fromBlob)]
-    pub fn from_blob(bytes: &[u8]) -> Result<MeshBvh, JsError> {
-        let storage = crate::build::from_blob(bytes.to_vec())?;
+    pub fn from_blob(bytes: &JsValue) -> Result<MeshBvh, JsValue> {
+        let bytes = bytes
+            .dyn_ref::<js_sys::Uint8Array>()
+            .ok_or_else(|| type_error("a blob must be a Uint8Array (a Buffer is one)"))?
+            .to_vec();
+        let storage = crate::build::from_blob(bytes)?;
         Ok(Self { storage })
     }
 
     /// The blob of this mesh and structure, to save and load later with `fromBlob`. `layout`:
     /// `"indexed"` (default: positions and indices), `"packed"` (larger, fastest to query),
     /// or `"omitted"` (no mesh; only for readers that have it). A loaded blob is returned as
-    /// it was loaded when no layout is asked for.
+    /// it was loaded when no layout is asked for, and encoded afresh in the layout asked for
+    /// otherwise.
     #[wasm_bindgen(js_name = toBlob)]
     pub fn to_blob(&self, layout: Option<String>) -> Result<Vec<u8>, JsError> {
         let mesh_layout = match layout.as_deref() {
@@ -136,11 +163,9 @@ impl MeshBvh {
         };
         match (&self.storage.blob, layout) {
             (Some(bytes), None) => Ok(bytes.clone()),
-            // A packed blob's mesh was unshared on load: re-encoding would not give its mesh.
-            (Some(_), Some(_)) => Err(JsError::new(
-                "a loaded blob is returned as loaded: call toBlob() without a layout",
-            )),
-            (None, _) => {
+            // Any other layout is encoded afresh from what was loaded (a packed blob's mesh
+            // has three vertices of its own per triangle: the same triangles, the same answers).
+            _ => {
                 let err = |e: meshq::error::BlobError| JsError::new(&e.to_string());
                 self.storage.scene.to_blob(mesh_layout).map_err(err)
             }
@@ -184,21 +209,24 @@ impl MeshBvh {
         vec![b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]
     }
 
-    /// The closest hit of the ray `origin + t·direction` with `t` in `[near, far]` (3-number
-    /// arrays or `Float32Array`s), or `null`. `side`: `0` front faces only, `1` back faces
-    /// only, `2` or omitted both (three.js `FrontSide`, `BackSide`, `DoubleSide`). Returns
-    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`: `distance` is `t`,
-    /// `u`, `v` the barycentric weights of the triangle's second and third corners, `normal`
-    /// the unit geometric normal (front side).
+    /// The closest hit of the ray `origin + t·direction` with `t` in `[near, far]`, or
+    /// `null`. `origin` and `direction`: `[x, y, z]` (array or typed array) or `{x, y, z}`
+    /// (a three.js `Vector3`), finite, the direction not zero; `near` and `far` default to `0`
+    /// and `Infinity`. `side`: `0` front faces only, `1` back faces only, `2` or omitted both
+    /// (three.js `FrontSide`, `BackSide`, `DoubleSide`). Returns
+    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`: `distance` is the
+    /// ray parameter `t` (world units for a unit direction), `u`, `v` the barycentric weights
+    /// of the triangle's second and third corners, `normal` the unit geometric normal (front
+    /// side). Throws a `TypeError` or `RangeError` naming a bad argument.
     pub fn raycast(
         &self,
-        origin: &[f32],
-        direction: &[f32],
-        near: f32,
-        far: f32,
-        side: Option<u8>,
-    ) -> Result<JsValue, JsError> {
-        self.cast(&array_ray(origin, direction, near, far)?, side)
+        origin: &JsValue,
+        direction: &JsValue,
+        near: Option<f64>,
+        far: Option<f64>,
+        side_in: Option<f64>,
+    ) -> Result<JsValue, JsValue> {
+        self.cast(&js_ray(origin, direction, near, far)?, side_in)
     }
 
     /// [`MeshBvh::raycast`] with the ray as plain numbers: nothing is allocated per call.
@@ -206,17 +234,17 @@ impl MeshBvh {
     #[allow(clippy::too_many_arguments)]
     pub fn raycast_xyz(
         &self,
-        ox: f32,
-        oy: f32,
-        oz: f32,
-        dx: f32,
-        dy: f32,
-        dz: f32,
-        near: f32,
-        far: f32,
-        side: Option<u8>,
-    ) -> Result<JsValue, JsError> {
-        self.cast(&xyz_ray(ox, oy, oz, dx, dy, dz, near, far), side)
+        ox: f64,
+        oy: f64,
+        oz: f64,
+        dx: f64,
+        dy: f64,
+        dz: f64,
+        near: Option<f64>,
+        far: Option<f64>,
+        side_in: Option<f64>,
+    ) -> Result<JsValue, JsValue> {
+        self.cast(&xyz_ray(ox, oy, oz, dx, dy, dz, near, far)?, side_in)
     }
 
     /// Whether the ray hits anything in `[near, far]` (occlusion, line of sight); faster than
@@ -224,30 +252,31 @@ impl MeshBvh {
     #[wasm_bindgen(js_name = raycastAny)]
     pub fn raycast_any(
         &self,
-        origin: &[f32],
-        direction: &[f32],
-        near: f32,
-        far: f32,
-        side: Option<u8>,
-    ) -> Result<bool, JsError> {
-        let ray = array_ray(origin, direction, near, far)?;
-        Ok(self.storage.raycast_any(&ray, &ray_options(side)?))
+        origin: &JsValue,
+        direction: &JsValue,
+        near: Option<f64>,
+        far: Option<f64>,
+        side_in: Option<f64>,
+    ) -> Result<bool, JsValue> {
+        let ray = js_ray(origin, direction, near, far)?;
+        Ok(self.storage.raycast_any(&ray, &side_number(side_in)?))
     }
 
-    /// The closest surface point to `point` within `maxDistance` (omitted: any distance), or
-    /// `null`. Returns `{ distance, point, triangle, u, v, normal }` like `raycast`, with
-    /// `distance` the Euclidean distance to the query point. On equal distance the lower
-    /// triangle index wins.
+    /// The closest surface point to `point` (`[x, y, z]` or `{x, y, z}`) within `maxDistance`
+    /// (omitted: any distance; otherwise a number ≥ 0), or `null`. Returns
+    /// `{ distance, point, triangle, u, v, normal }` like `raycast`, with `distance` the
+    /// Euclidean distance to the query point. On equal distance the lower triangle index wins.
     #[wasm_bindgen(js_name = closestPoint)]
     pub fn closest_point(
         &self,
-        point: &[f32],
-        max_distance: Option<f32>,
-    ) -> Result<JsValue, JsError> {
-        let p = vec3(point, "point")?;
+        point: &JsValue,
+        max_distance_in: &JsValue,
+    ) -> Result<JsValue, JsValue> {
+        let p = vector(point, "point")?;
+        let limit = max_distance(max_distance_in)?;
         let views = &self.storage;
         Ok(views
-            .closest_point(p, max_distance.unwrap_or(f32::INFINITY))
+            .closest_point(p, limit)
             .map_or(JsValue::NULL, |c| closest_object(views, c)))
     }
 
@@ -304,10 +333,10 @@ impl MeshBvh {
 }
 
 impl MeshBvh {
-    fn cast(&self, ray: &Ray, side: Option<u8>) -> Result<JsValue, JsError> {
+    fn cast(&self, ray: &Ray, side_in: Option<f64>) -> Result<JsValue, JsValue> {
         let views = &self.storage;
         Ok(views
-            .raycast(ray, &ray_options(side)?)
+            .raycast(ray, &side_number(side_in)?)
             .map_or(JsValue::NULL, |hit| hit_object(views, ray, hit)))
     }
 

@@ -2,9 +2,7 @@
 
 use js_sys::Reflect;
 use meshq::bvh::BuildConfig;
-use meshq::geom::CullMode;
 use meshq::owned::StructureKind;
-use meshq::query::RayOptions;
 use wasm_bindgen::prelude::*;
 
 /// Reads `{ quality?: "fast" | "balanced" | "high", maxLeafSize?, bins? }` (every field
@@ -59,24 +57,4 @@ pub fn structure_kind(options: &JsValue) -> Result<StructureKind, JsError> {
             .parse()
             .map_err(|e| JsError::new(&format!("{e}, got {name:?}"))),
     }
-}
-
-/// Ray options for a three.js material side: `0` (`THREE.FrontSide`) hits front faces only,
-/// `1` (`THREE.BackSide`) back faces only, `2` (`THREE.DoubleSide`) or `undefined` both.
-/// Counter-clockwise triangles face front, as in three.js.
-pub fn ray_options(side: Option<u8>) -> Result<RayOptions, JsError> {
-    let cull = match side {
-        None | Some(2) => CullMode::None,
-        Some(0) => CullMode::Back,
-        Some(1) => CullMode::Front,
-        Some(other) => {
-            return Err(JsError::new(&format!(
-                "side must be 0 (front), 1 (back) or 2 (double), got {other}"
-            )));
-        }
-    };
-    Ok(RayOptions {
-        cull,
-        ..RayOptions::default()
-    })
 }

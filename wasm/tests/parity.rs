@@ -6,7 +6,7 @@
 #![cfg(target_arch = "wasm32")]
 
 use glam::Vec3;
-use js_sys::{Reflect, Uint32Array};
+use js_sys::{Float32Array, Reflect, Uint32Array};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq_wasm::MeshBvh;
 use meshq_workload::{
@@ -55,9 +55,7 @@ fn load(obj: &str) -> (Vec<f32>, Vec<u32>) {
 fn build(obj: &str, options: &JsValue) -> MeshBvh {
     let (positions, indices) = load(obj);
     let indices = Uint32Array::from(&indices[..]);
-    MeshBvh::build(positions, indices.into(), options.clone())
-        .map_err(JsValue::from)
-        .unwrap()
+    MeshBvh::build(&floats_js(&positions), indices.into(), options.clone()).unwrap()
 }
 
 /// `{ quality: "fast" }`.
@@ -103,6 +101,16 @@ fn golden_blob(mesh: &str) -> (usize, u32) {
     (bytes, checksum)
 }
 
+/// Bytes as the `Uint8Array` JavaScript passes.
+fn bytes_js(bytes: &[u8]) -> JsValue {
+    js_sys::Uint8Array::from(bytes).into()
+}
+
+/// Numbers as the `Float32Array` JavaScript passes.
+fn floats_js(values: &[f32]) -> JsValue {
+    Float32Array::from(values).into()
+}
+
 #[wasm_bindgen_test]
 fn every_mesh_matches_the_golden_digest_and_blob() {
     let presets = [("", JsValue::UNDEFINED), ("-fast", fast())];
@@ -125,7 +133,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
             "{name}{suffix}: blob bytes"
         );
 
-        let loaded = MeshBvh::from_blob(&blob).map_err(JsValue::from).unwrap();
+        let loaded = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
         assert_eq!(loaded.to_blob(None).map_err(JsValue::from).unwrap(), blob);
@@ -135,7 +143,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
             .to_blob(Some("packed".into()))
             .map_err(JsValue::from)
             .unwrap();
-        let loaded_packed = MeshBvh::from_blob(&packed).map_err(JsValue::from).unwrap();
+        let loaded_packed = MeshBvh::from_blob(&bytes_js(&packed)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded_packed));
         assert_eq!(report, golden.report, "{name}: loaded from the packed blob");
         // Both loads give back the built mesh's triangles and tree, for display.
@@ -158,7 +166,10 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
             .to_blob(Some("omitted".into()))
             .map_err(JsValue::from)
             .unwrap();
-        assert!(MeshBvh::from_blob(&omitted).is_err(), "{name}: no mesh");
+        assert!(
+            MeshBvh::from_blob(&bytes_js(&omitted)).is_err(),
+            "{name}: no mesh"
+        );
     }
 }
 
@@ -190,7 +201,7 @@ fn every_structure_matches_the_golden_digest_and_blob() {
                         .map_err(JsValue::from)
                         .unwrap(),
                 };
-                let loaded = MeshBvh::from_blob(&bytes).map_err(JsValue::from).unwrap();
+                let loaded = MeshBvh::from_blob(&bytes_js(&bytes)).unwrap();
                 assert_eq!(loaded.structure(), kind);
                 let report = run_parity(&golden.spec, bounds, &mut Wasm(&loaded));
                 assert_eq!(report, golden.report, "{name}: {kind} blob {layout:?}");
@@ -205,7 +216,12 @@ fn every_structure_matches_the_golden_digest_and_blob() {
     }
     let positions = vec![0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
     assert!(
-        MeshBvh::build(positions, JsValue::NULL, option("structure", "quadtree")).is_err(),
+        MeshBvh::build(
+            &floats_js(&positions),
+            JsValue::NULL,
+            option("structure", "quadtree")
+        )
+        .is_err(),
         "unknown structure"
     );
 }
@@ -227,8 +243,17 @@ fn javascript_results_carry_the_core_answers() {
     for ray in spec.rays(bounds).take(200) {
         let (o, d) = (ray.origin, ray.dir);
         let js = bvh
-            .raycast_xyz(o.x, o.y, o.z, d.x, d.y, d.z, 0.0, f32::INFINITY, None)
-            .map_err(JsValue::from)
+            .raycast_xyz(
+                f64::from(o.x),
+                f64::from(o.y),
+                f64::from(o.z),
+                f64::from(d.x),
+                f64::from(d.y),
+                f64::from(d.z),
+                Some(0.0),
+                None,
+                None,
+            )
             .unwrap();
         match bvh.raycast_ray(&ray) {
             None => {
@@ -264,19 +289,19 @@ fn javascript_results_carry_the_core_answers() {
             ]
         })
         .collect();
-    let mut distances = vec![0.0f32; rays.len()];
-    let mut triangles = vec![0u32; rays.len()];
+    let distances_js = Float32Array::new_with_length(rays.len() as u32);
+    let triangles_js = Uint32Array::new_with_length(rays.len() as u32);
     let n = bvh
         .raycast_batch(
-            &flat,
-            0.0,
-            f32::INFINITY,
-            &mut distances,
-            &mut triangles,
-            None,
+            &Float32Array::from(flat.as_slice()),
+            &JsValue::UNDEFINED,
+            &JsValue::UNDEFINED,
+            &distances_js,
+            &triangles_js,
+            &JsValue::UNDEFINED,
         )
-        .map_err(JsValue::from)
         .unwrap();
+    let (distances, triangles) = (distances_js.to_vec(), triangles_js.to_vec());
     let expected: Vec<_> = rays.iter().map(|r| bvh.raycast_ray(r)).collect();
     assert_eq!(n as usize, expected.iter().flatten().count());
     for (i, e) in expected.iter().enumerate() {
@@ -296,13 +321,23 @@ fn javascript_results_carry_the_core_answers() {
     let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
     let radius = (bounds.max - bounds.min).length() * 0.5;
     for max in [f32::INFINITY, 0.05 * radius] {
-        let mut closest = vec![0.0f32; flat.len()];
-        let mut triangles = vec![0u32; points.len()];
-        let mut distances = vec![0.0f32; points.len()];
+        let closest_js = Float32Array::new_with_length(flat.len() as u32);
+        let triangles_js = Uint32Array::new_with_length(points.len() as u32);
+        let distances_js = Float32Array::new_with_length(points.len() as u32);
         let found = bvh
-            .closest_point_batch(&flat, max, &mut closest, &mut triangles, &mut distances)
-            .map_err(JsValue::from)
+            .closest_point_batch(
+                &Float32Array::from(flat.as_slice()),
+                &max.into(),
+                &closest_js,
+                &triangles_js,
+                &distances_js,
+            )
             .unwrap();
+        let (closest, triangles, distances) = (
+            closest_js.to_vec(),
+            triangles_js.to_vec(),
+            distances_js.to_vec(),
+        );
         let expected: Vec<_> = points
             .iter()
             .map(|&p| bvh.closest_point_at(p, max))
@@ -335,18 +370,16 @@ fn javascript_results_carry_the_core_answers() {
 fn bad_input_throws_with_the_core_message() {
     let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
     let bad = Uint32Array::from(&[0u32, 1, 7][..]);
-    let error = MeshBvh::build(positions.to_vec(), bad.into(), JsValue::UNDEFINED)
+    let error = MeshBvh::build(&floats_js(&positions), bad.into(), JsValue::UNDEFINED)
         .err()
         .unwrap();
-    let message = js_sys::Error::from(JsValue::from(error)).message();
+    let message = js_sys::Error::from(error).message();
     assert!(
         String::from(message).contains('7'),
         "message names the index"
     );
-    assert!(MeshBvh::from_blob(&[1, 2, 3]).is_err());
-    let ok = MeshBvh::build(positions.to_vec(), JsValue::NULL, JsValue::UNDEFINED)
-        .map_err(JsValue::from)
-        .unwrap();
+    assert!(MeshBvh::from_blob(&bytes_js(&[1, 2, 3])).is_err());
+    let ok = MeshBvh::build(&floats_js(&positions), JsValue::NULL, JsValue::UNDEFINED).unwrap();
     assert_eq!(ok.triangle_count(), 1);
 }
 

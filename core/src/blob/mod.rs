@@ -71,6 +71,7 @@ mod encode;
 mod format;
 mod header;
 mod mesh;
+mod order_check;
 mod reader;
 mod source;
 mod structure;

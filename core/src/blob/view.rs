@@ -8,6 +8,7 @@ use super::format::{
     MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES,
 };
 use super::mesh::{check_indexed, check_packed};
+use super::order_check::check_order_is_permutation;
 use super::reader::Reader;
 #[cfg(feature = "blob-cells")]
 use super::structure_config::StructureConfig;
@@ -154,24 +155,40 @@ impl LeafTriangles for BlobView<'_> {
 /// Header, checksum, then each array counted against the header and cut out of the bytes.
 fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
     let header = BlobHeader::read(bytes)?;
-    if bytes.len() < header.total_len {
-        return Err(BlobError::Truncated {
-            offset: bytes.len(),
-            section: BlobSection::Nodes,
-        });
-    }
+    let short = bytes.len() < header.total_len;
     if bytes.len() > header.total_len {
         return Err(BlobError::TrailingBytes {
             offset: header.total_len,
         });
     }
-    let computed = blob_checksum(bytes, header.header_len);
-    if computed != header.checksum {
-        return Err(BlobError::ChecksumMismatch {
-            stored: header.checksum,
-            computed,
+    if !short {
+        let computed = blob_checksum(bytes, header.header_len);
+        if computed != header.checksum {
+            return Err(BlobError::ChecksumMismatch {
+                stored: header.checksum,
+                computed,
+            });
+        }
+    }
+    // A short blob is cut as far as it goes, so the error names the section where the bytes
+    // run out.
+    let result = cut(bytes, header);
+    if short {
+        return Err(match result {
+            Err(e @ BlobError::Truncated { .. }) => e,
+            _ => BlobError::Truncated {
+                offset: bytes.len(),
+                section: BlobSection::Header,
+            },
         });
     }
+    result
+}
+
+/// The sections of `bytes` as `header` lays them out, each counted against it. Inlined into
+/// its one caller, which keeps the firmware's validation code as small as before it existed.
+#[inline(always)]
+fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
     let mut r = Reader::new(bytes);
     r.bytes(header.header_len, BlobSection::Header)?;
     let structure = if header.kind == StructureKind::Bvh {
@@ -276,6 +293,7 @@ fn check_structure<'a>(
                 return Err(bad_config);
             }
             tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
+            check_order_is_permutation(tree.order)?;
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
             (BlobStructure::Bvh(tree), tree.depth)

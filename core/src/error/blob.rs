@@ -114,15 +114,19 @@ pub enum BlobError {
         /// The triangle index found there.
         tri: u32,
     },
-    /// The order names a triangle a second time. No encoder writes that, and a view still
-    /// answers from such a blob (each slot as its own triangle), but an owned copy needs each
-    /// triangle once: `MeshBvh::from_blob` (feature `alloc`) refuses it. Fix: bake again.
+    /// The order names a triangle a second time (found by the exact check of
+    /// `MeshBvh::from_blob`, feature `alloc`; a view's check reports
+    /// [`BlobError::OrderNotPermutation`]). No encoder writes that. Fix: bake again.
     RepeatedTriangle {
         /// The order slot naming the triangle again.
         slot: u32,
         /// The triangle index.
         tri: u32,
     },
+    /// The BVH's triangle order is not a permutation of the triangles (some triangle is
+    /// named twice and another never), found without memory by comparing a fingerprint of the
+    /// order with that of `0..n`; the blob's checksum was recomputed over the damage.
+    OrderNotPermutation,
     /// The stored mesh fails validation; the payload names the vertex or triangle.
     InvalidMesh(MeshError),
     /// The blob was baked without its mesh. Fix: use
@@ -195,6 +199,9 @@ impl fmt::Display for BlobError {
             Self::RepeatedTriangle { slot, tri } => {
                 write!(f, "order slot {slot} names triangle {tri} again")
             }
+            Self::OrderNotPermutation => f.write_str(
+                "the triangle order names some triangle twice and another never (not a permutation)",
+            ),
             Self::InvalidMesh(e) => write!(f, "invalid stored mesh: {e}"),
             Self::MeshNotIncluded => f.write_str(
                 "the blob was baked without its mesh; supply the mesh it was baked from",

@@ -159,7 +159,9 @@ pub(super) fn search<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANE
         source,
         point,
         lanes: point.into(),
-        limit: max_distance * max_distance,
+        // A squared distance that overflows is no answer: points beyond about 1.8e19 of
+        // the mesh find nothing rather than every triangle tied at infinity.
+        limit: (max_distance * max_distance).min(f32::MAX),
         best: None,
     };
     if let Some((tri, t)) = seed {

@@ -83,8 +83,9 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     /// [`closest_point_triangle`](crate::geom::closest_point_triangle()) over all
     /// non-degenerate triangles, with the same bits; on equal squared distance the lower
     /// triangle index wins. Distances are compared squared, so `max_distance` is squared once
-    /// first. `None` for a non-finite `point`, a negative or NaN `max_distance`, or no
-    /// triangles.
+    /// first. `None` for a non-finite `point`, a negative or NaN `max_distance`, no
+    /// triangles, or a point so far away that its squared distance overflows `f32` (about
+    /// 1.8e19 from the mesh).
     #[must_use]
     #[inline]
     fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {

@@ -1,0 +1,108 @@
+//! Output files that appear whole or not at all, and never over one of the run's inputs.
+//!
+//! Every file the command writes goes to a temporary file in the same directory, renamed over
+//! the output path only once complete and synced: a run that fails, is killed, or meets a full
+//! disk leaves any earlier file at that path as it was.
+
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use tempfile::NamedTempFile;
+
+/// Refuses `output` when it names the same file (device and inode) as one of `inputs`: writing
+/// it would destroy an input. Paths that do not exist yet are never the same file.
+pub fn refuse_inputs(output: &Path, inputs: &[&Path]) -> Result<()> {
+    for input in inputs {
+        if same_file(output, input) {
+            bail!(
+                "{}: the output is also an input ({}); write to another path",
+                output.display(),
+                input.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` name one file: same device and inode, read from metadata, so a pipe
+/// or device is never opened (opening a FIFO would wait for a writer).
+#[cfg(unix)]
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_file(a: &Path, b: &Path) -> bool {
+    same_file::is_same_file(a, b).unwrap_or(false)
+}
+
+/// A file being written: it takes the output path's place only at [`AtomicFile::commit`];
+/// dropped before that, it is deleted.
+pub struct AtomicFile {
+    out: BufWriter<NamedTempFile>,
+    path: PathBuf,
+}
+
+impl AtomicFile {
+    /// Starts writing `path`, after refusing it if it is one of `inputs`.
+    pub fn create(path: &Path, inputs: &[&Path]) -> Result<Self> {
+        refuse_inputs(path, inputs)?;
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let temp = tempfile::Builder::new()
+            .prefix(".meshq-")
+            .suffix(".partial")
+            .tempfile_in(dir)
+            .with_context(|| format!("cannot create a file in {}", dir.display()))?;
+        Ok(Self {
+            out: BufWriter::with_capacity(1 << 20, temp),
+            path: path.to_owned(),
+        })
+    }
+
+    /// Flushes, syncs and renames the file over the output path.
+    pub fn commit(self) -> Result<()> {
+        let path = self.path;
+        let done = (|| -> Result<()> {
+            let temp = self.out.into_inner().map_err(|e| e.into_error())?;
+            set_readable(temp.as_file())?;
+            temp.as_file().sync_all()?;
+            temp.persist(&path).map_err(|e| e.error)?;
+            Ok(())
+        })();
+        done.with_context(|| format!("cannot write {}", path.display()))
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.out.write(buf)
+    }
+
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        self.out.write_all(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+}
+
+/// Temporary files are private (0600); an output gets the usual 0644.
+#[cfg(unix)]
+fn set_readable(file: &std::fs::File) -> std::io::Result<()> {
+    use std::os::unix::fs::PermissionsExt;
+    file.set_permissions(std::fs::Permissions::from_mode(0o644))
+}
+
+#[cfg(not(unix))]
+fn set_readable(_: &std::fs::File) -> std::io::Result<()> {
+    Ok(())
+}

@@ -1,0 +1,354 @@
+//! The command under careless and hostile use: outputs that would destroy an input are
+//! refused, failed or killed runs leave earlier files whole, tiny files that declare huge
+//! counts are errors (under a memory limit), a closed pipe or a full disk is never a panic, and
+//! suspicious inputs get a one-line error that names the file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_meshq")
+}
+
+fn meshq(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
+    Command::new(bin())
+        .args(args.iter().map(|a| a.as_ref()))
+        .output()
+        .expect("meshq runs")
+}
+
+/// Runs meshq with at most 1 GiB of address space: an allocation sized by a hostile count
+/// fails (and would abort) instead of succeeding on a big machine.
+fn meshq_limited(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576 && exec \"$0\" \"$@\"")
+        .arg(bin())
+        .args(args.iter().map(|a| a.as_ref()))
+        .output()
+        .expect("sh runs")
+}
+
+fn asset(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets")
+        .join(name)
+}
+
+/// A failure with status 1 and one stderr line containing `needle`, no panic.
+fn refused(out: &Output, needle: &str) {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains(needle), "{stderr:?} lacks {needle:?}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn an_output_that_is_an_input_is_refused_and_nothing_is_touched() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("spot.obj");
+    std::fs::copy(asset("spot.obj"), &mesh).unwrap();
+    let original = std::fs::read(&mesh).unwrap();
+    let blob = dir.path().join("spot.meshq");
+    assert!(meshq(&[&"bake", &mesh, &"-o", &blob]).status.success());
+    let rays = dir.path().join("rays.bin");
+    assert!(
+        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &"100"])
+            .status
+            .success()
+    );
+    let ray_bytes = std::fs::read(&rays).unwrap();
+    let blob_bytes = std::fs::read(&blob).unwrap();
+    // The same file under another name (a hard link) is still the same file.
+    let linked = dir.path().join("linked.obj");
+    std::fs::hard_link(&mesh, &linked).unwrap();
+
+    for args in [
+        vec!["raycast", "M", "--rays", "R", "--out", "M"],
+        vec!["raycast", "B", "--rays", "R", "--out", "R"],
+        vec!["raycast", "B", "--rays", "R", "--out", "B"],
+        vec!["closest", "B", "--points", "R", "--out", "B"],
+        vec!["bake", "M", "-o", "M"],
+        vec!["bake", "M", "-o", "L"],
+        vec!["workload", "M", "-o", "M"],
+        vec!["remesh", "M", "-o", "L"],
+    ] {
+        let args: Vec<std::ffi::OsString> = args
+            .iter()
+            .map(|a| match *a {
+                "M" => mesh.clone().into_os_string(),
+                "B" => blob.clone().into_os_string(),
+                "R" => rays.clone().into_os_string(),
+                "L" => linked.clone().into_os_string(),
+                other => other.into(),
+            })
+            .collect();
+        let args: Vec<&dyn AsRef<std::ffi::OsStr>> = args
+            .iter()
+            .map(|a| a as &dyn AsRef<std::ffi::OsStr>)
+            .collect();
+        refused(&meshq(&args), "the output is also an input");
+    }
+    assert_eq!(std::fs::read(&mesh).unwrap(), original);
+    assert_eq!(std::fs::read(&rays).unwrap(), ray_bytes);
+    assert_eq!(std::fs::read(&blob).unwrap(), blob_bytes);
+}
+
+#[test]
+fn failed_and_killed_runs_leave_earlier_outputs_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("good.obj");
+    std::fs::copy(asset("spot.obj"), &good).unwrap();
+    let rays = dir.path().join("rays.bin");
+    assert!(
+        meshq(&[&"workload", &good, &"-o", &rays, &"--count", &"1000"])
+            .status
+            .success()
+    );
+    let hits = dir.path().join("hits.bin");
+    assert!(
+        meshq(&[&"raycast", &good, &"--rays", &rays, &"--out", &hits])
+            .status
+            .success()
+    );
+    let before = std::fs::read(&hits).unwrap();
+    // A run that fails (a NaN vertex) leaves the previous results as they were.
+    let bad = dir.path().join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    refused(
+        &meshq(&[&"raycast", &bad, &"--rays", &rays, &"--out", &hits]),
+        "bad.obj",
+    );
+    assert_eq!(std::fs::read(&hits).unwrap(), before);
+
+    // A bake killed part way (at several moments) leaves the old blob whole or the new one
+    // complete, never a cut one.
+    let blob = dir.path().join("bunny.meshq");
+    let bunny = asset("stanford-bunny.obj");
+    assert!(meshq(&[&"bake", &good, &"-o", &blob]).status.success());
+    let old = std::fs::read(&blob).unwrap();
+    for wait in [50u64, 200, 600] {
+        let mut child = Command::new(bin())
+            .args([
+                "bake".as_ref(),
+                bunny.as_os_str(),
+                "-o".as_ref(),
+                blob.as_os_str(),
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(wait));
+        let _ = child.kill();
+        let _ = child.wait();
+        let now = std::fs::read(&blob).unwrap();
+        let inspected = meshq(&[&"inspect", &blob]);
+        assert!(
+            now == old || inspected.status.success(),
+            "killed after {wait} ms: {} bytes, inspect says {}",
+            now.len(),
+            String::from_utf8_lossy(&inspected.stderr)
+        );
+    }
+}
+
+#[test]
+fn tiny_files_that_declare_huge_counts_are_errors_under_a_memory_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.meshq");
+    let cases: [(&str, &[u8], &str); 8] = [
+        (
+            "count.ply",
+            b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nend_header\n",
+            "declares 4000000000 records",
+        ),
+        (
+            "unknown.ply",
+            b"ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement junk 4000000000\nproperty uchar q\nend_header\n",
+            "element 'junk' declares",
+        ),
+        (
+            "faces.ply",
+            b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 4000000000\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+            "element 'face' declares",
+        ),
+        (
+            "noz.ply",
+            b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n",
+            "no 'z' property",
+        ),
+        (
+            "header.ply",
+            b"ply\nformat ascii 1.0\nelement vertex\n\tend_header\n",
+            "header.ply",
+        ),
+        ("short.stl", &stl(1, 2), "header says 1 triangles"),
+        ("long.stl", &stl(3, 2), "header says 3 triangles"),
+        ("huge.stl", &stl(4_000_000_000, 1), "header says 4000000000 triangles"),
+    ];
+    for (name, bytes, needle) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).unwrap();
+        refused(&meshq_limited(&[&"bake", &path, &"-o", &out]), needle);
+    }
+    // Materials are never read: `mtllib` naming a device or a pipe neither hangs nor eats
+    // memory.
+    let fifo = dir.path().join("pipe.mtl");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    for target in ["/dev/zero", "pipe.mtl"] {
+        let obj = dir.path().join("m.obj");
+        std::fs::write(
+            &obj,
+            format!("mtllib {target}\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+        )
+        .unwrap();
+        let run = meshq_limited(&[&"bake", &obj, &"-o", &out]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+    // A mesh path that is a pipe is refused, not waited on.
+    let fifo_mesh = dir.path().join("pipe.obj");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo_mesh)
+            .status()
+            .unwrap()
+            .success()
+    );
+    refused(
+        &meshq(&[&"bake", &fifo_mesh, &"-o", &out]),
+        "not a regular file",
+    );
+}
+
+/// A binary STL whose header says `declared` triangles, holding `stored`.
+fn stl(declared: u32, stored: usize) -> Vec<u8> {
+    let mut bytes = vec![0u8; 80];
+    bytes.extend_from_slice(&declared.to_le_bytes());
+    for _ in 0..stored {
+        for v in [
+            0.0f32, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+        ] {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        bytes.extend_from_slice(&[0, 0]);
+    }
+    bytes
+}
+
+#[test]
+fn a_closed_pipe_or_a_full_disk_is_never_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let blob = dir.path().join("spot.meshq");
+    assert!(
+        meshq(&[&"bake", &asset("spot.obj"), &"-o", &blob])
+            .status
+            .success()
+    );
+    // A full disk on stdout: one line, status 1.
+    if Path::new("/dev/full").exists() {
+        for args in [
+            vec![&"inspect" as &dyn AsRef<std::ffi::OsStr>, &blob],
+            vec![&"inspect", &blob, &"--json"],
+            vec![
+                &"bake",
+                &asset("spot.obj"),
+                &"-o",
+                &dir.path().join("b.meshq"),
+            ],
+        ] {
+            let out = Command::new(bin())
+                .args(args.iter().map(|a| a.as_ref()))
+                .stdout(std::fs::File::create("/dev/full").unwrap())
+                .output()
+                .unwrap();
+            refused(&out, "No space left on device");
+        }
+    }
+    // A reader that closed its end first: quiet, with the status of a command stopped by
+    // SIGPIPE.
+    let mut child = Command::new(bin())
+        .args(["inspect".as_ref(), blob.as_os_str()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(141), "{:?}", out);
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn suspicious_inputs_get_errors_or_documented_answers() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = asset("spot.obj");
+    // A workload needs a mesh with bounds.
+    let empty = dir.path().join("empty.obj");
+    std::fs::write(&empty, "# nothing\n").unwrap();
+    refused(
+        &meshq(&[&"workload", &empty, &"-o", &dir.path().join("w.bin")]),
+        "no triangles",
+    );
+    // Rays from a pipe are counted as they are read.
+    let rays = dir.path().join("rays.bin");
+    assert!(
+        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &"500"])
+            .status
+            .success()
+    );
+    let hits = dir.path().join("hits.bin");
+    let out = Command::new(bin())
+        .args([
+            "raycast".as_ref(),
+            mesh.as_os_str(),
+            "--rays".as_ref(),
+            "/dev/stdin".as_ref(),
+            "--out".as_ref(),
+            hits.as_os_str(),
+            "--json".as_ref(),
+        ])
+        .stdin(std::fs::File::open(&rays).unwrap())
+        .output()
+        .unwrap();
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["rays"], 500);
+    assert_eq!(std::fs::metadata(&hits).unwrap().len(), 500 * 8);
+    // A query point too far for its squared distance to fit in f32 gets the miss record.
+    let points = dir.path().join("points.bin");
+    let far: Vec<u8> = [2e19f32, 0.0, 0.0, 0.5, 0.5, 0.5]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    std::fs::write(&points, far).unwrap();
+    let closest = dir.path().join("closest.bin");
+    assert!(
+        meshq(&[&"closest", &mesh, &"--points", &points, &"--out", &closest])
+            .status
+            .success()
+    );
+    let record = std::fs::read(&closest).unwrap();
+    assert_eq!(
+        f32::from_le_bytes(record[0..4].try_into().unwrap()),
+        f32::INFINITY
+    );
+    assert_eq!(
+        u32::from_le_bytes(record[4..8].try_into().unwrap()),
+        u32::MAX
+    );
+    assert_ne!(
+        u32::from_le_bytes(record[12..16].try_into().unwrap()),
+        u32::MAX
+    );
+}

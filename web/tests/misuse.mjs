@@ -1,0 +1,153 @@
+// The Node package under misuse: every query with missing, wrong-typed, NaN and out-of-range
+// arguments throws a TypeError or RangeError naming the argument (or takes the documented
+// default), leaves output arrays untouched and nothing borrowed, and 10,000 misuse calls in a
+// row leave the module answering correctly. Run after scripts/wasm.sh: node web/tests/misuse.mjs
+import assert from 'node:assert/strict';
+import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+
+const { MeshBvh } = meshq;
+
+// A bumpy 40 × 40 grid of quads in the z = 0 plane, seen from +z.
+function grid(n) {
+  const positions = new Float32Array((n + 1) * (n + 1) * 3);
+  let k = 0;
+  for (let i = 0; i <= n; i++) {
+    for (let j = 0; j <= n; j++) positions.set([i / n, j / n, 0.02 * Math.sin(i) * Math.cos(j)], 3 * k++);
+  }
+  const indices = new Uint32Array(n * n * 6);
+  k = 0;
+  for (let i = 0; i < n; i++) {
+    for (let j = 0; j < n; j++) {
+      const a = i * (n + 1) + j;
+      indices.set([a, a + n + 1, a + 1, a + 1, a + n + 1, a + n + 2], k);
+      k += 6;
+    }
+  }
+  return { positions, indices };
+}
+
+const { positions, indices } = grid(40);
+const bvh = MeshBvh.build(positions, indices);
+const down = [0, 0, -1];
+const above = [0.3, 0.6, 1];
+const reference = bvh.raycast(above, down);
+assert.ok(reference, 'the reference ray hits');
+
+/** Asserts `f` throws an error of `type` whose message mentions `words`. */
+function throws(f, type, words, label) {
+  let error = null;
+  try {
+    f();
+  } catch (e) {
+    error = e;
+  }
+  assert.ok(error, `${label}: no error`);
+  assert.ok(error instanceof type, `${label}: ${error?.constructor?.name}: ${error?.message}`);
+  assert.match(error.message, words, label);
+}
+
+// Documented defaults: near/far omitted → [0, ∞]; the same ray given as arrays, typed arrays
+// or Vector3-like objects; side omitted → both faces; maxDistance omitted → no limit, in the
+// single call and the batch alike.
+assert.deepEqual(bvh.raycast(above, down, 0, Infinity), reference);
+assert.deepEqual(bvh.raycast(Float32Array.from(above), { x: 0, y: 0, z: -1 }), reference);
+assert.deepEqual(bvh.raycast({ x: 0.3, y: 0.6, z: 1 }, down, undefined, undefined, undefined), reference);
+assert.deepEqual(bvh.raycastXyz(0.3, 0.6, 1, 0, 0, -1), reference);
+assert.equal(bvh.raycastAny(above, down), true);
+const far = bvh.closestPoint([5, 5, 5]);
+assert.ok(far && far.distance > 5, 'no limit when maxDistance is omitted');
+{
+  const points = Float32Array.from([5, 5, 5, 0.5, 0.5, 1]);
+  const closest = new Float32Array(6);
+  const triangles = new Uint32Array(2);
+  const distances = new Float32Array(2);
+  assert.equal(bvh.closestPointBatch(points, undefined, closest, triangles, distances), 2, 'batch: no limit either');
+  assert.equal(distances[0], Math.fround(far.distance));
+}
+assert.equal(MeshBvh.MISS_TRIANGLE, 0xFFFFFFFF);
+assert.equal(MeshBvh.MISS_DISTANCE, Infinity);
+
+// Bad single-query arguments. Plain-number arguments (near, far, side, raycastXyz's
+// coordinates) arrive as numbers, anything else as NaN: a RangeError then.
+const cases = [
+  [() => bvh.raycast(), TypeError, /origin/],
+  [() => bvh.raycast(above), TypeError, /direction/],
+  [() => bvh.raycast([0, 0], down), RangeError, /origin must hold exactly 3/],
+  [() => bvh.raycast([NaN, 0, 1], down), RangeError, /origin\.x must be a finite/],
+  [() => bvh.raycast(above, [0, 0, 0]), RangeError, /direction must not be zero/],
+  [() => bvh.raycast(above, ['a', 0, -1]), TypeError, /direction\.x must be a number/],
+  [() => bvh.raycast(above, down, NaN), RangeError, /near/],
+  [() => bvh.raycast(above, down, 0, 'far'), RangeError, /far must be a number/],
+  [() => bvh.raycast(above, down, 2, 1), RangeError, /near .* must not exceed far/],
+  [() => bvh.raycast(above, down, 0, Infinity, 256), RangeError, /side/],
+  [() => bvh.raycast(above, down, 0, Infinity, 1.5), RangeError, /side/],
+  [() => bvh.raycast(above, down, 0, Infinity, 'front'), RangeError, /side/],
+  [() => bvh.raycastXyz(0.3, 0.6, 1, 0, 0), RangeError, /dz must be a finite number, got NaN/],
+  [() => bvh.raycastXyz(0.3, 0.6, Infinity, 0, 0, -1), RangeError, /oz/],
+  [() => bvh.raycastAll(0.3, NaN, 1, 0, 0, -1), RangeError, /oy/],
+  [() => bvh.raycastAny(above, 'down'), TypeError, /direction/],
+  [() => bvh.closestPoint(), TypeError, /point/],
+  [() => bvh.closestPoint([0, 0, 0], -1), RangeError, /maxDistance/],
+  [() => bvh.closestPoint([0, 0, 0], NaN), RangeError, /maxDistance/],
+  [() => bvh.closestPoint([0, 0, 0], '1'), TypeError, /maxDistance/],
+  [() => bvh.overlapsSphere([0, 0, 0], NaN), RangeError, /radius/],
+  [() => bvh.overlapsTriangle([0, 0, 0], [1, 0, 0]), TypeError, /c must be/],
+  [() => MeshBvh.fromBlob([1, 2, 3]), TypeError, /Uint8Array/],
+  [() => MeshBvh.fromBlob(new Uint8Array([1, 2, 3])), Error, /blob/],
+  [() => MeshBvh.build('positions'), TypeError, /positions/],
+];
+
+// Bad batch outputs: wrong type, wrong length; the arrays stay as they were.
+const rays = Float32Array.from([...above, ...down, 0.5, 0.5, 1, 0, 0, -1]);
+const sentinel = (array) => array.fill(7);
+const batchCases = [
+  [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Uint16Array(2), t), TypeError, /distances must be a Float32Array, got Uint16Array/],
+  [(d) => bvh.raycastBatch(rays, 0, Infinity, d, [0, 0]), TypeError, /triangles must be a Uint32Array, got Array/],
+  [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Float64Array(2), t), TypeError, /Float32Array, got Float64Array/],
+  [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Float32Array(3), t), RangeError, /exactly 2/],
+  [(d, t) => bvh.raycastBatch(rays.subarray(0, 7), 0, Infinity, d, t), RangeError, /multiple of 6/],
+  [(d, t) => bvh.raycastBatch([...rays], 0, Infinity, d, t), TypeError, /rays must be a Float32Array/],
+  [(d, t) => bvh.raycastBatch(rays, 0, Infinity, d, t, 7), RangeError, /side/],
+  [(d, t) => bvh.raycastBatchBarycentric(rays, 0, Infinity, d, t, new Float32Array(2)), RangeError, /barycentrics .* exactly 4/],
+  [() => bvh.raycastAnyBatch(rays, 0, Infinity, new Uint32Array(2)), TypeError, /hits must be a Uint8Array/],
+  [(d, t) => bvh.closestPointBatch(Float32Array.from([0, 0, 0]), -2, new Float32Array(3), t.subarray(0, 1), d.subarray(0, 1)), RangeError, /maxDistance/],
+  [(d, t) => bvh.closestPointBatch(Float32Array.from([0, 0, 0]), 1, new Float32Array(2), t.subarray(0, 1), d.subarray(0, 1)), RangeError, /closest .* exactly 3/],
+];
+{
+  const d = new Float32Array(2);
+  const t = new Uint32Array(2);
+  for (const [i, [f, type, words]] of batchCases.entries()) {
+    sentinel(d);
+    sentinel(t);
+    throws(() => f(d, t), type, words, `batch case ${i}`);
+    assert.deepEqual([...d, ...t], [7, 7, 7, 7], `batch case ${i}: outputs untouched`);
+  }
+  // The same arrays still work in a correct call afterwards.
+  assert.equal(bvh.raycastBatch(rays, undefined, undefined, d, t), 2);
+  assert.equal(d[0], Math.fround(reference.distance));
+  assert.equal(t[0], reference.triangle);
+}
+for (const [i, [f, type, words]] of cases.entries()) throws(f, type, words, `case ${i}`);
+
+// A mesh too large for WebAssembly's 4 GiB is refused with an Error naming the limit, before
+// anything is allocated for it (17 million triangles, all corners at vertex 0).
+throws(() => MeshBvh.build(new Float32Array(3), new Uint16Array(3 * 17_000_000)), Error, /too large for WebAssembly.*4 GiB/,
+  'huge mesh');
+
+// 10,000 misuse calls in a row, then the module still answers, and frees, normally.
+const all = [...cases.map(([f]) => f), ...batchCases.map(([f]) => () => f(new Float32Array(2), new Uint32Array(2)))];
+let thrown = 0;
+for (let i = 0; i < 10_000; i++) {
+  try {
+    all[i % all.length]();
+  } catch {
+    thrown++;
+  }
+}
+assert.equal(thrown, 10_000);
+assert.deepEqual(bvh.raycast(above, down), reference);
+const again = MeshBvh.build(positions, indices);
+assert.deepEqual(again.raycast(above, down), reference);
+again.free();
+bvh.free();
+console.log(`misuse: ${cases.length + batchCases.length + 1} kinds of bad argument refused by name; 10,000 misuse calls, then correct answers`);
