@@ -20,6 +20,9 @@ use crate::structure_arg::StructureArg;
 use crate::{output, progress};
 
 #[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq bake assets/stanford-bunny.obj -o bunny.meshq\n  \
+    meshq bake assets/spot.obj -o spot.meshq --structure octree --packed --json")]
 pub struct BakeArgs {
     /// The mesh: OBJ, PLY or STL (polygons are fan-triangulated; vt/vn are ignored).
     pub mesh: PathBuf,

@@ -12,23 +12,37 @@ use serde::Serialize;
 use crate::output::say;
 use crate::raycast::per_second;
 use crate::records::{RecordReader, ResultWriter};
-use crate::structure::{QueryInput, with_structure};
+use crate::structure::{PrepareTime, QueryInput, with_structure};
 use crate::{output, progress};
 
 /// Points read and queried per chunk (12 MB of input).
 const CHUNK: usize = 1 << 20;
 
+/// A distance limit: a number ≥ 0 (`inf` allowed).
+fn non_negative(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(d) if d >= 0.0 => Ok(d),
+        _ => Err(format!("expected a distance ≥ 0, got {text:?}")),
+    }
+}
+
 #[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq workload assets/spot.obj --kind points -o points.bin\n  \
+    meshq closest assets/spot.obj --points points.bin --out closest.bin --max-distance 0.05 --json")]
 pub struct ClosestArgs {
     #[command(flatten)]
     pub input: QueryInput,
     /// Points: raw little-endian float32, 3 per point (x y z), no header.
     #[arg(long)]
     pub points: PathBuf,
-    /// Results: per point, float32 distance then uint32 triangle (+inf and 0xFFFFFFFF when the
-    /// mesh is empty or the point is not finite).
+    /// Results: per point, float32 distance then uint32 triangle (+inf and 0xFFFFFFFF when
+    /// nothing lies within --max-distance, the mesh is empty or the point is not finite).
     #[arg(long)]
     pub out: PathBuf,
+    /// Only surface points within this distance (inclusive) count; default: no limit.
+    #[arg(long, value_name = "D", value_parser = non_negative)]
+    pub max_distance: Option<f32>,
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -37,7 +51,11 @@ pub struct ClosestArgs {
 #[derive(Serialize)]
 struct Summary {
     points: u64,
-    build_seconds: f64,
+    /// Points with a surface point within the limit.
+    found: u64,
+    #[serde(flatten)]
+    prepare: PrepareTime,
+    /// The queries alone, one thread.
     query_seconds: f64,
     points_per_second: f64,
 }
@@ -47,11 +65,14 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
     let mut inputs = args.input.paths();
     inputs.push(&args.points);
     let mut writer = ResultWriter::create(&args.out, &inputs)?;
+    let limit = args.max_distance.unwrap_or(f32::INFINITY);
+    let mut verb = "";
     let summary = with_structure(&args.input, |s| {
+        verb = s.verb();
         let bar = progress::bar(reader.expected, "points");
         let mut floats = Vec::new();
         let (mut points, mut keys, mut results) = (Vec::new(), Vec::new(), Vec::new());
-        let mut query_seconds = 0.0f64;
+        let (mut query_seconds, mut found_count) = (0.0f64, 0u64);
         while reader.next_chunk(CHUNK, &mut floats)? > 0 {
             let (records, _) = floats.as_chunks::<3>();
             points.clear();
@@ -62,9 +83,10 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
             // One batch per chunk: answered in Morton order with seeded searches, about 1.5
             // times as fast as one call per point, with the same answers.
             s.scene
-                .closest_points(&points, f32::INFINITY, &mut keys, &mut results)?;
+                .closest_points(&points, limit, &mut keys, &mut results)?;
             query_seconds += start.elapsed().as_secs_f64();
             for found in &results[..points.len()] {
+                found_count += u64::from(found.is_some());
                 let (d, tri) = found.map_or((f32::INFINITY, u32::MAX), |c| {
                     (c.distance_squared.sqrt(), c.tri)
                 });
@@ -75,7 +97,8 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
         bar.finish_and_clear();
         Ok(Summary {
             points: reader.count,
-            build_seconds: s.prepare_seconds,
+            found: found_count,
+            prepare: s.time(),
             query_seconds,
             points_per_second: per_second(reader.count, query_seconds),
         })
@@ -84,10 +107,16 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
     if args.json {
         output::json(&summary)
     } else {
+        let prepared = summary
+            .prepare
+            .build_seconds
+            .or(summary.prepare.blob_load_seconds)
+            .unwrap_or(0.0);
         say!(
-            "{} points, prepared in {:.3} s, queries {:.3} s: {:.2} M points/s",
+            "{} points, {} found, {verb} {:.3} s, queries {:.3} s: {:.2} M points/s",
             summary.points,
-            summary.build_seconds,
+            summary.found,
+            prepared,
             summary.query_seconds,
             summary.points_per_second / 1e6
         );

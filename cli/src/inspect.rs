@@ -22,6 +22,9 @@ use crate::structure::check_blob_kind;
 use crate::structure_arg::StructureArg;
 
 #[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq inspect bunny.meshq\n  \
+    meshq inspect spot.meshq --structure octree --json")]
 pub struct InspectArgs {
     /// The blob, or a mesh file (OBJ, PLY, STL) to build a structure over.
     pub blob: PathBuf,

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::Result;
-use clap::Args;
+use anyhow::{Result, bail};
+use clap::{Args, ValueEnum};
 use meshq::MeshQuery;
 use meshq::math::{Ray, RayHit, Vec3};
 use meshq::query::RayOptions;
@@ -12,24 +12,50 @@ use serde::Serialize;
 
 use crate::output::say;
 use crate::records::{RecordReader, ResultWriter};
-use crate::structure::{QueryInput, with_structure};
+use crate::structure::{PrepareTime, QueryInput, with_structure};
 use crate::{output, progress};
 
 /// Rays read and queried per chunk (24 MB of input).
 const CHUNK: usize = 1 << 20;
 
+/// The triangle an any-hit record names: any-hit says only that something is hit, not what.
+pub const ANY_HIT: u32 = 0xFFFF_FFFE;
+
+/// What each hit record holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum HitFormat {
+    /// float32 t, uint32 triangle: 8 bytes.
+    #[default]
+    #[value(name = "t-tri")]
+    TTri,
+    /// float32 t, uint32 triangle, float32 u, v (barycentric weights of the second and third
+    /// corners): 16 bytes.
+    #[value(name = "t-tri-uv")]
+    TTriUv,
+    /// t, triangle, u, v, then the hit point x, y, z (float32): 28 bytes.
+    Full,
+}
+
 #[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq workload assets/stanford-bunny.obj -o rays.bin\n  \
+    meshq raycast bunny.meshq --rays rays.bin --out hits.bin --json\n  \
+    meshq raycast assets/spot.obj --rays rays.bin --out hits.bin --format full --hits 4")]
 pub struct RaycastArgs {
     #[command(flatten)]
     pub input: QueryInput,
     /// Rays: raw little-endian float32, 6 per ray (ox oy oz dx dy dz), no header.
     #[arg(long)]
     pub rays: PathBuf,
-    /// Hits: per ray, float32 t (+inf for a miss) then uint32 triangle (0xFFFFFFFF for a miss).
+    /// Hits: per ray, one record as --format says; a miss has t = +inf and triangle
+    /// 0xFFFFFFFF (u, v and the point NaN).
     #[arg(long)]
     pub out: PathBuf,
-    /// Any-hit (occlusion) queries: a hit is recorded as t = 0 and triangle 0 (any-hit says
-    /// only that something is hit, not what).
+    /// What each record holds (little-endian).
+    #[arg(long, value_enum, default_value_t = HitFormat::TTri)]
+    pub format: HitFormat,
+    /// Any-hit (occlusion) queries: a hit is recorded as t = 0 and triangle 0xFFFFFFFE (any-hit
+    /// says only that something is hit, not what); records are t-tri only.
     #[arg(long, conflicts_with = "hits")]
     pub any: bool,
     /// Record the nearest N hits of each ray (every triangle the ray crosses, once, nearest
@@ -45,30 +71,64 @@ pub struct RaycastArgs {
 #[derive(Serialize)]
 struct Summary {
     rays: u64,
+    /// Hit records written (rays that hit, or with --hits every hit recorded).
     hits: u64,
-    build_seconds: f64,
+    #[serde(flatten)]
+    prepare: PrepareTime,
+    /// The queries alone, one thread.
     query_seconds: f64,
     rays_per_second: f64,
 }
 
+/// A miss, as records write it.
+const MISS: RayHit = RayHit {
+    t: f32::INFINITY,
+    tri: u32::MAX,
+    u: f32::NAN,
+    v: f32::NAN,
+};
+
+/// Writes `hit` of `ray` as `format` says.
+fn write_record(
+    writer: &mut ResultWriter,
+    format: HitFormat,
+    ray: &Ray,
+    hit: &RayHit,
+) -> Result<()> {
+    writer.write(hit.t, hit.tri)?;
+    if format != HitFormat::TTri {
+        writer.write_f32s(&[hit.u, hit.v])?;
+    }
+    if format == HitFormat::Full {
+        let p = if hit.t.is_finite() {
+            ray.at(hit.t)
+        } else {
+            Vec3::NAN
+        };
+        writer.write_f32s(&p.to_array())?;
+    }
+    Ok(())
+}
+
 pub fn run(args: &RaycastArgs) -> Result<()> {
+    if args.any && args.format != HitFormat::TTri {
+        bail!("--any records only that something is hit: use --format t-tri");
+    }
     let mut reader = RecordReader::open(&args.rays, 6, "ray")?;
     let mut inputs = args.input.paths();
     inputs.push(&args.rays);
     let mut writer = ResultWriter::create(&args.out, &inputs)?;
+    let mut verb = "";
     let summary = with_structure(&args.input, |s| {
+        verb = s.verb();
         let bar = progress::bar(reader.expected, "rays");
         let (mut floats, mut rays) = (Vec::new(), Vec::with_capacity(CHUNK));
-        let mut results: Vec<(f32, u32)> = Vec::with_capacity(CHUNK);
-        let (mut hits, mut query_seconds) = (0u64, 0.0f64);
+        // Per ray, its records (one, or N with --hits).
         let per_ray = args.hits.map_or(1, |n| n as usize);
-        let miss = RayHit {
-            t: f32::INFINITY,
-            tri: u32::MAX,
-            u: 0.0,
-            v: 0.0,
-        };
-        let mut nearest = vec![miss; per_ray];
+        let mut results: Vec<RayHit> = Vec::with_capacity(CHUNK);
+        let (mut hits, mut query_seconds) = (0u64, 0.0f64);
+        let mut nearest = vec![MISS; per_ray];
+        let options = RayOptions::default();
         while reader.next_chunk(CHUNK, &mut floats)? > 0 {
             rays.clear();
             let (records, _) = floats.as_chunks::<6>();
@@ -79,30 +139,32 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             let start = Instant::now();
             if args.hits.is_some() {
                 for r in &rays {
-                    let found = s.scene.raycast_all(r, &RayOptions::default(), &mut nearest);
+                    let found = s.scene.raycast_all(r, &options, &mut nearest);
                     let (written, _) = nearest.split_at(found.written);
-                    results.extend(written.iter().map(|h| (h.t, h.tri)));
-                    results.extend((found.written..per_ray).map(|_| (miss.t, miss.tri)));
+                    results.extend_from_slice(written);
+                    results.extend((found.written..per_ray).map(|_| MISS));
                 }
             } else if args.any {
                 results.extend(rays.iter().map(|r| {
                     if s.scene.raycast_any(r) {
-                        (0.0, 0)
+                        RayHit {
+                            t: 0.0,
+                            tri: ANY_HIT,
+                            ..MISS
+                        }
                     } else {
-                        (f32::INFINITY, u32::MAX)
+                        MISS
                     }
                 }));
             } else {
-                results.extend(rays.iter().map(|r| {
-                    s.scene
-                        .raycast(r)
-                        .map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.tri))
-                }));
+                results.extend(rays.iter().map(|r| s.scene.raycast(r).unwrap_or(MISS)));
             }
             query_seconds += start.elapsed().as_secs_f64();
-            for &(t, tri) in &results {
-                hits += u64::from(t.is_finite());
-                writer.write(t, tri)?;
+            for (i, hit) in results.iter().enumerate() {
+                hits += u64::from(hit.t.is_finite());
+                if let Some(ray) = rays.get(i / per_ray) {
+                    write_record(&mut writer, args.format, ray, hit)?;
+                }
             }
             bar.inc(rays.len() as u64);
         }
@@ -110,7 +172,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
         Ok(Summary {
             rays: reader.count,
             hits,
-            build_seconds: s.prepare_seconds,
+            prepare: s.time(),
             query_seconds,
             rays_per_second: per_second(reader.count, query_seconds),
         })
@@ -119,8 +181,13 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
     if args.json {
         output::json(&summary)
     } else {
+        let prepared = summary
+            .prepare
+            .build_seconds
+            .or(summary.prepare.blob_load_seconds)
+            .unwrap_or(0.0);
         say!(
-            "{} rays, {} hits ({}), prepared in {:.3} s, queries {:.3} s: {:.2} M rays/s",
+            "{} rays, {} hits ({}), {verb} {:.3} s, queries {:.3} s: {:.2} M rays/s",
             summary.rays,
             summary.hits,
             match (args.any, args.hits) {
@@ -128,7 +195,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
                 (false, Some(n)) => format!("nearest {n} per ray"),
                 (false, None) => "closest hit".to_owned(),
             },
-            summary.build_seconds,
+            prepared,
             summary.query_seconds,
             summary.rays_per_second / 1e6
         );

@@ -116,6 +116,14 @@ impl ResultWriter {
         Ok(())
     }
 
+    /// Appends little-endian `f32`s (the extra fields of longer records).
+    pub fn write_f32s(&mut self, values: &[f32]) -> Result<()> {
+        for v in values {
+            self.file.write_all(&v.to_le_bytes())?;
+        }
+        Ok(())
+    }
+
     pub fn finish(self) -> Result<()> {
         self.file.commit()
     }

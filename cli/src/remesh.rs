@@ -16,6 +16,9 @@ use crate::output::say;
 use crate::{output, progress};
 
 #[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq remesh assets/spot.obj -o spot-remeshed.ply\n  \
+    meshq remesh assets/fandisk.obj -o fandisk.obj --target-ratio 0.8 --feature-angle 45 --json")]
 pub struct RemeshArgs {
     /// The mesh: OBJ, PLY or STL; it must be manifold and consistently oriented.
     pub mesh: PathBuf,

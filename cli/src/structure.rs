@@ -23,6 +23,47 @@ use crate::structure_arg::StructureArg;
 pub struct Prepared {
     pub scene: MeshIndex,
     pub prepare_seconds: f64,
+    /// True when the input was a blob (the time is its validation and decoding), false when
+    /// a mesh file was built.
+    pub from_blob: bool,
+}
+
+/// The preparation time under a name that says what it timed, for JSON summaries.
+#[derive(serde::Serialize)]
+pub struct PrepareTime {
+    /// Building the structure from a mesh file (reading the file excluded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub build_seconds: Option<f64>,
+    /// Validating and decoding a blob (reading the file excluded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blob_load_seconds: Option<f64>,
+}
+
+impl Prepared {
+    /// [`PrepareTime`] for this input.
+    pub fn time(&self) -> PrepareTime {
+        let t = Some(self.prepare_seconds);
+        if self.from_blob {
+            PrepareTime {
+                build_seconds: None,
+                blob_load_seconds: t,
+            }
+        } else {
+            PrepareTime {
+                build_seconds: t,
+                blob_load_seconds: None,
+            }
+        }
+    }
+
+    /// "built in" or "blob loaded in", for text summaries.
+    pub fn verb(&self) -> &'static str {
+        if self.from_blob {
+            "blob loaded in"
+        } else {
+            "built in"
+        }
+    }
 }
 /// The input of a query command: what to query and how to prepare it.
 #[derive(Args, Debug)]
@@ -127,6 +168,7 @@ pub fn with_built<R>(
     query(Prepared {
         scene,
         prepare_seconds,
+        from_blob: false,
     })
 }
 
@@ -157,5 +199,6 @@ fn with_blob<R>(
     query(Prepared {
         scene,
         prepare_seconds,
+        from_blob: true,
     })
 }

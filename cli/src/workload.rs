@@ -25,6 +25,10 @@ pub enum Kind {
 }
 
 #[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+    meshq workload assets/stanford-bunny.obj -o rays.bin\n  \
+    meshq workload assets/spot.obj --kind camera-rays --image 640x480 -o camera.bin\n  \
+    meshq workload assets/spot.obj --kind points --count 100000 -o points.bin")]
 pub struct WorkloadArgs {
     /// The mesh whose bounding box places the workload.
     pub mesh: PathBuf,

@@ -130,8 +130,67 @@ fn bake_inspect_raycast_and_closest_agree_with_the_library_and_brute_force() {
             summary["hits"],
             got.iter().filter(|h| h.0.is_finite()).count()
         );
-        for key in ["build_seconds", "query_seconds", "rays_per_second"] {
+        // The preparation time is named for what it timed: a build, or a blob's load.
+        let prepared = if input == &blob {
+            "blob_load_seconds"
+        } else {
+            "build_seconds"
+        };
+        for key in [prepared, "query_seconds", "rays_per_second"] {
             assert!(summary[key].as_f64().unwrap() >= 0.0, "{key}");
+        }
+        let other = ["build_seconds", "blob_load_seconds"]
+            .into_iter()
+            .find(|k| *k != prepared)
+            .unwrap();
+        assert!(summary.get(other).is_none(), "{other} in {summary}");
+
+        // Longer records: u, v and the hit point, as the library computes them.
+        let full = dir.path().join("full.bin");
+        ok(&[
+            &"raycast",
+            input,
+            &"--rays",
+            &ray_file,
+            &"--out",
+            &full,
+            &"--format",
+            &"full",
+        ]);
+        let bytes = std::fs::read(&full).unwrap();
+        assert_eq!(bytes.len(), 28 * rays.len());
+        for (r, record) in rays.iter().zip(bytes.chunks(28)).step_by(7) {
+            let f = |k: usize| f32::from_le_bytes(record[4 * k..4 * k + 4].try_into().unwrap());
+            let tri = u32::from_le_bytes(record[4..8].try_into().unwrap());
+            match bvh.with(&mesh).raycast(r) {
+                Some(h) => {
+                    let p = r.at(h.t);
+                    assert_eq!(
+                        (f(0), tri, f(2), f(3), [f(4), f(5), f(6)]),
+                        (h.t, h.tri, h.u, h.v, p.to_array())
+                    );
+                }
+                None => {
+                    assert_eq!((f(0), tri), (f32::INFINITY, u32::MAX));
+                    assert!(f(2).is_nan() && f(6).is_nan());
+                }
+            }
+        }
+        let uv = dir.path().join("uv.bin");
+        ok(&[
+            &"raycast",
+            input,
+            &"--rays",
+            &ray_file,
+            &"--out",
+            &uv,
+            &"--format",
+            &"t-tri-uv",
+        ]);
+        let uv_bytes = std::fs::read(&uv).unwrap();
+        assert_eq!(uv_bytes.len(), 16 * rays.len());
+        for (record, long) in uv_bytes.chunks(16).zip(bytes.chunks(28)) {
+            assert_eq!(record, &long[..16]);
         }
 
         let any = dir.path().join("any.bin");
@@ -139,8 +198,9 @@ fn bake_inspect_raycast_and_closest_agree_with_the_library_and_brute_force() {
             &"raycast", input, &"--rays", &ray_file, &"--out", &any, &"--any",
         ]);
         for (a, e) in read_records(&any).iter().zip(&expected) {
+            // A hit names no triangle: 0xFFFFFFFE, which no mesh index can be confused with.
             let expect = if e.0.is_finite() {
-                (0.0, 0)
+                (0.0, 0xFFFF_FFFE)
             } else {
                 (f32::INFINITY, u32::MAX)
             };
@@ -212,6 +272,55 @@ fn bake_inspect_raycast_and_closest_agree_with_the_library_and_brute_force() {
             .unwrap();
         assert_eq!((d, tri), (best.0.sqrt(), best.1));
     }
+    assert_eq!(summary["found"], 400);
+
+    // With --max-distance only points that near count; the rest get the miss record.
+    let limit = 0.01 * loaded_radius(&loaded.positions);
+    let near = dir.path().join("near.bin");
+    let summary: serde_json::Value = serde_json::from_str(&ok(&[
+        &"closest",
+        &blob,
+        &"--points",
+        &point_file,
+        &"--out",
+        &near,
+        &"--max-distance",
+        &limit.to_string(),
+        &"--json",
+    ]))
+    .unwrap();
+    let (mut within, mut beyond) = (0, 0);
+    for ((d, tri), (all_d, all_tri)) in read_records(&near).into_iter().zip(read_records(&out)) {
+        if all_d <= limit {
+            assert_eq!((d, tri), (all_d, all_tri));
+            within += 1;
+        } else {
+            assert_eq!((d, tri), (f32::INFINITY, u32::MAX));
+            beyond += 1;
+        }
+    }
+    assert!(within > 0 && beyond > 0, "{within} within, {beyond} beyond");
+    assert_eq!(summary["found"], within);
+    for bad in ["--max-distance=-1", "--max-distance=nan"] {
+        fails(
+            &[
+                &"closest",
+                &blob,
+                &"--points",
+                &point_file,
+                &"--out",
+                &near,
+                &bad,
+            ],
+            2,
+            "expected a distance",
+        );
+    }
+}
+
+/// The radius the workloads use for `positions` (half the bounds' diagonal).
+fn loaded_radius(positions: &[[f32; 3]]) -> f32 {
+    workload::centre_radius(positions).1
 }
 
 /// A quad and a pentagon in the plane z = 0, as OBJ, ASCII PLY and (pre-triangulated) STL.
