@@ -1,5 +1,5 @@
 // Types of the meshq three.js drop-in (three.js / three.mjs).
-import type { Box3, BufferGeometry, Intersection, Matrix4, Mesh, Raycaster, Sphere, Triangle } from 'three';
+import type { Box3, BufferGeometry, Intersection, Material, Matrix4, Mesh, Ray, Raycaster, Side, Sphere, Triangle, Vector3 } from 'three';
 import type { MeshBvh } from './meshq_wasm';
 
 /**
@@ -9,9 +9,23 @@ import type { MeshBvh } from './meshq_wasm';
  */
 export interface BuildOptions {
   quality?: 'fast' | 'balanced' | 'high';
+  structure?: 'bvh' | 'kdtree' | 'octree' | 'grid';
   maxLeafSize?: number;
   bins?: number;
+  maxDepth?: number;
+  /** three-mesh-bvh's names: `maxLeafTris` is `maxLeafSize`; `strategy` CENTER or SAH. */
+  maxLeafTris?: number;
+  strategy?: 0 | 2;
+  indirect?: boolean;
+  setBoundingBox?: boolean;
+  verbose?: boolean;
+  onProgress?: (progress: number) => void;
 }
+
+/** three-mesh-bvh's split strategies (AVERAGE is refused by computeBoundsTree). */
+export const CENTER: 0;
+export const AVERAGE: 1;
+export const SAH: 2;
 
 /** Builds `this.boundsTree` from the geometry's position and index arrays. */
 export function computeBoundsTree(this: BufferGeometry, options?: BuildOptions): MeshBvh;
@@ -38,6 +52,22 @@ export interface ShapecastCallbacks {
   boundsTraverseOrder?: (box: Box3) => number;
 }
 
+/** A hit as the bounds tree's `raycast` and `raycastFirst` report it, in the tree's frame. */
+export interface LocalHit {
+  distance: number;
+  point: Vector3;
+  face: { a: number; b: number; c: number; normal: Vector3; materialIndex: number };
+  faceIndex: number;
+  barycoord: Vector3;
+}
+
+/** What `closestPointToPoint` fills. */
+export interface ClosestPointTarget {
+  point: Vector3;
+  distance: number;
+  faceIndex: number;
+}
+
 declare module './meshq_wasm' {
   interface MeshBvh {
     /**
@@ -55,6 +85,18 @@ declare module './meshq_wasm' {
     intersectsBox(box: Box3, boxToMesh: Matrix4): boolean;
     /** three-mesh-bvh's `shapecast`: true when `intersectsTriangle` ended the walk. */
     shapecast(callbacks: ShapecastCallbacks): boolean;
+    /** three-mesh-bvh's `raycast`: every hit of `ray` (in the tree's frame), nearest first. */
+    raycast(ray: Ray, materialOrSide?: Material | Side, near?: number, far?: number): LocalHit[];
+    /** three-mesh-bvh's `raycastFirst`: the closest hit, or null. */
+    raycastFirst(ray: Ray, materialOrSide?: Material | Side, near?: number, far?: number): LocalHit | null;
+    /** three-mesh-bvh's `closestPointToPoint`: `target` filled, or null beyond `maxThreshold`. */
+    closestPointToPoint(point: Vector3, target?: Partial<ClosestPointTarget>, minThreshold?: number, maxThreshold?: number): ClosestPointTarget | null;
+    /** three-mesh-bvh's `getBoundingBox`. */
+    getBoundingBox(target?: Box3): Box3;
+    /** Not supported: throws (rebuild with `computeBoundsTree`). */
+    refit(): never;
+    /** Not supported yet: throws. */
+    closestPointToGeometry(): never;
   }
 }
 

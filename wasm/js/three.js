@@ -39,10 +39,76 @@ function buildFor(geometry, options) {
   return MeshBvh.build(positions, index, options);
 }
 
-/** Builds `this.boundsTree` (a MeshBvh) from a BufferGeometry's position and index arrays. */
+/** three-mesh-bvh's split strategies (its `CENTER`, `AVERAGE`, `SAH` exports). */
+export const CENTER = 0;
+export const AVERAGE = 1;
+export const SAH = 2;
+
+/**
+ * meshq build options from `options`, which may be three-mesh-bvh's `MeshBVH` options or
+ * meshq's own. Honoured: `maxLeafTris` / `maxLeafSize` (largest leaf), `maxDepth` (deepest
+ * level, root 1), `strategy` (`CENTER` → centre splits, meshq's `quality: 'fast'`; `SAH` →
+ * binned SAH, the default), `indirect` (meshq never reorders the geometry's index, so either
+ * value gives what three-mesh-bvh's `indirect: true` does), `setBoundingBox` (default true:
+ * the geometry's bounding box is set from the tree), `verbose` and `onProgress` (called with 1
+ * when the build is done). Anything else, `strategy: AVERAGE` and `range` included, throws
+ * naming the option, rather than being ignored.
+ */
+function buildOptions(options) {
+  if (options === undefined || options === null) return { meshq: undefined, setBoundingBox: true };
+  if (typeof options !== 'object') throw new TypeError(`computeBoundsTree options must be an object, got ${typeof options}`);
+  const meshq = {};
+  let setBoundingBox = true;
+  let onProgress = null;
+  for (const [key, value] of Object.entries(options)) {
+    if (value === undefined) continue;
+    switch (key) {
+      case 'structure': case 'quality': case 'bins': case 'maxDepth':
+        meshq[key] = value;
+        break;
+      case 'maxLeafTris': case 'maxLeafSize':
+        if (meshq.maxLeafSize !== undefined && meshq.maxLeafSize !== value) {
+          throw new RangeError(`maxLeafTris (${options.maxLeafTris}) and maxLeafSize (${options.maxLeafSize}) disagree`);
+        }
+        meshq.maxLeafSize = value;
+        break;
+      case 'strategy':
+        if (value === CENTER) meshq.quality ??= 'fast';
+        else if (value === SAH) meshq.quality ??= 'balanced';
+        else throw new RangeError(`strategy ${value} is not supported by meshq: use CENTER (${CENTER}) or SAH (${SAH})`);
+        break;
+      case 'indirect': case 'verbose':
+        if (typeof value !== 'boolean') throw new TypeError(`${key} must be true or false`);
+        break;
+      case 'setBoundingBox':
+        setBoundingBox = Boolean(value);
+        break;
+      case 'onProgress':
+        if (typeof value !== 'function') throw new TypeError('onProgress must be a function');
+        onProgress = value;
+        break;
+      default:
+        throw new TypeError(`computeBoundsTree: option ${key} is not supported by meshq`);
+    }
+  }
+  return { meshq, setBoundingBox, onProgress };
+}
+
+/**
+ * Builds `this.boundsTree` (a MeshBvh) from a BufferGeometry's position and index arrays, with
+ * three-mesh-bvh's options or meshq's (see `buildOptions`).
+ */
 export function computeBoundsTree(options) {
+  const { meshq, setBoundingBox, onProgress } = buildOptions(options);
   this.disposeBoundsTree?.();
-  this.boundsTree = buildFor(this, options);
+  this.boundsTree = buildFor(this, meshq);
+  if (setBoundingBox) {
+    const b = this.boundsTree.bounds();
+    this.boundingBox ??= new Box3();
+    this.boundingBox.min.set(b[0], b[1], b[2]);
+    this.boundingBox.max.set(b[3], b[4], b[5]);
+  }
+  onProgress?.(1);
   return this.boundsTree;
 }
 
@@ -158,6 +224,104 @@ MeshBvh.prototype.shapecast = function shapecast(callbacks) {
     return visit(near, depth + 1) || visit(far, depth + 1);
   };
   return count.length > 0 && visit(0, 0);
+};
+
+/** A side from three-mesh-bvh's `materialOrSide` argument (a material, a side constant, or
+ *  omitted for `FrontSide`, three-mesh-bvh's default). */
+function sideOf(materialOrSide) {
+  if (materialOrSide === undefined || materialOrSide === null) return FrontSide;
+  return typeof materialOrSide === 'number' ? materialOrSide : materialOrSide.side;
+}
+
+/** The index of each tree's mesh, read once (three-mesh-bvh's `face` names its corners). */
+const treeIndices = new WeakMap();
+function cornersOf(tree, triangle) {
+  let indices = treeIndices.get(tree);
+  if (!indices) {
+    indices = tree.indices();
+    treeIndices.set(tree, indices);
+  }
+  return [indices[3 * triangle], indices[3 * triangle + 1], indices[3 * triangle + 2]];
+}
+
+/** A hit as three-mesh-bvh reports one, in the tree's frame. */
+function localIntersection(tree, ray, t, triangle, u, v) {
+  const [ia, ib, ic] = cornersOf(tree, triangle);
+  const positions = tree.vertexPositionsCached ??= tree.vertexPositions();
+  const at = (i, target) => target.set(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+  const normal = new Vector3();
+  Triangle.getNormal(at(ia, a), at(ib, b), at(ic, c), normal);
+  return {
+    distance: t * ray.direction.length(),
+    point: ray.direction.clone().multiplyScalar(t).add(ray.origin),
+    face: { a: ia, b: ib, c: ic, normal, materialIndex: 0 },
+    faceIndex: triangle,
+    barycoord: new Vector3(1 - u - v, u, v),
+  };
+}
+
+const coreRaycast = MeshBvh.prototype.raycast;
+
+/**
+ * Two forms. three-mesh-bvh's `boundsTree.raycast(ray, materialOrSide = FrontSide, near = 0,
+ * far = Infinity)` (a `THREE.Ray`, in the tree's frame) returns every hit as
+ * `{ distance, point, face, faceIndex, barycoord }`, nearest first. meshq's own
+ * `raycast(origin, direction, near, far, side)` returns the closest hit or `null`.
+ */
+MeshBvh.prototype.raycast = function raycast(first, ...rest) {
+  if (first?.origin === undefined) return coreRaycast.call(this, first, ...rest);
+  const [materialOrSide, near, far] = rest;
+  const o = first.origin;
+  const d = first.direction;
+  const flat = this.raycastAll(o.x, o.y, o.z, d.x, d.y, d.z, near, far, sideOf(materialOrSide));
+  const hits = [];
+  for (let k = 0; k < flat.length; k += 4) {
+    hits.push(localIntersection(this, first, flat[k], flat[k + 1], flat[k + 2], flat[k + 3]));
+  }
+  return hits;
+};
+
+/** three-mesh-bvh's `boundsTree.raycastFirst(ray, materialOrSide = FrontSide, near, far)`:
+ *  the closest hit as `raycast` reports hits, or `null`. */
+MeshBvh.prototype.raycastFirst = function raycastFirst(ray, materialOrSide, near, far) {
+  const o = ray.origin;
+  const d = ray.direction;
+  const hit = this.raycastXyz(o.x, o.y, o.z, d.x, d.y, d.z, near, far, sideOf(materialOrSide));
+  return hit && localIntersection(this, ray, hit.distance, hit.triangle, hit.u, hit.v);
+};
+
+/**
+ * three-mesh-bvh's `boundsTree.closestPointToPoint(point, target = {}, minThreshold = 0,
+ * maxThreshold = Infinity)`: fills `target` with `{ point, distance, faceIndex }` for the
+ * surface point nearest `point` within `maxThreshold`, or returns `null`. The answer is always
+ * the exact nearest point (so `minThreshold`, an early-exit hint, changes nothing).
+ */
+MeshBvh.prototype.closestPointToPoint = function closestPointToPoint(point, target = {}, minThreshold = 0, maxThreshold = Infinity) {
+  const found = this.closestPoint(point, maxThreshold);
+  if (!found) return null;
+  target.point ??= new Vector3();
+  target.point.set(found.point.x, found.point.y, found.point.z);
+  target.distance = found.distance;
+  target.faceIndex = found.triangle;
+  return target;
+};
+
+/** three-mesh-bvh's `boundsTree.getBoundingBox(target)`: the tree's bounds as a `Box3`. */
+MeshBvh.prototype.getBoundingBox = function getBoundingBox(target = new Box3()) {
+  const b = this.bounds();
+  target.min.set(b[0], b[1], b[2]);
+  target.max.set(b[3], b[4], b[5]);
+  return target;
+};
+
+/** Not supported: meshq trees are rebuilt, not refitted. Throws, naming what to do instead. */
+MeshBvh.prototype.refit = function refit() {
+  throw new Error('refit is not supported by meshq: call geometry.computeBoundsTree() again after moving vertices');
+};
+
+/** Not supported yet: throws rather than answer wrongly. */
+MeshBvh.prototype.closestPointToGeometry = function closestPointToGeometry() {
+  throw new Error('closestPointToGeometry is not supported by meshq yet');
 };
 
 /** Frees `this.boundsTree`. */

@@ -5,7 +5,7 @@ use meshq::bvh::BuildConfig;
 use meshq::owned::StructureKind;
 use wasm_bindgen::prelude::*;
 
-/// Reads `{ quality?: "fast" | "balanced" | "high", maxLeafSize?, bins? }` (every field
+/// Reads `{ quality?: "fast" | "balanced" | "high", maxLeafSize?, bins?, maxDepth? }` (every field
 /// optional; `undefined` or `null` means the balanced default).
 pub fn build_config(options: &JsValue) -> Result<BuildConfig, JsError> {
     if options.is_undefined() || options.is_null() {
@@ -38,6 +38,9 @@ pub fn build_config(options: &JsValue) -> Result<BuildConfig, JsError> {
     }
     if let Some(n) = whole("bins")? {
         config.bins = n;
+    }
+    if let Some(n) = whole("maxDepth")? {
+        config.max_depth = n;
     }
     config.check().map_err(|e| JsError::new(&e.to_string()))?;
     Ok(config)

@@ -11,7 +11,7 @@ import { Worker, isMainThread, parentPort, workerData } from 'node:worker_thread
 import * as THREE from 'three';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { mergeVertices } from 'three/addons/utils/BufferGeometryUtils.js';
-import { CONTAINED, INTERSECTED, NOT_INTERSECTED, acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from '../../wasm/pkg-nodejs/three.mjs';
+import { AVERAGE, CENTER, CONTAINED, INTERSECTED, NOT_INTERSECTED, SAH, acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from '../../wasm/pkg-nodejs/three.mjs';
 import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
@@ -327,6 +327,91 @@ brute.material = material;
   }
   assert.throws(() => tree.shapecast({ intersectsBounds: () => true, intersectsRange: () => false }), /intersectsRange/);
   console.log('shapecast: triangles within 6 spheres equal to brute force, with and without contained boxes');
+}
+
+// three-mesh-bvh's MeshBVH options: honoured, or refused by name, never ignored.
+{
+  const geometry = indexed.clone();
+  const leafSizes = (tree) => {
+    const { count } = tree.treeArrays();
+    return Math.max(...count);
+  };
+  let progress = null;
+  geometry.computeBoundsTree({ maxLeafTris: 3, maxDepth: 40, strategy: SAH, indirect: true, verbose: false, onProgress: (p) => { progress = p; } });
+  assert.ok(leafSizes(geometry.boundsTree) <= 3, 'maxLeafTris');
+  assert.ok(geometry.boundsTree.depth <= 40, 'maxDepth');
+  assert.equal(progress, 1, 'onProgress');
+  // setBoundingBox (on by default): the geometry's box holds every vertex.
+  const box = geometry.boundingBox;
+  const own = new THREE.Box3().setFromBufferAttribute(geometry.getAttribute('position'));
+  assert.ok(box.containsBox(own) && box.min.distanceTo(own.min) < 1e-3 * own.getSize(new THREE.Vector3()).length(), 'setBoundingBox');
+  geometry.computeBoundsTree({ maxDepth: 12, maxLeafSize: 64 });
+  assert.ok(geometry.boundsTree.depth <= 12, 'a low maxDepth is held');
+  // CENTER builds what meshq's 'fast' quality builds.
+  geometry.computeBoundsTree({ strategy: CENTER });
+  const center = geometry.boundsTree.toBlob();
+  geometry.computeBoundsTree({ quality: 'fast' });
+  assert.deepEqual(center, geometry.boundsTree.toBlob(), 'strategy CENTER = quality fast');
+  assert.throws(() => geometry.computeBoundsTree({ strategy: AVERAGE }), /strategy 1 is not supported/);
+  assert.throws(() => geometry.computeBoundsTree({ range: { start: 0, count: 3 } }), /option range is not supported/);
+  assert.throws(() => geometry.computeBoundsTree({ useSharedArrayBuffer: true }), /useSharedArrayBuffer/);
+  assert.throws(() => geometry.computeBoundsTree({ maxLeafTris: 4, maxLeafSize: 8 }), /disagree/);
+  assert.throws(() => geometry.computeBoundsTree({ maxDepth: 0 }), /depth/i);
+  geometry.disposeBoundsTree();
+  console.log('MeshBVH options: maxLeafTris, maxDepth, strategy, indirect, setBoundingBox, onProgress honoured; the rest refused by name');
+}
+
+// The bounds tree's own queries, with three-mesh-bvh's signatures and result shapes, against
+// three's brute force (brute's meshes have identity transforms, so frames agree).
+{
+  const tree = indexed.boundsTree;
+  const bruteRaycaster = new THREE.Raycaster();
+  const ray = new THREE.Ray();
+  let hitsChecked = 0;
+  for (const side of [THREE.FrontSide, THREE.DoubleSide]) {
+    const sided = new THREE.Mesh(indexed, new THREE.MeshBasicMaterial({ side }));
+    for (let k = 0; k < 60; k++) {
+      ray.origin.fromArray(rays, 6 * k);
+      ray.direction.fromArray(rays, 6 * k + 3).normalize();
+      bruteRaycaster.ray.copy(ray);
+      const want = [];
+      THREE.Mesh.prototype.raycast.call(sided, bruteRaycaster, want);
+      want.sort((p, q) => p.distance - q.distance);
+      const all = tree.raycast(ray, side);
+      assert.deepEqual(all.map((h) => h.faceIndex).sort((p, q) => p - q), want.map((h) => h.faceIndex).sort((p, q) => p - q), `raycast ${k}`);
+      const first = tree.raycastFirst(ray, sided.material);
+      assert.equal(first === null, want.length === 0, `raycastFirst ${k}`);
+      if (first) {
+        assert.ok(Math.abs(first.distance - want[0].distance) < 1e-5 * (1 + want[0].distance), `raycastFirst distance ${k}`);
+        assert.ok(first.point.distanceTo(want[0].point) < 1e-4, `raycastFirst point ${k}`);
+        assert.deepEqual([first.face.a, first.face.b, first.face.c], [indexed.index.getX(3 * first.faceIndex), indexed.index.getX(3 * first.faceIndex + 1), indexed.index.getX(3 * first.faceIndex + 2)]);
+        hitsChecked++;
+      }
+    }
+  }
+  assert.ok(hitsChecked > 20, `${hitsChecked} first hits checked`);
+  // closestPointToPoint against every triangle's closest point.
+  const position = indexed.getAttribute('position');
+  const triangle = new THREE.Triangle();
+  const closest = new THREE.Vector3();
+  for (let k = 0; k < 10; k++) {
+    const p = new THREE.Vector3().fromArray(rays, 6 * k);
+    let best = Infinity;
+    for (let t = 0; t < indexed.index.count / 3; t++) {
+      triangle.setFromAttributeAndIndices(position, indexed.index.getX(3 * t), indexed.index.getX(3 * t + 1), indexed.index.getX(3 * t + 2));
+      best = Math.min(best, triangle.closestPointToPoint(p, closest).distanceTo(p));
+    }
+    const target = {};
+    assert.equal(tree.closestPointToPoint(p, target), target);
+    assert.ok(Math.abs(target.distance - best) < 1e-5 * (1 + best), `closestPointToPoint ${k}: ${target.distance} vs ${best}`);
+    assert.ok(target.point.isVector3 && Number.isInteger(target.faceIndex));
+    assert.equal(tree.closestPointToPoint(p, {}, 0, best * 0.5), null, 'maxThreshold');
+  }
+  const box = tree.getBoundingBox(new THREE.Box3());
+  assert.ok(box.containsBox(new THREE.Box3().setFromBufferAttribute(position)), 'getBoundingBox');
+  assert.throws(() => tree.refit(), /computeBoundsTree/);
+  assert.throws(() => tree.closestPointToGeometry(), /not supported/);
+  console.log(`bounds tree: raycast, raycastFirst (${hitsChecked} first hits), closestPointToPoint, getBoundingBox agree with three's brute force`);
 }
 
 indexed.disposeBoundsTree();
