@@ -6,13 +6,13 @@
 //   THREE.Mesh.prototype.raycast = acceleratedRaycast;
 //   geometry.computeBoundsTree();          // or geometry.boundsTree = MeshBvh.fromBlob(bytes)
 //
-// Raycaster results keep three's shape (distance, point, face, faceIndex, object, barycoord,
-// uv, normal), respect raycaster.near / far, the material's side, raycaster.firstHitOnly, the
+// Raycaster results are three's own intersection objects, bit for bit (meshq finds the
+// triangles; each hit is then recomputed with three's math), and respect raycaster.near / far, the material's side, raycaster.firstHitOnly, the
 // geometry's draw range, and groups with an array of materials (as three does: each group is
 // tested with its own material's side and reported with its materialIndex). Meshes without a
 // bounds tree, with morph targets or skinning, instanced meshes, and draw ranges or groups that
 // do not start on a whole triangle fall back to three's own raycast.
-import { Box3, DoubleSide, FrontSide, Mesh, Matrix4, Triangle, Vector2, Vector3 } from 'three';
+import { BackSide, Box3, DoubleSide, FrontSide, Mesh, Matrix4, Ray, Triangle, Vector2, Vector3 } from 'three';
 import { MeshBvh } from './meshq_wasm.js';
 
 const threeRaycast = Mesh.prototype.raycast;
@@ -337,57 +337,53 @@ const direction = new Vector3();
 const a = new Vector3();
 const b = new Vector3();
 const c = new Vector3();
-const ta = new Vector2();
-const tb = new Vector2();
-const tc = new Vector2();
 
 function corner(geometry, triangle, k) {
   return geometry.index ? geometry.index.getX(3 * triangle + k) : 3 * triangle + k;
 }
 
-/** `attribute` at the barycentric point `barycoord` of corners `ia, ib, ic`, into `target`
- *  (scratch vectors `pa, pb, pc` of the same size). */
-function interpolate(attribute, ia, ib, ic, barycoord, target, pa, pb, pc) {
-  pa.fromBufferAttribute(attribute, ia);
-  pb.fromBufferAttribute(attribute, ib);
-  pc.fromBufferAttribute(attribute, ic);
-  return target
-    .addScaledVector(pa, barycoord.x)
-    .addScaledVector(pb, barycoord.y)
-    .addScaledVector(pc, barycoord.z);
-}
+const localRay = new Ray();
+const localPoint = new Vector3();
 
-function intersection(mesh, raycaster, t, triangle, u, v, materialIndex = 0) {
-  const point = direction.clone().multiplyScalar(t).add(origin).applyMatrix4(mesh.matrixWorld);
-  const distance = raycaster.ray.origin.distanceTo(point);
-  if (distance < raycaster.near || distance > raycaster.far) return null;
+/**
+ * The intersection of triangle `triangle` (found by meshq) as three's own raycast reports it,
+ * bit for bit: three's ray–triangle test in the mesh's space with the material's `side`, the
+ * point taken to the world, its distance from the ray's origin checked against near/far, and
+ * the barycentric coordinates, uv, uv1 and normals interpolated as three does. `null` where
+ * three's test misses the triangle (a ray grazing an edge meshq's watertight test assigns to
+ * this triangle), as three would not list it either.
+ */
+function intersection(mesh, raycaster, side, triangle, materialIndex = 0) {
   const geometry = mesh.geometry;
   const ia = corner(geometry, triangle, 0);
   const ib = corner(geometry, triangle, 1);
   const ic = corner(geometry, triangle, 2);
-  const position = geometry.attributes.position;
-  a.fromBufferAttribute(position, ia);
-  b.fromBufferAttribute(position, ib);
-  c.fromBufferAttribute(position, ic);
-  const normal = new Vector3();
-  Triangle.getNormal(a, b, c, normal);
-  const barycoord = new Vector3(1 - u - v, u, v);
-  const hit = {
-    distance,
-    point,
-    object: mesh,
-    face: { a: ia, b: ib, c: ic, normal, materialIndex },
-    faceIndex: triangle,
-    barycoord,
-  };
-  const uv = geometry.attributes.uv;
-  if (uv) hit.uv = interpolate(uv, ia, ib, ic, barycoord, new Vector2(), ta, tb, tc);
-  const normals = geometry.attributes.normal;
+  mesh.getVertexPosition(ia, a);
+  mesh.getVertexPosition(ib, b);
+  mesh.getVertexPosition(ic, c);
+  const hitLocal = side === BackSide
+    ? localRay.intersectTriangle(c, b, a, true, localPoint)
+    : localRay.intersectTriangle(a, b, c, side === FrontSide, localPoint);
+  if (hitLocal === null) return null;
+  const point = localPoint.clone().applyMatrix4(mesh.matrixWorld);
+  const distance = raycaster.ray.origin.distanceTo(point);
+  if (distance < raycaster.near || distance > raycaster.far) return null;
+  const hit = { distance, point, object: mesh };
+  const barycoord = new Vector3();
+  Triangle.getBarycoord(localPoint, a, b, c, barycoord);
+  const { uv, uv1, normal: normals } = geometry.attributes;
+  if (uv) hit.uv = Triangle.getInterpolatedAttribute(uv, ia, ib, ic, barycoord, new Vector2());
+  if (uv1) hit.uv1 = Triangle.getInterpolatedAttribute(uv1, ia, ib, ic, barycoord, new Vector2());
   if (normals) {
-    // As three does: interpolated, not renormalised, facing the ray.
-    hit.normal = interpolate(normals, ia, ib, ic, barycoord, new Vector3(), a, b, c);
-    if (hit.normal.dot(direction) > 0) hit.normal.multiplyScalar(-1);
+    hit.normal = Triangle.getInterpolatedAttribute(normals, ia, ib, ic, barycoord, new Vector3());
+    if (hit.normal.dot(localRay.direction) > 0) hit.normal.multiplyScalar(-1);
   }
+  const face = { a: ia, b: ib, c: ic, normal: new Vector3(), materialIndex: 0 };
+  Triangle.getNormal(a, b, c, face.normal);
+  hit.face = face;
+  hit.barycoord = barycoord;
+  hit.faceIndex = triangle;
+  face.materialIndex = materialIndex;
   return hit;
 }
 
@@ -453,6 +449,8 @@ export function acceleratedRaycast(raycaster, intersects) {
   origin.copy(raycaster.ray.origin).applyMatrix4(inverse);
   end.copy(raycaster.ray.origin).add(raycaster.ray.direction).applyMatrix4(inverse);
   direction.subVectors(end, origin);
+  // three's own local ray, for recomputing each hit with its math.
+  localRay.copy(raycaster.ray).applyMatrix4(inverse);
   if (ranges === null) {
     raycastWhole(this, bvh, raycaster, intersects, material.side);
   } else {
@@ -465,14 +463,14 @@ function raycastWhole(mesh, bvh, raycaster, intersects, side) {
   if (raycaster.firstHitOnly === true) {
     const first = bvh.raycastXyz(origin.x, origin.y, origin.z, direction.x, direction.y,
       direction.z, raycaster.near, raycaster.far, side);
-    const hit = first && intersection(mesh, raycaster, first.distance, first.triangle, first.u, first.v);
+    const hit = first && intersection(mesh, raycaster, side, first.triangle);
     if (hit) intersects.push(hit);
     return;
   }
   const all = bvh.raycastAll(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z,
     raycaster.near, raycaster.far, side);
   for (let k = 0; k < all.length; k += 4) {
-    const hit = intersection(mesh, raycaster, all[k], all[k + 1], all[k + 2], all[k + 3]);
+    const hit = intersection(mesh, raycaster, side, all[k + 1]);
     if (hit) intersects.push(hit);
   }
 }
@@ -485,18 +483,25 @@ function raycastRanges(mesh, bvh, raycaster, intersects, ranges) {
   const side = sides.size === 1 ? ranges[0].side : DoubleSide;
   const all = bvh.raycastAll(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z,
     raycaster.near, raycaster.far, side);
+  const found = [];
   for (let k = 0; k < all.length; k += 4) {
     const triangle = all[k + 1];
     for (const r of ranges) {
       if (triangle < r.from || triangle >= r.to) continue;
       if (side === DoubleSide && !facingAllows(mesh.geometry, triangle, r.side)) continue;
-      const hit = intersection(mesh, raycaster, all[k], triangle, all[k + 2], all[k + 3],
-        r.materialIndex);
-      if (!hit) continue;
-      intersects.push(hit);
-      if (raycaster.firstHitOnly === true) return;
+      const hit = intersection(mesh, raycaster, r.side, triangle, r.materialIndex);
+      if (hit) found.push(hit);
     }
   }
+  if (raycaster.firstHitOnly !== true) {
+    intersects.push(...found);
+    return;
+  }
+  // The nearest by three's distance (a triangle in two groups has two, differing in the last
+  // bits), the earlier on a tie, as three's sorted list has it.
+  let nearest = null;
+  for (const hit of found) if (nearest === null || hit.distance < nearest.distance) nearest = hit;
+  if (nearest) intersects.push(nearest);
 }
 
 export { MeshBvh };
