@@ -107,16 +107,11 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
     if args.json {
         output::json(&summary)
     } else {
-        let prepared = summary
-            .prepare
-            .build_seconds
-            .or(summary.prepare.blob_load_seconds)
-            .unwrap_or(0.0);
         say!(
             "{} points, {} found, {verb} {:.3} s, queries {:.3} s: {:.2} M points/s",
             summary.points,
             summary.found,
-            prepared,
+            summary.prepare.seconds(),
             summary.query_seconds,
             summary.points_per_second / 1e6
         );

@@ -181,11 +181,6 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
     if args.json {
         output::json(&summary)
     } else {
-        let prepared = summary
-            .prepare
-            .build_seconds
-            .or(summary.prepare.blob_load_seconds)
-            .unwrap_or(0.0);
         say!(
             "{} rays, {} hits ({}), {verb} {:.3} s, queries {:.3} s: {:.2} M rays/s",
             summary.rays,
@@ -195,7 +190,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
                 (false, Some(n)) => format!("nearest {n} per ray"),
                 (false, None) => "closest hit".to_owned(),
             },
-            prepared,
+            summary.prepare.seconds(),
             summary.query_seconds,
             summary.rays_per_second / 1e6
         );

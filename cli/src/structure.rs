@@ -39,6 +39,13 @@ pub struct PrepareTime {
     pub blob_load_seconds: Option<f64>,
 }
 
+impl PrepareTime {
+    /// The time, whichever it was.
+    pub fn seconds(&self) -> f64 {
+        self.build_seconds.or(self.blob_load_seconds).unwrap_or(0.0)
+    }
+}
+
 impl Prepared {
     /// [`PrepareTime`] for this input.
     pub fn time(&self) -> PrepareTime {
