@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Every check, as CI runs it: install what is missing, then formatting, lints, docs, the
 # bare-metal and WebAssembly builds of the core, all tests, the firmware in QEMU, the
-# WebAssembly tests in Node, the three.js drop-in test, the demo in headless Chromium, and a
-# short run of the Node benchmark. (Clippy with --all-targets type-checks the criterion
+# WebAssembly tests in Node, the npm package installed from its tarball, its TypeScript
+# typings, the three.js drop-in test, the demo in headless Chromium, and a short run of the
+# Node benchmark. (Clippy with --all-targets type-checks the criterion
 # benchmarks; `cargo bench` runs them.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,8 +43,14 @@ cargo clippy --locked -p meshq-wasm --target wasm32-unknown-unknown --all-target
 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
   cargo test --locked -p meshq-wasm --target wasm32-unknown-unknown --tests
 
-step "wasm-pack packages (web, nodejs) and the demo"
+step "the npm package (wasm-pack for browsers and Node, one package) and the demo"
 MESHQ_BIN=target/debug/meshq ./scripts/build-web.sh
+
+step "npm pack: the tarball installed in a fresh directory, used from Node and through the demo's import map"
+node web/tests/pack.mjs
+
+step "TypeScript: the typings against the run-time API, tsc --noEmit (bundler, Node, beside three-mesh-bvh)"
+node web/tests/types.mjs
 
 step "three.js drop-in against three's brute-force Raycaster, in Node"
 node web/tests/three-dropin.mjs

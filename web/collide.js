@@ -2,7 +2,7 @@
 // slider); on every move meshq finds the triangle pairs where the two meet and the segments
 // where they cross, and the page highlights those triangles and draws the curve.
 import * as THREE from 'three';
-import { MeshBvh } from 'meshq';
+import { MeshBvh } from 'meshq-wasm';
 
 const $ = (id) => document.getElementById(id);
 

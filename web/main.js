@@ -9,7 +9,7 @@ import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { PLYLoader } from 'three/addons/loaders/PLYLoader.js';
 import { STLLoader } from 'three/addons/loaders/STLLoader.js';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
-import init, { MeshBvh, randomRays, remesh } from 'meshq';
+import init, { MeshBvh, randomRays, remesh } from 'meshq-wasm';
 import { setUpCollide } from './collide.js';
 
 const $ = (id) => document.getElementById(id);
@@ -165,7 +165,7 @@ function pick(event) {
   const direction = Float32Array.from(ray.direction.toArray());
   const hit = state.bvh.raycast(origin, direction, 0, Infinity);
   demo.lastRay = { origin: Array.from(origin), direction: Array.from(direction) };
-  demo.lastHit = hit && { triangle: hit.triangle, distance: hit.distance };
+  demo.lastHit = hit && { triangle: hit.triangle, t: hit.t, distance: hit.distance };
   marker.visible = picked.visible = hit !== null;
   if (!hit) {
     $('hit-triangle').textContent = 'miss';

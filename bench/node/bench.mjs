@@ -1,11 +1,11 @@
-// meshq (WebAssembly, wasm/pkg-nodejs) against three-mesh-bvh in Node on the bundled bunny,
+// meshq (WebAssembly, the Node build in wasm/pkg) against three-mesh-bvh in Node on the bundled bunny,
 // with the DESIGN.md workloads and the same rays and points for both. Prints throughput
 // ratios (meshq / three-mesh-bvh); --json prints them as JSON. Build the package first:
 // scripts/wasm.sh. Environment: MESHQ_BENCH_RAYS (default 1,000,000), MESHQ_BENCH_SINGLE
 // (rays for the one-call-per-ray runs, default 200,000), MESHQ_BENCH_POINTS (default 100,000).
 import * as THREE from 'three';
 import { MeshBVH, SAH } from 'three-mesh-bvh';
-import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+import meshq from '../../wasm/pkg/node/meshq_wasm.js';
 import { geometry, index, positions } from './bunny.mjs';
 
 const RAYS = Number(process.env.MESHQ_BENCH_RAYS ?? 1_000_000);

@@ -1,6 +1,6 @@
 // Interleaved A/B of meshq package builds on the batched workloads, best of five rounds, so
 // machine noise hits every build alike: for choosing between implementations, not a peer
-// comparison (that is bench.mjs). Arguments: directories holding copies of wasm/pkg-nodejs,
+// comparison (that is bench.mjs). Arguments: directories holding copies of wasm/pkg/node,
 // e.g. one built from the main branch and one from a change:
 //   node bench/node/variants.mjs /tmp/pkg-main /tmp/pkg-change
 import { createRequire } from 'node:module';

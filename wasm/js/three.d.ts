@@ -1,10 +1,16 @@
-// Types of the meshq three.js drop-in (three.js / three.mjs).
+// Types of the meshq three.js drop-in (`meshq-wasm/three`).
+//
+// `BufferGeometry.boundsTree`, `computeBoundsTree` and `disposeBoundsTree` are declared on
+// three's `BufferGeometry` by `meshq-wasm/three-augment` (import it once), not here: three-mesh-bvh
+// declares the same members with its own types, and TypeScript refuses two declarations of one
+// member with different types, so a project that has both installed during a migration keeps
+// compiling with this file alone.
 import type { Box3, BufferGeometry, Intersection, Material, Matrix4, Mesh, Ray, Raycaster, Side, Sphere, Triangle, Vector3 } from 'three';
-import type { MeshBvh } from './meshq_wasm';
+import type { MeshBvh } from './meshq_wasm.js';
 
 /**
  * Build settings; every field is optional. `quality`: `'balanced'` (binned SAH, the default),
- * `'fast'` (centre splits like three-mesh-bvh's default: about 4× quicker to build, somewhat
+ * `'fast'` (centre splits like three-mesh-bvh's default: quicker to build, somewhat
  * slower rays) or `'high'`.
  */
 export interface BuildOptions {
@@ -68,7 +74,7 @@ export interface ClosestPointTarget {
   faceIndex: number;
 }
 
-declare module './meshq_wasm' {
+declare module './meshq_wasm.js' {
   interface MeshBvh {
     /**
      * three-mesh-bvh's `intersectsGeometry`: whether `geometry`, placed in this tree's frame
@@ -101,12 +107,8 @@ declare module './meshq_wasm' {
 }
 
 declare module 'three' {
-  interface BufferGeometry {
-    boundsTree?: MeshBvh | null;
-    computeBoundsTree(options?: BuildOptions): MeshBvh;
-    disposeBoundsTree(): void;
-  }
   interface Raycaster {
+    /** Stop at the closest hit (three-mesh-bvh's flag, declared identically). */
     firstHitOnly?: boolean;
   }
 }

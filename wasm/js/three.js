@@ -271,14 +271,8 @@ const coreRaycast = MeshBvh.prototype.raycast;
 MeshBvh.prototype.raycast = function raycast(first, ...rest) {
   if (first?.origin === undefined) return coreRaycast.call(this, first, ...rest);
   const [materialOrSide, near, far] = rest;
-  const o = first.origin;
-  const d = first.direction;
-  const flat = this.raycastAll(o.x, o.y, o.z, d.x, d.y, d.z, near, far, sideOf(materialOrSide));
-  const hits = [];
-  for (let k = 0; k < flat.length; k += 4) {
-    hits.push(localIntersection(this, first, flat[k], flat[k + 1], flat[k + 2], flat[k + 3]));
-  }
-  return hits;
+  return this.raycastAll(first.origin, first.direction, near, far, sideOf(materialOrSide))
+    .map((hit) => localIntersection(this, first, hit.t, hit.triangle, hit.u, hit.v));
 };
 
 /** three-mesh-bvh's `boundsTree.raycastFirst(ray, materialOrSide = FrontSide, near, far)`:
@@ -287,7 +281,7 @@ MeshBvh.prototype.raycastFirst = function raycastFirst(ray, materialOrSide, near
   const o = ray.origin;
   const d = ray.direction;
   const hit = this.raycastXyz(o.x, o.y, o.z, d.x, d.y, d.z, near, far, sideOf(materialOrSide));
-  return hit && localIntersection(this, ray, hit.distance, hit.triangle, hit.u, hit.v);
+  return hit && localIntersection(this, ray, hit.t, hit.triangle, hit.u, hit.v);
 };
 
 /**
@@ -467,10 +461,8 @@ function raycastWhole(mesh, bvh, raycaster, intersects, side) {
     if (hit) intersects.push(hit);
     return;
   }
-  const all = bvh.raycastAll(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z,
-    raycaster.near, raycaster.far, side);
-  for (let k = 0; k < all.length; k += 4) {
-    const hit = intersection(mesh, raycaster, side, all[k + 1]);
+  for (const found of bvh.raycastAll(origin, direction, raycaster.near, raycaster.far, side)) {
+    const hit = intersection(mesh, raycaster, side, found.triangle);
     if (hit) intersects.push(hit);
   }
 }
@@ -481,11 +473,8 @@ function raycastRanges(mesh, bvh, raycaster, intersects, ranges) {
   const sides = new Set(ranges.map((r) => r.side));
   // One side for all: meshq culls; mixed sides: meshq keeps both faces and each range filters.
   const side = sides.size === 1 ? ranges[0].side : DoubleSide;
-  const all = bvh.raycastAll(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z,
-    raycaster.near, raycaster.far, side);
   const found = [];
-  for (let k = 0; k < all.length; k += 4) {
-    const triangle = all[k + 1];
+  for (const { triangle } of bvh.raycastAll(origin, direction, raycaster.near, raycaster.far, side)) {
     for (const r of ranges) {
       if (triangle < r.from || triangle >= r.to) continue;
       if (side === DoubleSide && !facingAllows(mesh.geometry, triangle, r.side)) continue;

@@ -23,7 +23,7 @@ pub fn range_error(message: &str) -> JsValue {
 }
 
 /// What kind of value `value` is, for messages.
-fn kind(value: &JsValue) -> String {
+pub fn value_kind(value: &JsValue) -> String {
     if value.is_undefined() {
         "undefined".into()
     } else if value.is_null() {
@@ -44,9 +44,12 @@ fn kind(value: &JsValue) -> String {
 
 /// A number (`f64`) or a `TypeError`.
 fn number(value: &JsValue, what: &str) -> Result<f64, JsValue> {
-    value
-        .as_f64()
-        .ok_or_else(|| type_error(&format!("{what} must be a number, got {}", kind(value))))
+    value.as_f64().ok_or_else(|| {
+        type_error(&format!(
+            "{what} must be a number, got {}",
+            value_kind(value)
+        ))
+    })
 }
 
 /// A finite number, as `f32` (values beyond its range are a `RangeError`, not infinity).
@@ -63,49 +66,68 @@ pub fn finite(value: &JsValue, what: &str) -> Result<f32, JsValue> {
 
 /// A point or direction: `[x, y, z]` (an array or a typed array of 3 numbers) or an object
 /// with numeric `x`, `y`, `z` (a three.js `Vector3`). Every coordinate must be finite.
+///
+/// This runs on every single-ray call, so the common forms cost as few calls into JavaScript
+/// as possible, and error messages are only formatted for an error.
 pub fn vector(value: &JsValue, what: &str) -> Result<Vec3, JsValue> {
-    // The common case first, in as few calls into JavaScript as possible.
-    let coordinates: [JsValue; 3] = if let Some(f) = value.dyn_ref::<Float32Array>() {
-        if f.length() != 3 {
-            return Err(range_error(&format!(
-                "{what} must hold exactly 3 numbers, got {}",
-                f.length()
-            )));
+    const AXES: [&str; 3] = ["x", "y", "z"];
+    let three = |length: u32| {
+        if length == 3 {
+            Ok(())
+        } else {
+            Err(range_error(&format!(
+                "{what} must hold exactly 3 numbers, got {length}"
+            )))
         }
+    };
+    let number = |v: JsValue, axis: usize| {
+        v.as_f64().ok_or_else(|| {
+            type_error(&format!(
+                "{what}.{} must be a number, got {}",
+                AXES[axis],
+                value_kind(&v)
+            ))
+        })
+    };
+    let xyz: [f64; 3] = if let Some(f) = value.dyn_ref::<Float32Array>() {
+        three(f.length())?;
         let mut xyz = [0.0f32; 3];
         f.copy_to(&mut xyz);
-        xyz.map(|c| JsValue::from_f64(f64::from(c)))
+        xyz.map(f64::from)
     } else if let Some(a) = value.dyn_ref::<Array>() {
-        if a.length() != 3 {
-            return Err(range_error(&format!(
-                "{what} must hold exactly 3 numbers, got {}",
-                a.length()
-            )));
-        }
-        [a.get(0), a.get(1), a.get(2)]
-    } else if value.is_instance_of::<Float64Array>() {
-        let f = Float64Array::unchecked_from_js_ref(value);
-        if f.length() != 3 {
-            return Err(range_error(&format!(
-                "{what} must hold exactly 3 numbers, got {}",
-                f.length()
-            )));
-        }
-        [f.get_index(0), f.get_index(1), f.get_index(2)].map(JsValue::from_f64)
+        three(a.length())?;
+        [
+            number(a.get(0), 0)?,
+            number(a.get(1), 1)?,
+            number(a.get(2), 2)?,
+        ]
+    } else if let Some(f) = value.dyn_ref::<Float64Array>() {
+        three(f.length())?;
+        [f.get_index(0), f.get_index(1), f.get_index(2)]
     } else if value.is_object() {
-        ["x", "y", "z"].map(|k| Reflect::get(value, &k.into()).unwrap_or(JsValue::UNDEFINED))
+        let get = |axis: usize| {
+            let v =
+                Reflect::get(value, &JsValue::from_str(AXES[axis])).unwrap_or(JsValue::UNDEFINED);
+            number(v, axis)
+        };
+        [get(0)?, get(1)?, get(2)?]
     } else {
         return Err(type_error(&format!(
             "{what} must be [x, y, z] or an object with x, y, z (a Vector3), got {}",
-            kind(value)
+            value_kind(value)
         )));
     };
-    let [x, y, z] = coordinates;
-    Ok(Vec3::new(
-        finite(&x, &format!("{what}.x"))?,
-        finite(&y, &format!("{what}.y"))?,
-        finite(&z, &format!("{what}.z"))?,
-    ))
+    let mut out = [0.0f32; 3];
+    for (axis, (o, c)) in out.iter_mut().zip(xyz).enumerate() {
+        *o = c as f32;
+        if !o.is_finite() {
+            return Err(range_error(&format!(
+                "{what}.{} must be a finite number, got {c}",
+                AXES[axis]
+            )));
+        }
+    }
+    Ok(Vec3::from_array(out))
 }
 
 /// A number that arrived as a plain `f64` argument (JavaScript turns anything that is not a
@@ -214,7 +236,7 @@ pub fn floats(value: &JsValue, what: &str) -> Result<Vec<f32>, JsValue> {
         .ok_or_else(|| {
             type_error(&format!(
                 "{what} must be a Float32Array, got {}",
-                kind(value)
+                value_kind(value)
             ))
         })
 }
@@ -230,7 +252,7 @@ pub fn floats_or_numbers(value: &JsValue, what: &str) -> Result<Vec<f32>, JsValu
     }
     Err(type_error(&format!(
         "{what} must be a Float32Array or an array of numbers, got {}",
-        kind(value)
+        value_kind(value)
     )))
 }
 
@@ -258,7 +280,7 @@ macro_rules! output {
                 type_error(&format!(
                     concat!("{} must be a ", $label, ", got {}"),
                     what,
-                    kind(value)
+                    value_kind(value)
                 ))
             })?;
             exact(array.length(), needed, what, per)?;

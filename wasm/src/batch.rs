@@ -14,7 +14,10 @@ use crate::args::{
     floats, max_distance, output_f32, output_u8, output_u32, range, range_error, side,
 };
 
-/// Distance written for a ray that hits nothing (`MeshBvh.MISS_DISTANCE`).
+/// The `t` a ray batch writes for a ray that hits nothing (`MeshBvh.MISS_T`).
+pub const MISS_T: f32 = f32::INFINITY;
+/// The distance a closest-point batch writes for a point that finds nothing
+/// (`MeshBvh.MISS_DISTANCE`).
 pub const MISS_DISTANCE: f32 = f32::INFINITY;
 /// Triangle index written for a ray that hits nothing, or a point that finds nothing
 /// (`0xFFFFFFFF`, `MeshBvh.MISS_TRIANGLE`).
@@ -40,7 +43,14 @@ fn read_rays(rays: &JsValue, near: &JsValue, far: &JsValue) -> Result<Vec<Ray>, 
 
 #[wasm_bindgen]
 impl MeshBvh {
-    /// `Infinity`: the distance a batch writes for a ray that hits nothing
+    /// `Infinity`: the `t` a ray batch writes for a ray that hits nothing
+    /// (`MeshBvh.MISS_T`).
+    #[wasm_bindgen(getter = MISS_T)]
+    pub fn miss_t() -> f32 {
+        MISS_T
+    }
+
+    /// `Infinity`: the distance `closestPointBatch` writes for a point that finds nothing
     /// (`MeshBvh.MISS_DISTANCE`).
     #[wasm_bindgen(getter = MISS_DISTANCE)]
     pub fn miss_distance() -> f32 {
@@ -55,21 +65,22 @@ impl MeshBvh {
     }
 
     /// Casts every ray of `rays` (a `Float32Array`, 6 numbers per ray: origin, then
-    /// direction) with `t` in `[near, far]` (omitted: `0`, `Infinity`), writing ray `i`'s hit
-    /// parameter `t` to `distances[i]` (a `Float32Array` of one number per ray) and its
-    /// triangle to `triangles[i]` (a `Uint32Array`, one per ray); a miss writes
-    /// `MISS_DISTANCE` and `MISS_TRIANGLE`. `side` as in `raycast`. Returns the number of hits.
+    /// direction) with `t` in `[near, far]` (`undefined` or `null`: `0`, `Infinity`), writing
+    /// ray `i`'s hit parameter to `t[i]` (a `Float32Array` of exactly one number per ray) and
+    /// its triangle to `triangles[i]` (a `Uint32Array`, one per ray); a miss writes `MISS_T`
+    /// and `MISS_TRIANGLE`. `side` as in `raycast`. Returns the number of hits.
     #[wasm_bindgen(js_name = raycastBatch)]
     pub fn raycast_batch(
         &self,
-        rays: &JsValue,
-        near: &JsValue,
-        far: &JsValue,
-        distances: &JsValue,
-        triangles: &JsValue,
-        side: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] rays: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] near: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] far: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] t: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
-        self.batch(rays, near, far, distances, triangles, None, side)
+        let side = side.unwrap_or(JsValue::UNDEFINED);
+        self.batch(rays, near, far, t, triangles, None, &side)
     }
 
     /// [`MeshBvh::raycast_batch`] that also writes each hit's barycentric weights `u, v` to
@@ -78,23 +89,16 @@ impl MeshBvh {
     #[allow(clippy::too_many_arguments)]
     pub fn raycast_batch_barycentric(
         &self,
-        rays: &JsValue,
-        near: &JsValue,
-        far: &JsValue,
-        distances: &JsValue,
-        triangles: &JsValue,
-        barycentrics: &JsValue,
-        side: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] rays: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] near: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] far: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] t: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] barycentrics: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
-        self.batch(
-            rays,
-            near,
-            far,
-            distances,
-            triangles,
-            Some(barycentrics),
-            side,
-        )
+        let side = side.unwrap_or(JsValue::UNDEFINED);
+        self.batch(rays, near, far, t, triangles, Some(barycentrics), &side)
     }
 
     /// Any-hit for every ray of `rays` (a `Float32Array`, 6 numbers per ray): `hits[i]` (a
@@ -103,13 +107,13 @@ impl MeshBvh {
     #[wasm_bindgen(js_name = raycastAnyBatch)]
     pub fn raycast_any_batch(
         &self,
-        rays: &JsValue,
-        near: &JsValue,
-        far: &JsValue,
-        hits: &JsValue,
-        side_in: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] rays: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] near: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] far: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Uint8Array")] hits: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
-        let options = side(side_in)?;
+        let options = crate::args::side(&side.unwrap_or(JsValue::UNDEFINED))?;
         let rays = read_rays(rays, near, far)?;
         let hits = output_u8(hits, "hits", rays.len(), " (one per ray)")?;
         let mut answers = vec![false; rays.len()];
@@ -125,15 +129,16 @@ impl MeshBvh {
     /// `closest[3i..3i+3]` (a `Float32Array`, 3 per point) receives the point, `triangles[i]`
     /// (a `Uint32Array`) its triangle and `distances[i]` (a `Float32Array`) the Euclidean
     /// distance; a point that finds nothing writes `NaN` coordinates, `MISS_TRIANGLE` and
-    /// `Infinity`. Returns the number of points found.
+    /// `MISS_DISTANCE`. Returns the number of points found.
     #[wasm_bindgen(js_name = closestPointBatch)]
     pub fn closest_point_batch(
         &self,
-        points: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] points: &JsValue,
+        #[wasm_bindgen(js_name = maxDistance, unchecked_param_type = "number | null | undefined")]
         max_distance_in: &JsValue,
-        closest: &JsValue,
-        triangles: &JsValue,
-        distances: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] closest: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] distances: &JsValue,
     ) -> Result<u32, JsValue> {
         let values = floats(points, "points")?;
         if !values.len().is_multiple_of(3) {
@@ -168,7 +173,7 @@ impl MeshBvh {
                 None => {
                     points_out.extend_from_slice(&[f32::NAN; 3]);
                     tris.push(MISS_TRIANGLE);
-                    dists.push(f32::INFINITY);
+                    dists.push(MISS_DISTANCE);
                 }
             }
         }
@@ -186,7 +191,7 @@ impl MeshBvh {
         rays: &JsValue,
         near: &JsValue,
         far: &JsValue,
-        distances: &JsValue,
+        t_out: &JsValue,
         triangles: &JsValue,
         barycentrics: Option<&JsValue>,
         side_in: &JsValue,
@@ -194,22 +199,19 @@ impl MeshBvh {
         let options = side(side_in)?;
         let rays = read_rays(rays, near, far)?;
         let n = rays.len();
-        let distances = output_f32(distances, "distances", n, " (one per ray)")?;
+        let t_out = output_f32(t_out, "t", n, " (one per ray)")?;
         let triangles = output_u32(triangles, "triangles", n, " (one per ray)")?;
         let barycentrics: Option<Float32Array> = barycentrics
             .map(|b| output_f32(b, "barycentrics", 2 * n, " (two per ray)"))
             .transpose()?;
         let mut answers = vec![None; n];
         self.storage.raycast_batch(&rays, &options, &mut answers)?;
-        let ts: Vec<f32> = answers
-            .iter()
-            .map(|h| h.map_or(MISS_DISTANCE, |h| h.t))
-            .collect();
+        let ts: Vec<f32> = answers.iter().map(|h| h.map_or(MISS_T, |h| h.t)).collect();
         let tris: Vec<u32> = answers
             .iter()
             .map(|h| h.map_or(MISS_TRIANGLE, |h| h.tri))
             .collect();
-        distances.copy_from(&ts);
+        t_out.copy_from(&ts);
         triangles.copy_from(&tris);
         if let Some(uv) = barycentrics {
             let pairs: Vec<f32> = answers

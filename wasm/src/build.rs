@@ -7,6 +7,7 @@ use meshq::owned::{MeshIndex, StructureKind};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
+use crate::args::{range_error, type_error, value_kind};
 use crate::storage::Storage;
 
 fn error(e: impl core::fmt::Display) -> JsError {
@@ -15,7 +16,7 @@ fn error(e: impl core::fmt::Display) -> JsError {
 
 /// Corner indices from a `Uint32Array`, a `Uint16Array` or an array of numbers; `None` for
 /// `null` / `undefined` (non-indexed geometry: every three positions make a triangle).
-pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsError> {
+pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsValue> {
     if indices.is_null() || indices.is_undefined() {
         return Ok(None);
     }
@@ -28,18 +29,26 @@ pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsError> {
     if let Some(a) = indices.dyn_ref::<Array>() {
         return a
             .iter()
-            .map(|v| match v.as_f64() {
+            .enumerate()
+            .map(|(i, v)| match v.as_f64() {
                 Some(x) if x.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&x) => {
                     Ok(x as u32)
                 }
-                _ => Err(JsError::new("indices must be whole numbers in 0..2^32")),
+                Some(x) => Err(range_error(&format!(
+                    "indices[{i}] must be a whole number in 0..2^32, got {x}"
+                ))),
+                None => Err(type_error(&format!(
+                    "indices[{i}] must be a number, got {}",
+                    value_kind(&v)
+                ))),
             })
             .collect::<Result<Vec<u32>, _>>()
             .map(Some);
     }
-    Err(JsError::new(
-        "indices must be a Uint32Array, a Uint16Array, an array of numbers, or null",
-    ))
+    Err(type_error(&format!(
+        "indices must be a Uint32Array, a Uint16Array, an array of numbers, or null, got {}",
+        value_kind(indices)
+    )))
 }
 
 /// Validates the mesh and builds its structure of `kind` (a BVH with `config`, the others with

@@ -14,6 +14,8 @@ use meshq::query::{PackedTriangles, With};
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
+use crate::args::range_error;
+use crate::fields::{optional_matrix, optional_u32};
 use crate::js_objects::set;
 
 /// The BVH the checks walk: the structure itself when it is one, else one built here over the
@@ -29,19 +31,18 @@ fn bvh_of(index: &MeshIndex) -> Result<Cow<'_, CoreBvh>, JsError> {
 
 /// The placement from `matrix`: 16 numbers in column-major order (three.js
 /// `Matrix4.elements`), or the identity when absent.
-fn placement(matrix: Option<Vec<f32>>) -> Result<Option<Affine>, JsError> {
-    let Some(values) = matrix else {
+fn placement(matrix: Option<JsValue>) -> Result<Option<Affine>, JsValue> {
+    let Some(m) = optional_matrix(&matrix.unwrap_or(JsValue::UNDEFINED), "matrix")? else {
         return Ok(None);
-    };
-    let Ok(m) = <[f32; 16]>::try_from(values.as_slice()) else {
-        return Err(JsError::new(&format!(
-            "matrix must hold 16 numbers (column-major, like Matrix4.elements), got {}",
-            values.len()
-        )));
     };
     Affine::from_cols_4x4(&m)
         .map(Some)
-        .map_err(|e| JsError::new(&e.to_string()))
+        .map_err(|e| range_error(&format!("matrix: {e}")))
+}
+
+/// `maxPairs`: omitted → no cap; otherwise a whole number.
+fn pair_limit(max_pairs: Option<JsValue>) -> Result<Option<u32>, JsValue> {
+    optional_u32(&max_pairs.unwrap_or(JsValue::UNDEFINED), "maxPairs")
 }
 
 /// The two meshes' trees with their packed triangles, as the mesh–mesh queries take them.
@@ -81,32 +82,38 @@ fn room(limit: Option<u32>, count: impl FnOnce() -> usize) -> usize {
 
 #[wasm_bindgen]
 impl MeshBvh {
-    /// Whether this mesh meets `other`, placed in this mesh's frame by `matrix` (16 numbers,
-    /// column-major like three.js `Matrix4.elements`; omitted: as it is). Touching counts:
-    /// a shared point, a corner on a face, a coplanar overlap. Stops at the first pair found.
-    /// Throws on a matrix that is not 16 finite numbers with a bottom row `0, 0, 0, 1`.
+    /// Whether this mesh meets `other`, placed in this mesh's frame by `matrix`
+    /// (`Matrix4Like`: 16 numbers, column-major like three.js `Matrix4.elements`, or a
+    /// `Matrix4`; omitted or `null`: as it is). Touching counts: a shared point, a corner on a
+    /// face, a coplanar overlap. Stops at the first pair found. Throws a `TypeError` or
+    /// `RangeError` for a matrix that is not 16 finite numbers with a bottom row `0, 0, 0, 1`.
     #[wasm_bindgen(js_name = intersectsMesh)]
     pub fn intersects_mesh(
         &self,
         other: &MeshBvh,
-        matrix: Option<Vec<f32>>,
-    ) -> Result<bool, JsError> {
+        #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
+    ) -> Result<bool, JsValue> {
         let place = placement(matrix)?;
-        on_both(self, other, |a, b| meshes_intersect(a, b, place.as_ref()))
+        Ok(on_both(self, other, |a, b| {
+            meshes_intersect(a, b, place.as_ref())
+        })?)
     }
 
     /// Every pair of triangles (this mesh's, `other`'s) that meets, with `other` placed by
     /// `matrix` as in `intersectsMesh`: `{ pairs: Uint32Array, total, tested, overflowed }`,
     /// `pairs` holding triangle indices two by two. `maxPairs` caps how many are returned
-    /// (`total` still counts all, `overflowed` says some were left out); default: all.
-    #[wasm_bindgen(js_name = intersectingPairs)]
+    /// (a whole number; `total` still counts all, `overflowed` says some were left out);
+    /// omitted: all.
+    #[wasm_bindgen(js_name = intersectingPairs, unchecked_return_type = "PairsResult")]
     pub fn intersecting_pairs(
         &self,
         other: &MeshBvh,
-        matrix: Option<Vec<f32>>,
-        max_pairs: Option<u32>,
-    ) -> Result<Object, JsError> {
+        #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxPairs, unchecked_param_type = "number | null")]
+        max_pairs: Option<JsValue>,
+    ) -> Result<Object, JsValue> {
         let place = placement(matrix)?;
+        let max_pairs = pair_limit(max_pairs)?;
         let (pairs, found) = on_both(self, other, |a, b| {
             let n = room(max_pairs, || {
                 intersecting_pairs(a, b, place.as_ref(), &mut []).total
@@ -115,7 +122,7 @@ impl MeshBvh {
             let found = intersecting_pairs(a, b, place.as_ref(), &mut pairs);
             (pairs, found)
         })?;
-        pairs_object(&pairs, found)
+        Ok(pairs_object(&pairs, found)?)
     }
 
     /// Where this mesh and `other` (placed by `matrix`) cross, for drawing: a `Float32Array`
@@ -126,8 +133,8 @@ impl MeshBvh {
     pub fn intersection_segments(
         &self,
         other: &MeshBvh,
-        matrix: Option<Vec<f32>>,
-    ) -> Result<Float32Array, JsError> {
+        #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
+    ) -> Result<Float32Array, JsValue> {
         let place = placement(matrix)?;
         let segments = on_both(self, other, |a, b| {
             let n = intersection_segments(a, b, place.as_ref(), &mut []).total;
@@ -155,8 +162,13 @@ impl MeshBvh {
     /// by index or by position (within about 2⁻²⁰ of the coordinates' magnitude), so an
     /// unwelded mesh's seams do not count. Returns
     /// `{ pairs, total, tested, overflowed }` as `intersectingPairs` does.
-    #[wasm_bindgen(js_name = selfIntersections)]
-    pub fn self_intersections(&self, max_pairs: Option<u32>) -> Result<Object, JsError> {
+    #[wasm_bindgen(js_name = selfIntersections, unchecked_return_type = "PairsResult")]
+    pub fn self_intersections(
+        &self,
+        #[wasm_bindgen(js_name = maxPairs, unchecked_param_type = "number | null")]
+        max_pairs: Option<JsValue>,
+    ) -> Result<Object, JsValue> {
+        let max_pairs = pair_limit(max_pairs)?;
         let bvh = bvh_of(&self.storage.scene)?;
         let (tree, mesh) = (bvh.bvh(), bvh.mesh());
         let n = room(max_pairs, || {
@@ -164,7 +176,7 @@ impl MeshBvh {
         });
         let mut pairs = vec![TrianglePair::default(); n];
         let found = self_intersecting_pairs(&tree, &mesh, &mut pairs);
-        pairs_object(&pairs, found)
+        Ok(pairs_object(&pairs, found)?)
     }
 }
 
@@ -177,7 +189,7 @@ impl MeshBvh {
     /// triangles `order[first .. first + count]`. Boxes are padded slightly, so they hold
     /// their triangles despite rounding. For a k-d tree, octree or grid, the BVH is built
     /// over the same mesh for the call.
-    #[wasm_bindgen(js_name = treeArrays)]
+    #[wasm_bindgen(js_name = treeArrays, unchecked_return_type = "TreeArrays")]
     pub fn tree_arrays(&self) -> Result<Object, JsError> {
         let bvh = bvh_of(&self.storage.scene)?;
         let tree = bvh.bvh();

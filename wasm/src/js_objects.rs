@@ -1,19 +1,40 @@
-//! Result objects made on the JavaScript side: Rust passes plain numbers to a small function
+//! Result objects made on the JavaScript side: Rust passes plain numbers to small functions
 //! defined in JavaScript, which is much cheaper than setting properties one by one across the
 //! boundary.
+//!
+//! One word, one meaning, in every result: `t` is the ray parameter (the hit is at
+//! `origin + t·direction`), `distance` a Euclidean distance in the mesh's units.
 
 use wasm_bindgen::prelude::*;
 
 #[wasm_bindgen(inline_js = "
-export function meshq_result(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
+export function meshq_ray_hit(t, distance, px, py, pz, triangle, u, v, nx, ny, nz) {
+  return { t, distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
+}
+export function meshq_closest_point(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
   return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
 }
 ")]
 extern "C" {
-    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`: a ray hit
-    /// (`distance` = `t`) or a closest point (`distance` from the query point).
+    /// A `RayHit`: `{ t, distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`.
     #[allow(clippy::too_many_arguments)]
-    pub fn meshq_result(
+    pub fn meshq_ray_hit(
+        t: f32,
+        distance: f64,
+        px: f32,
+        py: f32,
+        pz: f32,
+        triangle: u32,
+        u: f32,
+        v: f32,
+        nx: f32,
+        ny: f32,
+        nz: f32,
+    ) -> JsValue;
+
+    /// A `ClosestPoint`: `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn meshq_closest_point(
         distance: f32,
         px: f32,
         py: f32,

@@ -10,8 +10,9 @@ use crate::args::{
     finite_number, floats_or_numbers, max_distance, range_error, range_numbers, side_number,
     type_error, vector,
 };
-use crate::js_objects::meshq_result;
-use crate::options::{build_config, structure_kind};
+use crate::fields::{omitted, optional_choice, required_u32};
+use crate::js_objects::{meshq_closest_point, meshq_ray_hit};
+use crate::options::build_options;
 use crate::storage::Storage;
 use wasm_bindgen::JsCast;
 
@@ -20,9 +21,9 @@ use wasm_bindgen::JsCast;
 /// answers, bit for bit.
 ///
 /// Conventions: positions are `x, y, z` triples; triangles are counter-clockwise when seen from
-/// their front (as in three.js). Ray directions are used as given, not normalized: distances,
-/// `near` and `far` are in units of the direction's length, so world units for a unit direction
-/// (three.js rays have one). On equal distance the lower triangle index wins, so answers are
+/// their front (as in three.js). Ray directions are used as given, not normalized: a hit's `t`,
+/// `near` and `far` are in units of the direction's length (world units for a unit direction,
+/// as three.js rays have); `distance` is always Euclidean. On equal distance the lower triangle index wins, so answers are
 /// the same on every target. Free the memory with `free()` (or let the garbage collector do it
 /// through a `FinalizationRegistry`, where the engine has one).
 #[wasm_bindgen]
@@ -32,7 +33,7 @@ pub struct MeshBvh {
 
 /// The ray `origin + t·direction`, `t` in `[near, far]`: origin and direction as `[x, y, z]` or
 /// `Vector3`s, the range omitted for `[0, Infinity]` (see [`crate::args`]).
-fn js_ray(
+pub(crate) fn js_ray(
     origin: &JsValue,
     direction: &JsValue,
     near: Option<f64>,
@@ -76,13 +77,24 @@ pub(crate) fn xyz_ray(
     Ok(Ray::new(origin, dir).with_range(near, far))
 }
 
-fn hit_object(views: &Storage, ray: &Ray, hit: RayHit) -> JsValue {
+/// The Euclidean distance from the ray's origin to the point at `t`: `t·|direction|`, in
+/// double precision from the `f32` values the query used.
+fn euclidean(ray: &Ray, t: f32) -> f64 {
+    let [x, y, z] = ray.dir.to_array().map(f64::from);
+    f64::from(t) * (x * x + y * y + z * z).sqrt()
+}
+
+/// The JavaScript `RayHit` object of a core hit.
+pub(crate) fn hit_object(views: &Storage, ray: &Ray, hit: RayHit) -> JsValue {
     let p = ray.origin + ray.dir * hit.t;
     let n = views
         .triangle(hit.tri)
         .and_then(|t| t.unit_normal())
         .unwrap_or(Vec3::ZERO);
-    meshq_result(hit.t, p.x, p.y, p.z, hit.tri, hit.u, hit.v, n.x, n.y, n.z)
+    let distance = euclidean(ray, hit.t);
+    meshq_ray_hit(
+        hit.t, distance, p.x, p.y, p.z, hit.tri, hit.u, hit.v, n.x, n.y, n.z,
+    )
 }
 
 fn closest_object(views: &Storage, c: ClosestPoint) -> JsValue {
@@ -91,7 +103,7 @@ fn closest_object(views: &Storage, c: ClosestPoint) -> JsValue {
         .and_then(|t| t.unit_normal())
         .unwrap_or(Vec3::ZERO);
     let p = c.point;
-    meshq_result(
+    meshq_closest_point(
         c.distance_squared.sqrt(),
         p.x,
         p.y,
@@ -108,34 +120,41 @@ fn closest_object(views: &Storage, c: ClosestPoint) -> JsValue {
 #[wasm_bindgen]
 impl MeshBvh {
     /// Builds a structure from the arrays of a three.js `BufferGeometry`: `positions` (a
-    /// `Float32Array`, 3 numbers per vertex) and `indices` (`Uint32Array`, `Uint16Array`, array,
-    /// or `null` for non-indexed geometry). `options`: `{ structure: "bvh" | "kdtree" |
-    /// "octree" | "grid", quality: "fast" | "balanced" | "high", maxLeafSize, bins }`, all
-    /// optional. `structure` is `"bvh"` by default; `quality`, `maxLeafSize` and `bins` tune the
-    /// BVH (the others use their default configs): `"balanced"` (binned SAH) by default,
-    /// `"fast"` builds with centre splits (like three-mesh-bvh's default) about four times
-    /// sooner for somewhat slower rays. Throws on an invalid mesh (index out of range,
-    /// non-finite position…) or an unknown option value with the core error's message.
+    /// `Float32Array` or an array of numbers, 3 per vertex) and `indices` (`Uint32Array`,
+    /// `Uint16Array`, an array of whole numbers, or omitted / `null` for non-indexed geometry).
+    /// `options` (`MeshBvhOptions`, every field optional): `structure` (`"bvh"`, the default,
+    /// `"kdtree"`, `"octree"` or `"grid"`: the same answers from each), `quality` (`"balanced"`
+    /// binned SAH by default, `"fast"` centre splits, `"high"`), `maxLeafSize`, `bins` and
+    /// `maxDepth` (which tune the BVH; the other structures use their default configs). Throws
+    /// a `TypeError` or `RangeError` naming a bad argument or an unknown option, and an `Error`
+    /// with the core's message for an invalid mesh (an index out of range, a non-finite
+    /// position…).
     pub fn build(
+        #[wasm_bindgen(unchecked_param_type = "Float32Array | ArrayLike<number>")]
         positions: &JsValue,
-        indices: JsValue,
-        options: JsValue,
+        #[wasm_bindgen(
+            unchecked_param_type = "Uint32Array | Uint16Array | ArrayLike<number> | null"
+        )]
+        indices: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "MeshBvhOptions | null")] options: Option<JsValue>,
     ) -> Result<MeshBvh, JsValue> {
         let positions = floats_or_numbers(positions, "positions")?;
-        let config = build_config(&options)?;
-        let kind = structure_kind(&options)?;
-        let indices = crate::build::read_indices(&indices)?;
+        let (config, kind) = build_options(&options.unwrap_or(JsValue::UNDEFINED))?;
+        let indices = crate::build::read_indices(&indices.unwrap_or(JsValue::NULL))?;
         let storage = crate::build::build(positions, indices, kind, &config)?;
         Ok(Self { storage })
     }
 
     /// Loads a blob baked by `meshq bake` (or `toBlob`) holding any structure, e.g. the bytes
-    /// of a fetched file. The blob is validated once (checksum, every count, index and range), then decoded into the
-    /// buffers a build makes, so queries run as fast as on a built mesh; the bytes are kept for
-    /// `toBlob`. Throws on a damaged blob, another format version, or a blob baked
-    /// without its mesh.
+    /// of a fetched file (a `Uint8Array`; a Node `Buffer` is one). The blob is validated once
+    /// (checksum, every count, index and range), then decoded into the buffers a build makes,
+    /// so queries run as fast as on a built mesh; the bytes are kept for `toBlob`. Throws a
+    /// `TypeError` for anything but a `Uint8Array`, and an `Error` naming what is wrong with a
+    /// damaged blob, another format version, or a blob baked without its mesh.
     #[wasm_bindgen(js_name = fromBlob)]
-    pub fn from_blob(bytes: &JsValue) -> Result<MeshBvh, JsValue> {
+    pub fn from_blob(
+        #[wasm_bindgen(unchecked_param_type = "Uint8Array")] bytes: &JsValue,
+    ) -> Result<MeshBvh, JsValue> {
         let bytes = bytes
             .dyn_ref::<js_sys::Uint8Array>()
             .ok_or_else(|| type_error("a blob must be a Uint8Array (a Buffer is one)"))?
@@ -144,32 +163,25 @@ impl MeshBvh {
         Ok(Self { storage })
     }
 
-    /// The blob of this mesh and structure, to save and load later with `fromBlob`. `layout`:
-    /// `"indexed"` (default: positions and indices), `"packed"` (larger, fastest to query),
-    /// or `"omitted"` (no mesh; only for readers that have it). A loaded blob is returned as
-    /// it was loaded when no layout is asked for, and encoded afresh in the layout asked for
-    /// otherwise.
+    /// The blob of this mesh and structure, to save and load later with `fromBlob`, whether
+    /// this mesh was built or loaded. `layout` (`BlobLayout`): `"indexed"` (positions and
+    /// indices; the default), `"packed"` (larger, fastest to query in place) or `"omitted"` (no
+    /// mesh; only for readers that have it). A loaded blob is returned as it was loaded when no
+    /// layout is asked for, and encoded afresh in the layout asked for otherwise.
     #[wasm_bindgen(js_name = toBlob)]
-    pub fn to_blob(&self, layout: Option<String>) -> Result<Vec<u8>, JsError> {
-        let mesh_layout = match layout.as_deref() {
-            None | Some("indexed") => MeshLayout::Indexed,
-            Some("packed") => MeshLayout::Packed,
-            Some("omitted") => MeshLayout::Omitted,
-            Some(other) => {
-                return Err(JsError::new(&format!(
-                    "unknown layout {other:?}: use \"indexed\", \"packed\" or \"omitted\""
-                )));
-            }
-        };
-        match (&self.storage.blob, layout) {
-            (Some(bytes), None) => Ok(bytes.clone()),
-            // Any other layout is encoded afresh from what was loaded (a packed blob's mesh
-            // has three vertices of its own per triangle: the same triangles, the same answers).
-            _ => {
-                let err = |e: meshq::error::BlobError| JsError::new(&e.to_string());
-                self.storage.scene.to_blob(mesh_layout).map_err(err)
-            }
-        }
+    pub fn to_blob(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "BlobLayout | null")] layout: Option<JsValue>,
+    ) -> Result<Vec<u8>, JsValue> {
+        let layout = layout.unwrap_or(JsValue::UNDEFINED);
+        let mesh_layout =
+            match optional_choice(&layout, "layout", &["indexed", "packed", "omitted"])? {
+                None | Some("indexed") => MeshLayout::Indexed,
+                Some("packed") => MeshLayout::Packed,
+                Some(_) => MeshLayout::Omitted,
+            };
+        self.blob_bytes((!omitted(&layout)).then_some(mesh_layout))
+            .map_err(|e| JsError::new(&e.to_string()).into())
     }
 
     /// Number of triangles.
@@ -179,7 +191,7 @@ impl MeshBvh {
     }
 
     /// Which structure answers: `"bvh"`, `"kdtree"`, `"octree"` or `"grid"`.
-    #[wasm_bindgen(getter)]
+    #[wasm_bindgen(getter, unchecked_return_type = "'bvh' | 'kdtree' | 'octree' | 'grid'")]
     pub fn structure(&self) -> String {
         self.storage.scene.kind().name().to_owned()
     }
@@ -210,27 +222,30 @@ impl MeshBvh {
     }
 
     /// The closest hit of the ray `origin + t·direction` with `t` in `[near, far]`, or
-    /// `null`. `origin` and `direction`: `[x, y, z]` (array or typed array) or `{x, y, z}`
-    /// (a three.js `Vector3`), finite, the direction not zero; `near` and `far` default to `0`
-    /// and `Infinity`. `side`: `0` front faces only, `1` back faces only, `2` or omitted both
-    /// (three.js `FrontSide`, `BackSide`, `DoubleSide`). Returns
-    /// `{ distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`: `distance` is the
-    /// ray parameter `t` (world units for a unit direction), `u`, `v` the barycentric weights
-    /// of the triangle's second and third corners, `normal` the unit geometric normal (front
-    /// side). Throws a `TypeError` or `RangeError` naming a bad argument.
+    /// `null`. `origin` and `direction` (`Vec3Like`): `[x, y, z]` (an array or typed array)
+    /// or `{x, y, z}` (a three.js `Vector3`), finite, the direction not zero and used as given
+    /// (not normalized). `near` and `far` default to `0` and `Infinity`. `side`: `0` front
+    /// faces only, `1` back faces only, `2` or omitted both (three.js `FrontSide`, `BackSide`,
+    /// `DoubleSide`). Returns a `RayHit`: `{ t, distance, point, triangle, u, v, normal }`,
+    /// `t` the ray parameter, `distance` the Euclidean distance from the origin
+    /// (`t·|direction|`), `u`, `v` the barycentric weights of the triangle's second and third
+    /// corners, `normal` the unit geometric normal (front side). On equal `t` the lower
+    /// triangle index wins. Throws a `TypeError` or `RangeError` naming a bad argument.
+    #[wasm_bindgen(unchecked_return_type = "RayHit | null")]
     pub fn raycast(
         &self,
-        origin: &JsValue,
-        direction: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] origin: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
         near: Option<f64>,
         far: Option<f64>,
-        side_in: Option<f64>,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
     ) -> Result<JsValue, JsValue> {
-        self.cast(&js_ray(origin, direction, near, far)?, side_in)
+        self.cast(&js_ray(origin, direction, near, far)?, side)
     }
 
-    /// [`MeshBvh::raycast`] with the ray as plain numbers: nothing is allocated per call.
-    #[wasm_bindgen(js_name = raycastXyz)]
+    /// [`MeshBvh::raycast`] with the ray as plain numbers (`ox, oy, oz, dx, dy, dz`): nothing
+    /// is allocated per call, the fastest single-ray form in a loop. The same result.
+    #[wasm_bindgen(js_name = raycastXyz, unchecked_return_type = "RayHit | null")]
     #[allow(clippy::too_many_arguments)]
     pub fn raycast_xyz(
         &self,
@@ -242,38 +257,39 @@ impl MeshBvh {
         dz: f64,
         near: Option<f64>,
         far: Option<f64>,
-        side_in: Option<f64>,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
     ) -> Result<JsValue, JsValue> {
-        self.cast(&xyz_ray(ox, oy, oz, dx, dy, dz, near, far)?, side_in)
+        self.cast(&xyz_ray(ox, oy, oz, dx, dy, dz, near, far)?, side)
     }
 
-    /// Whether the ray hits anything in `[near, far]` (occlusion, line of sight); faster than
-    /// `raycast`. Arguments as for `raycast`.
+    /// Whether the ray hits anything in `[near, far]` (occlusion, line of sight): it stops at
+    /// the first hit found. Arguments as for `raycast`.
     #[wasm_bindgen(js_name = raycastAny)]
     pub fn raycast_any(
         &self,
-        origin: &JsValue,
-        direction: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] origin: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
         near: Option<f64>,
         far: Option<f64>,
-        side_in: Option<f64>,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
     ) -> Result<bool, JsValue> {
         let ray = js_ray(origin, direction, near, far)?;
-        Ok(self.storage.raycast_any(&ray, &side_number(side_in)?))
+        Ok(self.storage.raycast_any(&ray, &side_number(side)?))
     }
 
-    /// The closest surface point to `point` (`[x, y, z]` or `{x, y, z}`) within `maxDistance`
-    /// (omitted: any distance; otherwise a number ≥ 0), or `null`. Returns
-    /// `{ distance, point, triangle, u, v, normal }` like `raycast`, with `distance` the
-    /// Euclidean distance to the query point. On equal distance the lower triangle index wins.
-    #[wasm_bindgen(js_name = closestPoint)]
+    /// The closest surface point to `point` (`Vec3Like`) within `maxDistance` (omitted or
+    /// `null`: any distance; otherwise a number ≥ 0), or `null`. Returns a `ClosestPoint`:
+    /// `{ distance, point, triangle, u, v, normal }`, `distance` the Euclidean distance from
+    /// the query point. On equal distance the lower triangle index wins.
+    #[wasm_bindgen(js_name = closestPoint, unchecked_return_type = "ClosestPoint | null")]
     pub fn closest_point(
         &self,
-        point: &JsValue,
-        max_distance_in: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] point: &JsValue,
+        #[wasm_bindgen(js_name = maxDistance, unchecked_param_type = "number | null")]
+        max_distance_in: Option<JsValue>,
     ) -> Result<JsValue, JsValue> {
         let p = vector(point, "point")?;
-        let limit = max_distance(max_distance_in)?;
+        let limit = max_distance(&max_distance_in.unwrap_or(JsValue::UNDEFINED))?;
         let views = &self.storage;
         Ok(views
             .closest_point(p, limit)
@@ -322,17 +338,42 @@ impl MeshBvh {
             .collect()
     }
 
-    /// Boxes to draw at depth `level` (the root is level 0), 6 numbers per box: `minX, minY,
-    /// minZ, maxX, maxY, maxZ`. A BVH: its node boxes at that depth. A k-d tree or octree: the
-    /// cells its splits have cut space into by that depth (the nodes at that depth and the
-    /// non-empty leaves above it). A grid: its non-empty cells.
+    /// Boxes to draw at depth `level` (a whole number; the root is level 0), 6 numbers per
+    /// box: `minX, minY, minZ, maxX, maxY, maxZ`. A BVH: its node boxes at that depth. A k-d
+    /// tree or octree: the cells its splits have cut space into by that depth (the nodes at
+    /// that depth and the non-empty leaves above it). A grid: its non-empty cells.
     #[wasm_bindgen(js_name = levelBoxes)]
-    pub fn level_boxes(&self, level: u32) -> Vec<f32> {
-        self.storage.level_boxes(level)
+    pub fn level_boxes_js(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "number")] level: &JsValue,
+    ) -> Result<Vec<f32>, JsValue> {
+        Ok(self.storage.level_boxes(required_u32(level, "level")?))
     }
 }
 
 impl MeshBvh {
+    /// The blob bytes: the loaded ones when `layout` is `None` and this came from a blob,
+    /// else encoded afresh (a packed blob's mesh has three vertices of its own per triangle:
+    /// the same triangles, the same answers).
+    pub fn blob_bytes(
+        &self,
+        layout: Option<MeshLayout>,
+    ) -> Result<Vec<u8>, meshq::error::BlobError> {
+        match (&self.storage.blob, layout) {
+            (Some(bytes), None) => Ok(bytes.clone()),
+            _ => self
+                .storage
+                .scene
+                .to_blob(layout.unwrap_or(MeshLayout::Indexed)),
+        }
+    }
+
+    /// Boxes at `level`, for Rust callers and tests (see `levelBoxes`).
+    #[must_use]
+    pub fn level_boxes(&self, level: u32) -> Vec<f32> {
+        self.storage.level_boxes(level)
+    }
+
     fn cast(&self, ray: &Ray, side_in: Option<f64>) -> Result<JsValue, JsValue> {
         let views = &self.storage;
         Ok(views

@@ -7,8 +7,8 @@ use meshq::math::{Obb, Triangle};
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
-use crate::args::{finite, floats, range_error, vector};
-use wasm_bindgen::JsCast;
+use crate::args::{finite, range_error, vector};
+use crate::fields::finite_numbers;
 
 /// Whether `query` reports anything, stopping at the first report.
 fn any(query: impl FnOnce(&mut dyn FnMut(u32) -> ControlFlow<()>)) -> bool {
@@ -22,10 +22,14 @@ fn any(query: impl FnOnce(&mut dyn FnMut(u32) -> ControlFlow<()>)) -> bool {
 
 #[wasm_bindgen]
 impl MeshBvh {
-    /// Whether a triangle of the mesh comes within `radius` of `center` (`[x, y, z]` or `{x, y, z}`),
-    /// touching included. A negative or NaN radius touches nothing.
+    /// Whether a triangle of the mesh comes within `radius` (a finite number) of `center`
+    /// (`Vec3Like`), touching included. A negative radius touches nothing.
     #[wasm_bindgen(js_name = overlapsSphere)]
-    pub fn overlaps_sphere(&self, center: &JsValue, radius: &JsValue) -> Result<bool, JsValue> {
+    pub fn overlaps_sphere(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] center: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] radius: &JsValue,
+    ) -> Result<bool, JsValue> {
         let c = vector(center, "center")?;
         let radius = finite(radius, "radius")?;
         Ok(any(|f| self.storage.scene.overlap_sphere(c, radius, f)))
@@ -37,26 +41,15 @@ impl MeshBvh {
     #[wasm_bindgen(js_name = overlapsOrientedBox)]
     pub fn overlaps_oriented_box(
         &self,
-        center: &JsValue,
-        axes: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] center: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "ArrayLike<number>")] axes: &JsValue,
+        #[wasm_bindgen(js_name = halfExtents, unchecked_param_type = "Vec3Like")]
         half_extents: &JsValue,
     ) -> Result<bool, JsValue> {
-        let values: Vec<f32> = match axes.dyn_ref::<js_sys::Array>() {
-            Some(a) => a
-                .iter()
-                .enumerate()
-                .map(|(i, v)| finite(&v, &format!("axes[{i}]")))
-                .collect::<Result<_, _>>()?,
-            None => floats(axes, "axes")?,
-        };
+        let values = finite_numbers(axes, "axes", Some(9))?;
         let [x, y, z] = match values.as_slice() {
             [a, b, c, d, e, f, g, h, i] => [[*a, *b, *c], [*d, *e, *f], [*g, *h, *i]],
-            _ => {
-                return Err(range_error(&format!(
-                    "axes must hold 9 numbers (three directions), got {}",
-                    values.len()
-                )));
-            }
+            _ => return Err(range_error("axes must hold 9 numbers (three directions)")),
         };
         let obb = Obb::new(
             vector(center, "center")?,
@@ -71,9 +64,9 @@ impl MeshBvh {
     #[wasm_bindgen(js_name = overlapsTriangle)]
     pub fn overlaps_triangle(
         &self,
-        a: &JsValue,
-        b: &JsValue,
-        c: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] a: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] b: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] c: &JsValue,
     ) -> Result<bool, JsValue> {
         let t = Triangle::new(vector(a, "a")?, vector(b, "b")?, vector(c, "c")?);
         Ok(any(|f| self.storage.scene.overlap_triangle(&t, f)))

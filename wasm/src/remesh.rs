@@ -3,48 +3,55 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use js_sys::{Float32Array, Object, Reflect, Uint32Array};
+use js_sys::{Float32Array, Object, Uint32Array};
 use meshq::mesh::MeshRef;
 use meshq::owned::{Remeshed, mean_edge_length};
 use meshq::remesh::{MeshQuality, RemeshConfig};
 use wasm_bindgen::prelude::*;
 
+use crate::args::{floats_or_numbers, range_error};
 use crate::build::read_indices;
+use crate::fields::{field, optional_number, optional_whole, options};
 use crate::js_objects::set;
 
-/// Reads `{ targetLength?, targetRatio?, iterations?, featureAngle? }` (all optional).
-fn config(options: &JsValue, mean_edge: impl FnOnce() -> f32) -> Result<RemeshConfig, JsError> {
+/// The keys `remesh` options accept.
+const REMESH_KEYS: &[&str] = &["targetLength", "targetRatio", "iterations", "featureAngle"];
+
+/// Reads `{ targetLength?, targetRatio?, iterations?, featureAngle? }` (every field optional;
+/// `targetLength` and `targetRatio` not both), strictly (see [`crate::fields`]).
+fn config(options_in: &JsValue, mean_edge: impl FnOnce() -> f32) -> Result<RemeshConfig, JsValue> {
     let mut config = RemeshConfig::default();
-    if options.is_undefined() || options.is_null() {
-        return Ok(config);
-    }
-    let number = |name: &str| {
-        Reflect::get(options, &JsValue::from_str(name))
-            .ok()
-            .and_then(|v| v.as_f64())
+    let o = options(options_in, "options", REMESH_KEYS)?;
+    let o = o.as_ref();
+    let positive = |name: &str| -> Result<Option<f64>, JsValue> {
+        let what = format!("options.{name}");
+        match optional_number(&field(o, name), &what)? {
+            Some(x) if !(x > 0.0 && x.is_finite()) => Err(range_error(&format!(
+                "{what} must be a positive finite number, got {x}"
+            ))),
+            x => Ok(x),
+        }
     };
-    if let Some(l) = number("targetLength") {
-        config.target_length = l as f32;
-    }
-    if let Some(r) = number("targetRatio") {
-        if !(r > 0.0 && r.is_finite()) {
-            return Err(JsError::new("targetRatio must be a positive number"));
+    match (positive("targetLength")?, positive("targetRatio")?) {
+        (Some(_), Some(_)) => {
+            return Err(range_error(
+                "options: give targetLength or targetRatio, not both",
+            ));
         }
-        config.target_length = r as f32 * mean_edge();
+        (Some(l), None) => config.target_length = l as f32,
+        (None, Some(r)) => config.target_length = r as f32 * mean_edge(),
+        (None, None) => {}
     }
-    if let Some(n) = number("iterations") {
-        if n.fract() != 0.0 || !(0.0..=f64::from(RemeshConfig::MAX_ITERATIONS)).contains(&n) {
-            return Err(JsError::new(&format!(
-                "iterations must be a whole number in 0..={}",
-                RemeshConfig::MAX_ITERATIONS
-            )));
-        }
+    if let Some(n) = optional_whole(
+        &field(o, "iterations"),
+        "options.iterations",
+        f64::from(RemeshConfig::MAX_ITERATIONS),
+    )? {
         config.iterations = n as u32;
     }
-    config.feature_angle = number("featureAngle").map(|a| a as f32);
-    config
-        .validate()
-        .map_err(|e| JsError::new(&e.to_string()))?;
+    config.feature_angle =
+        optional_number(&field(o, "featureAngle"), "options.featureAngle")?.map(|a| a as f32);
+    config.validate().map_err(|e| range_error(&e.to_string()))?;
     Ok(config)
 }
 
@@ -108,11 +115,19 @@ fn figures(q: &MeshQuality, triangles: &[[u32; 3]]) -> Result<Object, JsError> {
 /// more), and `distance` is the two-sided distance to the input (sampled at vertices and
 /// centroids) over the input's bounding-box diagonal. Throws on a mesh that is not manifold
 /// or consistently oriented, naming the edge or vertex.
-#[wasm_bindgen]
-pub fn remesh(positions: Vec<f32>, indices: JsValue, options: JsValue) -> Result<Object, JsError> {
+#[wasm_bindgen(unchecked_return_type = "RemeshResult")]
+pub fn remesh(
+    #[wasm_bindgen(unchecked_param_type = "Float32Array | ArrayLike<number>")] positions: &JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Uint32Array | Uint16Array | ArrayLike<number> | null")]
+    indices: Option<JsValue>,
+    #[wasm_bindgen(unchecked_param_type = "RemeshOptions | null")] options: Option<JsValue>,
+) -> Result<Object, JsValue> {
+    let positions = floats_or_numbers(positions, "positions")?;
     if !positions.len().is_multiple_of(3) {
-        return Err(JsError::new("positions must hold x, y, z per vertex"));
+        return Err(range_error("positions must hold x, y, z per vertex"));
     }
+    let indices = indices.unwrap_or(JsValue::NULL);
+    let options = options.unwrap_or(JsValue::UNDEFINED);
     let indices = match read_indices(&indices)? {
         Some(flat) => flat,
         None => (0..(positions.len() / 3) as u32).collect(),

@@ -6,31 +6,53 @@ use meshq::math::Aabb;
 use meshq_workload::{CameraRays, QueryPoints, RandomRays};
 use wasm_bindgen::prelude::*;
 
-fn bounds(b: &[f32]) -> Result<Aabb, JsError> {
-    match b {
+use crate::args::{range_error, type_error};
+use crate::fields::{finite_numbers, optional_whole, required_u32};
+
+/// `[minX, minY, minZ, maxX, maxY, maxZ]` (what `MeshBvh.bounds()` returns).
+fn bounds(b: &JsValue) -> Result<Aabb, JsValue> {
+    match finite_numbers(b, "bounds", Some(6))?.as_slice() {
         [x0, y0, z0, x1, y1, z1] => Ok(Aabb::new(
             glam::Vec3::new(*x0, *y0, *z0),
             glam::Vec3::new(*x1, *y1, *z1),
         )),
-        _ => Err(JsError::new(
+        _ => Err(range_error(
             "bounds must be [minX, minY, minZ, maxX, maxY, maxZ]",
         )),
     }
 }
 
-fn seed(seed: f64) -> Result<u64, JsError> {
-    if seed.fract() == 0.0 && (0.0..=9_007_199_254_740_991.0).contains(&seed) {
-        Ok(seed as u64)
-    } else {
-        Err(JsError::new("seed must be a whole number in 0..2^53"))
+/// The largest whole number a JavaScript number holds exactly.
+const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
+
+/// Refuses outputs of more than 1 GiB (a failed allocation would abort the module).
+fn fits(items: u64, bytes_each: u64, what: &str) -> Result<usize, JsValue> {
+    const LIMIT: u64 = 1 << 30;
+    if items.saturating_mul(bytes_each) > LIMIT {
+        return Err(range_error(&format!(
+            "{what}: {items} would take more than 1 GiB; ask for fewer"
+        )));
     }
+    usize::try_from(items).map_err(|_| range_error(what))
+}
+
+/// A seed: a whole number in `0..2^53`, required.
+fn seed(seed: &JsValue) -> Result<u64, JsValue> {
+    optional_whole(seed, "seed", MAX_SAFE_INTEGER)?
+        .ok_or_else(|| type_error("seed must be a whole number in 0..2^53"))
 }
 
 /// `count` random rays around `bounds` (origin on the sphere of radius 1.5·r around the box
 /// centre, unit direction toward a point in the box), 6 numbers per ray.
 #[wasm_bindgen(js_name = randomRays)]
-pub fn random_rays(bounds_in: &[f32], seed_in: f64, count: u32) -> Result<Vec<f32>, JsError> {
-    let rays = RandomRays::new(bounds(bounds_in)?, seed(seed_in)?).take(count as usize);
+pub fn random_rays(
+    #[wasm_bindgen(js_name = bounds, unchecked_param_type = "ArrayLike<number>")]
+    bounds_in: &JsValue,
+    #[wasm_bindgen(js_name = seed, unchecked_param_type = "number")] seed_in: &JsValue,
+    #[wasm_bindgen(unchecked_param_type = "number")] count: &JsValue,
+) -> Result<Vec<f32>, JsValue> {
+    let count = fits(required_u32(count, "count")?.into(), 24, "count")?;
+    let rays = RandomRays::new(bounds(bounds_in)?, seed(seed_in)?).take(count);
     Ok(rays
         .flat_map(|r| {
             [
@@ -43,7 +65,17 @@ pub fn random_rays(bounds_in: &[f32], seed_in: f64, count: u32) -> Result<Vec<f3
 /// The pinhole camera rays of a `width × height` image looking at `bounds` (45° vertical field
 /// of view, row-major), 6 numbers per ray.
 #[wasm_bindgen(js_name = cameraRays)]
-pub fn camera_rays(bounds_in: &[f32], width: u32, height: u32) -> Result<Vec<f32>, JsError> {
+pub fn camera_rays(
+    #[wasm_bindgen(js_name = bounds, unchecked_param_type = "ArrayLike<number>")]
+    bounds_in: &JsValue,
+    #[wasm_bindgen(unchecked_param_type = "number")] width: &JsValue,
+    #[wasm_bindgen(unchecked_param_type = "number")] height: &JsValue,
+) -> Result<Vec<f32>, JsValue> {
+    let (width, height) = (
+        required_u32(width, "width")?,
+        required_u32(height, "height")?,
+    );
+    fits(u64::from(width) * u64::from(height), 24, "width × height")?;
     let rays = CameraRays::new(bounds(bounds_in)?, width as usize, height as usize);
     Ok(rays
         .flat_map(|r| {
@@ -56,7 +88,13 @@ pub fn camera_rays(bounds_in: &[f32], width: u32, height: u32) -> Result<Vec<f32
 
 /// `count` query points uniform in `bounds` grown by 10 % per side, 3 numbers per point.
 #[wasm_bindgen(js_name = queryPoints)]
-pub fn query_points(bounds_in: &[f32], seed_in: f64, count: u32) -> Result<Vec<f32>, JsError> {
-    let points = QueryPoints::new(bounds(bounds_in)?, seed(seed_in)?).take(count as usize);
+pub fn query_points(
+    #[wasm_bindgen(js_name = bounds, unchecked_param_type = "ArrayLike<number>")]
+    bounds_in: &JsValue,
+    #[wasm_bindgen(js_name = seed, unchecked_param_type = "number")] seed_in: &JsValue,
+    #[wasm_bindgen(unchecked_param_type = "number")] count: &JsValue,
+) -> Result<Vec<f32>, JsValue> {
+    let count = fits(required_u32(count, "count")?.into(), 12, "count")?;
+    let points = QueryPoints::new(bounds(bounds_in)?, seed(seed_in)?).take(count);
     Ok(points.flat_map(|p| [p.x, p.y, p.z]).collect())
 }

@@ -55,7 +55,12 @@ fn load(obj: &str) -> (Vec<f32>, Vec<u32>) {
 fn build(obj: &str, options: &JsValue) -> MeshBvh {
     let (positions, indices) = load(obj);
     let indices = Uint32Array::from(&indices[..]);
-    MeshBvh::build(&floats_js(&positions), indices.into(), options.clone()).unwrap()
+    MeshBvh::build(
+        &floats_js(&positions),
+        Some(indices.into()),
+        Some(options.clone()),
+    )
+    .unwrap()
 }
 
 /// `{ quality: "fast" }`.
@@ -124,7 +129,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&built));
         assert_eq!(report, golden.report, "{name}: built in WebAssembly");
 
-        let blob = built.to_blob(None).map_err(JsValue::from).unwrap();
+        let blob = built.to_blob(None).unwrap();
         let (bytes, checksum) = golden_blob(&format!("{name}{suffix}"));
         let header = meshq::blob::BlobHeader::read(&blob).unwrap();
         assert_eq!(
@@ -136,13 +141,10 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let loaded = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
-        assert_eq!(loaded.to_blob(None).map_err(JsValue::from).unwrap(), blob);
+        assert_eq!(loaded.to_blob(None).unwrap(), blob);
 
         // A packed blob (corners in leaf order, no indexed mesh) answers the same.
-        let packed = built
-            .to_blob(Some("packed".into()))
-            .map_err(JsValue::from)
-            .unwrap();
+        let packed = built.to_blob(Some("packed".into())).unwrap();
         let loaded_packed = MeshBvh::from_blob(&bytes_js(&packed)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded_packed));
         assert_eq!(report, golden.report, "{name}: loaded from the packed blob");
@@ -162,10 +164,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
                 );
             }
         }
-        let omitted = built
-            .to_blob(Some("omitted".into()))
-            .map_err(JsValue::from)
-            .unwrap();
+        let omitted = built.to_blob(Some("omitted".into())).unwrap();
         assert!(
             MeshBvh::from_blob(&bytes_js(&omitted)).is_err(),
             "{name}: no mesh"
@@ -186,20 +185,17 @@ fn every_structure_matches_the_golden_digest_and_blob() {
             let report = run_parity(&golden.spec, bounds, &mut Wasm(&built));
             assert_eq!(report, golden.report, "{name}: {kind} built in WebAssembly");
 
-            let blob = built.to_blob(None).map_err(JsValue::from).unwrap();
+            let blob = built.to_blob(None).unwrap();
             let header = meshq::blob::BlobHeader::read(&blob).unwrap();
             assert_eq!(
                 (blob.len(), header.checksum),
                 golden_blob(&format!("{name}-{kind}")),
                 "{name} {kind}: blob bytes"
             );
-            for layout in [None, Some("packed".to_owned())] {
+            for layout in [None, Some(JsValue::from("packed"))] {
                 let bytes = match &layout {
                     None => blob.clone(),
-                    Some(_) => built
-                        .to_blob(layout.clone())
-                        .map_err(JsValue::from)
-                        .unwrap(),
+                    Some(_) => built.to_blob(layout.clone()).unwrap(),
                 };
                 let loaded = MeshBvh::from_blob(&bytes_js(&bytes)).unwrap();
                 assert_eq!(loaded.structure(), kind);
@@ -218,8 +214,8 @@ fn every_structure_matches_the_golden_digest_and_blob() {
     assert!(
         MeshBvh::build(
             &floats_js(&positions),
-            JsValue::NULL,
-            option("structure", "quadtree")
+            None,
+            Some(option("structure", "quadtree"))
         )
         .is_err(),
         "unknown structure"
@@ -263,7 +259,11 @@ fn javascript_results_carry_the_core_answers() {
             Some(hit) => {
                 hits += 1;
                 // f32 → f64 is exact, so the JavaScript numbers carry the same bits.
-                assert_eq!(number(&js, &["distance"]) as f32, hit.t);
+                assert_eq!(number(&js, &["t"]) as f32, hit.t);
+                // The Euclidean distance: t times the direction's length, in doubles.
+                let length = d.to_array().map(f64::from);
+                let length = length.iter().map(|c| c * c).sum::<f64>().sqrt();
+                assert_eq!(number(&js, &["distance"]), f64::from(hit.t) * length);
                 assert_eq!(number(&js, &["triangle"]) as u32, hit.tri);
                 assert_eq!(number(&js, &["u"]) as f32, hit.u);
                 let p = o + d * hit.t;
@@ -298,7 +298,7 @@ fn javascript_results_carry_the_core_answers() {
             &JsValue::UNDEFINED,
             &distances_js,
             &triangles_js,
-            &JsValue::UNDEFINED,
+            None,
         )
         .unwrap();
     let (distances, triangles) = (distances_js.to_vec(), triangles_js.to_vec());
@@ -370,7 +370,7 @@ fn javascript_results_carry_the_core_answers() {
 fn bad_input_throws_with_the_core_message() {
     let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
     let bad = Uint32Array::from(&[0u32, 1, 7][..]);
-    let error = MeshBvh::build(&floats_js(&positions), bad.into(), JsValue::UNDEFINED)
+    let error = MeshBvh::build(&floats_js(&positions), Some(bad.into()), None)
         .err()
         .unwrap();
     let message = js_sys::Error::from(error).message();
@@ -379,7 +379,7 @@ fn bad_input_throws_with_the_core_message() {
         "message names the index"
     );
     assert!(MeshBvh::from_blob(&bytes_js(&[1, 2, 3])).is_err());
-    let ok = MeshBvh::build(&floats_js(&positions), JsValue::NULL, JsValue::UNDEFINED).unwrap();
+    let ok = MeshBvh::build(&floats_js(&positions), None, None).unwrap();
     assert_eq!(ok.triangle_count(), 1);
 }
 
@@ -393,9 +393,7 @@ fn remeshing_matches_the_golden_remesh_file() {
         let (positions, indices) = load(obj);
         assert_eq!(indices.len() / 3, golden.triangles_in as usize, "{name}");
         let indices = Uint32Array::from(&indices[..]);
-        let out = meshq_wasm::remesh(positions, indices.into(), JsValue::UNDEFINED)
-            .map_err(JsValue::from)
-            .unwrap();
+        let out = meshq_wasm::remesh(&floats_js(&positions), Some(indices.into()), None).unwrap();
         let array = |key: &str| Reflect::get(&out, &key.into()).unwrap();
         let positions = js_sys::Float32Array::from(array("positions")).to_vec();
         let indices = Uint32Array::from(array("indices")).to_vec();
@@ -444,9 +442,12 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
     for options in [JsValue::UNDEFINED, option("structure", "octree")] {
         let one = build(obj, &options);
         let other = build(obj, &JsValue::UNDEFINED);
-        assert!(one.intersects_mesh(&other, Some(matrix.to_vec())).unwrap());
+        assert!(
+            one.intersects_mesh(&other, Some(Float32Array::from(&matrix[..]).into()))
+                .unwrap()
+        );
         let found = one
-            .intersecting_pairs(&other, Some(matrix.to_vec()), None)
+            .intersecting_pairs(&other, Some(Float32Array::from(&matrix[..]).into()), None)
             .unwrap();
         assert_eq!(number(&found, &["total"]) as usize, pairs.len());
         let flat = Uint32Array::from(Reflect::get(&found, &"pairs".into()).unwrap()).to_vec();
@@ -454,12 +455,20 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
         got.sort_unstable();
         assert_eq!(got, pairs);
         let capped = one
-            .intersecting_pairs(&other, Some(matrix.to_vec()), Some(3))
+            .intersecting_pairs(
+                &other,
+                Some(Float32Array::from(&matrix[..]).into()),
+                Some(JsValue::from(3)),
+            )
             .unwrap();
         assert_eq!(number(&capped, &["total"]) as usize, pairs.len());
         // The largest cap allocates no more than the pairs found.
         let all = one
-            .intersecting_pairs(&other, Some(matrix.to_vec()), Some(u32::MAX))
+            .intersecting_pairs(
+                &other,
+                Some(Float32Array::from(&matrix[..]).into()),
+                Some(JsValue::from(u32::MAX)),
+            )
             .unwrap();
         let listed = Uint32Array::from(Reflect::get(&all, &"pairs".into()).unwrap()).length();
         assert_eq!(listed as usize, 2 * pairs.len());
@@ -468,7 +477,7 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
             JsValue::TRUE
         );
         let segments = one
-            .intersection_segments(&other, Some(matrix.to_vec()))
+            .intersection_segments(&other, Some(Float32Array::from(&matrix[..]).into()))
             .unwrap();
         assert_eq!(segments.length() as usize, 6 * crossing);
         let apart = one.intersects_mesh(
@@ -476,12 +485,15 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
             Some({
                 let mut m = matrix;
                 m[12] = 5.0;
-                m.to_vec()
+                Float32Array::from(&m[..]).into()
             }),
         );
         assert!(!apart.unwrap());
         let itself = one.self_intersections(None).unwrap();
         assert_eq!(number(&itself, &["total"]), 0.0);
-        assert!(one.intersects_mesh(&other, Some(vec![1.0; 3])).is_err());
+        assert!(
+            one.intersects_mesh(&other, Some(Float32Array::from(&[1.0f32; 3][..]).into()))
+                .is_err()
+        );
     }
 }

@@ -84,8 +84,12 @@ try {
   const [nativeT, nativeTriangle] = native(lastRay);
   assert.equal(shownTriangle, nativeTriangle, 'displayed triangle = native');
   assert.equal(lastHit.triangle, nativeTriangle);
-  assert.equal(Math.fround(lastHit.distance), nativeT, 'distance bits = native');
-  assert.equal(shownDistance, Number(nativeT).toPrecision(9), 'displayed distance = native');
+  assert.equal(Math.fround(lastHit.t), nativeT, 't bits = native');
+  // The distance shown is Euclidean: t times the length of the f32 direction, in doubles.
+  const [dx, dy, dz] = lastRay.direction;
+  const nativeDistance = nativeT * Math.sqrt(dx * dx + dy * dy + dz * dz);
+  assert.equal(lastHit.distance, nativeDistance, 'distance = native t · |direction|');
+  assert.equal(shownDistance, nativeDistance.toPrecision(9), 'displayed distance = native');
   console.log(`centre click: triangle ${shownTriangle}, distance ${shownDistance} — equal to native`);
 
   // The BVH view and the benchmark button.
@@ -110,7 +114,7 @@ try {
     const picked = await page.evaluate(() => window.meshqDemo);
     const [t, triangle] = native(picked.lastRay);
     assert.equal(picked.lastHit.triangle, triangle, `${structure}: triangle = native`);
-    assert.equal(Math.fround(picked.lastHit.distance), t, `${structure}: distance bits = native`);
+    assert.equal(Math.fround(picked.lastHit.t), t, `${structure}: t bits = native`);
     await page.screenshot({ path: join(out, `demo-bunny-${structure}.png`) });
     console.log(`${structure}: ${await page.textContent('#bvh-level-text')}, pick equal to native`);
   }

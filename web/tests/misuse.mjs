@@ -1,11 +1,11 @@
 // The Node package under misuse: every query with missing, wrong-typed, NaN and out-of-range
 // arguments throws a TypeError or RangeError naming the argument (or takes the documented
 // default), leaves output arrays untouched and nothing borrowed, and 10,000 misuse calls in a
-// row leave the module answering correctly. Run after scripts/wasm.sh: node web/tests/misuse.mjs
+// row leave the module answering correctly. Run after scripts/build-web.sh: node web/tests/misuse.mjs
 import assert from 'node:assert/strict';
-import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+import * as meshq from 'meshq-wasm';
 
-const { MeshBvh } = meshq;
+const { MeshBvh, randomRays, cameraRays, queryPoints, remesh } = meshq;
 
 // A bumpy 40 × 40 grid of quads in the z = 0 plane, seen from +z.
 function grid(n) {
@@ -66,6 +66,41 @@ assert.ok(far && far.distance > 5, 'no limit when maxDistance is omitted');
 }
 assert.equal(MeshBvh.MISS_TRIANGLE, 0xFFFFFFFF);
 assert.equal(MeshBvh.MISS_DISTANCE, Infinity);
+assert.equal(MeshBvh.MISS_T, Infinity);
+
+// One word, one meaning: `t` is the ray parameter, `distance` Euclidean, in every result.
+{
+  const long = bvh.raycast(above, [0, 0, -2]);
+  assert.equal(long.triangle, reference.triangle);
+  assert.equal(long.t, Math.fround(reference.t / 2), 't is in units of the direction');
+  assert.equal(long.distance, long.t * 2, 'distance = t·|direction|');
+  assert.equal(reference.distance, reference.t, 'a unit direction: distance = t');
+  assert.deepEqual(Object.keys(reference).sort(), ['distance', 'normal', 'point', 't', 'triangle', 'u', 'v']);
+  assert.deepEqual(Object.keys(far).sort(), ['distance', 'normal', 'point', 'triangle', 'u', 'v']);
+  // The reference ray passes through a grid vertex: every triangle around it is hit, once,
+  // lower index first on the equal t.
+  const all = bvh.raycastAll(above, down);
+  assert.deepEqual(all[0], reference, 'raycastAll: the same objects, same defaults');
+  assert.ok(all.length > 1 && all.every((h, i) => i === 0 || (h.t >= all[i - 1].t && h.triangle > all[i - 1].triangle)));
+  assert.deepEqual(bvh.raycastAll({ x: 0.3, y: 0.6, z: 1 }, Float64Array.from(down), null, null, null), all);
+}
+
+// Other documented defaults: options omitted or null, a matrix as 16 numbers or a Matrix4.
+{
+  const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+  const shifted = [...identity.slice(0, 12), 0.25, 0, 0, 1];
+  const other = MeshBvh.build(positions, indices, null);
+  assert.equal(bvh.intersectsMesh(other), true);
+  const a = bvh.intersectingPairs(other, shifted);
+  const b = bvh.intersectingPairs(other, { elements: Float64Array.from(shifted) }, null);
+  assert.deepEqual(a, b, 'a Matrix4-like object = its elements');
+  assert.ok(a.total > 0);
+  assert.equal(bvh.intersectingPairs(other, shifted, 2).pairs.length, 4, 'maxPairs caps');
+  assert.deepEqual(MeshBvh.build(positions, indices, { quality: undefined, structure: null }).toBlob(), bvh.toBlob());
+  assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
+  assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
+  other.free();
+}
 
 // Bad single-query arguments. Plain-number arguments (near, far, side, raycastXyz's
 // coordinates) arrive as numbers, anything else as NaN: a RangeError then.
@@ -84,7 +119,10 @@ const cases = [
   [() => bvh.raycast(above, down, 0, Infinity, 'front'), RangeError, /side/],
   [() => bvh.raycastXyz(0.3, 0.6, 1, 0, 0), RangeError, /dz must be a finite number, got NaN/],
   [() => bvh.raycastXyz(0.3, 0.6, Infinity, 0, 0, -1), RangeError, /oz/],
-  [() => bvh.raycastAll(0.3, NaN, 1, 0, 0, -1), RangeError, /oy/],
+  [() => bvh.raycastAll(0.3, NaN, 1, 0, 0, -1), TypeError, /origin must be \[x, y, z\]/],
+  [() => bvh.raycastAll(above), TypeError, /direction/],
+  [() => bvh.raycastAll(above, down, 0, Infinity, 9), RangeError, /side/],
+  [() => bvh.raycastAny(), TypeError, /origin/],
   [() => bvh.raycastAny(above, 'down'), TypeError, /direction/],
   [() => bvh.closestPoint(), TypeError, /point/],
   [() => bvh.closestPoint([0, 0, 0], -1), RangeError, /maxDistance/],
@@ -95,13 +133,64 @@ const cases = [
   [() => MeshBvh.fromBlob([1, 2, 3]), TypeError, /Uint8Array/],
   [() => MeshBvh.fromBlob(new Uint8Array([1, 2, 3])), Error, /blob/],
   [() => MeshBvh.build('positions'), TypeError, /positions/],
+  [() => MeshBvh.build(), TypeError, /positions/],
+  [() => MeshBvh.build(positions, 'indices'), TypeError, /indices must be/],
+  [() => MeshBvh.build(positions, [0, 1, 2.5]), RangeError, /indices\[2\] must be a whole number/],
+  [() => MeshBvh.build(positions, [0, 1, 'x']), TypeError, /indices\[2\] must be a number/],
+  [() => MeshBvh.build(positions, indices, 'fast'), TypeError, /options must be an object/],
+  [() => MeshBvh.build(positions, indices, { maxLeafTris: 4 }), RangeError, /unknown option "maxLeafTris"/],
+  [() => MeshBvh.build(positions, indices, { quality: 5 }), TypeError, /options.quality must be a string/],
+  [() => MeshBvh.build(positions, indices, { quality: 'best' }), RangeError, /options.quality must be one of/],
+  [() => MeshBvh.build(positions, indices, { structure: 'tree' }), RangeError, /options.structure must be one of/],
+  [() => MeshBvh.build(positions, indices, { maxLeafSize: '4' }), TypeError, /options.maxLeafSize must be a number/],
+  [() => MeshBvh.build(positions, indices, { bins: NaN }), RangeError, /options.bins must be a number, got NaN/],
+  [() => MeshBvh.build(positions, indices, { maxDepth: 2.5 }), RangeError, /options.maxDepth must be a whole number/],
+  [() => MeshBvh.build(positions, indices, { maxLeafSize: 0 }), RangeError, /options.maxLeafSize must be in 1..=\d+, got 0/],
+  [() => bvh.toBlob(5), TypeError, /layout must be a string/],
+  [() => bvh.toBlob('zip'), RangeError, /layout must be one of "indexed", "packed", "omitted"/],
+  [() => bvh.levelBoxes(), TypeError, /level must be a whole number/],
+  [() => bvh.levelBoxes('1'), TypeError, /level must be a number/],
+  [() => bvh.levelBoxes(-1), RangeError, /level must be a whole number/],
+  [() => bvh.closestPointBatch(Float32Array.from([0, 0, 0]), 'far', new Float32Array(3), new Uint32Array(1), new Float32Array(1)), TypeError, /maxDistance/],
+  [() => bvh.intersectsMesh(), Error, /MeshBvh/],
+  [() => bvh.intersectsMesh(bvh, 'identity'), TypeError, /matrix must be an array or typed array/],
+  [() => bvh.intersectsMesh(bvh, [1, 0, 0]), RangeError, /matrix must hold exactly 16 numbers, got 3/],
+  [() => bvh.intersectsMesh(bvh, { elements: new Array(16).fill(NaN) }), RangeError, /matrix\[0\] must be a finite number/],
+  [() => bvh.intersectsMesh(bvh, { rows: 4 }), TypeError, /matrix must be 16 numbers .* or a Matrix4/],
+  [() => bvh.intersectsMesh(bvh, [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]), RangeError, /matrix: .*bottom row/],
+  [() => bvh.intersectingPairs(bvh, null, 'all'), TypeError, /maxPairs must be a number/],
+  [() => bvh.intersectingPairs(bvh, null, -3), RangeError, /maxPairs must be a whole number/],
+  [() => bvh.intersectionSegments(bvh, [0]), RangeError, /matrix must hold exactly 16/],
+  [() => bvh.selfIntersections(0.5), RangeError, /maxPairs must be a whole number/],
+  [() => bvh.overlapsSphere([0, 0, 0]), TypeError, /radius must be a number/],
+  [() => bvh.overlapsOrientedBox([0, 0, 0], [1, 0, 0, 0, 1, 0, 0, 0], [1, 1, 1]), RangeError, /axes must hold exactly 9 numbers, got 8/],
+  [() => bvh.overlapsOrientedBox([0, 0, 0], 'xyz', [1, 1, 1]), TypeError, /axes must be an array/],
+  [() => bvh.overlapsOrientedBox([0, 0, 0], [1, 0, 0, 0, 1, 0, 0, 0, 1]), TypeError, /halfExtents/],
+  [() => randomRays(bvh.bounds(), 1), TypeError, /count must be a whole number/],
+  [() => randomRays(bvh.bounds(), 'one', 10), TypeError, /seed must be a number/],
+  [() => randomRays(bvh.bounds(), -1, 10), RangeError, /seed must be a whole number/],
+  [() => randomRays([0, 0, 0], 1, 10), RangeError, /bounds must hold exactly 6 numbers, got 3/],
+  [() => randomRays(bvh.bounds(), 1, 1e9), RangeError, /count: .* more than 1 GiB/],
+  [() => cameraRays(bvh.bounds(), 64), TypeError, /height must be a whole number/],
+  [() => cameraRays(bvh.bounds(), 64.5, 64), RangeError, /width must be a whole number/],
+  [() => queryPoints('bounds', 1, 10), TypeError, /bounds must be an array/],
+  [() => remesh(), TypeError, /positions/],
+  [() => remesh(positions, indices, { targetRatio: 0 }), RangeError, /options.targetRatio must be a positive finite number/],
+  [() => remesh(positions, indices, { targetRatio: 1, targetLength: 0.1 }), RangeError, /not both/],
+  [() => remesh(positions, indices, { iterations: 1.5 }), RangeError, /options.iterations must be a whole number/],
+  [() => remesh(positions, indices, { featureAngle: 'sharp' }), TypeError, /options.featureAngle must be a number/],
+  [() => remesh(positions, indices, { steps: 3 }), RangeError, /unknown option "steps"/],
+  [() => remesh(positions, indices, 10), TypeError, /options must be an object/],
 ];
 
 // Bad batch outputs: wrong type, wrong length; the arrays stay as they were.
 const rays = Float32Array.from([...above, ...down, 0.5, 0.5, 1, 0, 0, -1]);
 const sentinel = (array) => array.fill(7);
 const batchCases = [
-  [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Uint16Array(2), t), TypeError, /distances must be a Float32Array, got Uint16Array/],
+  [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Uint16Array(2), t), TypeError, /t must be a Float32Array, got Uint16Array/],
+  [(d, t) => bvh.raycastBatch(rays, 'near', Infinity, d, t), TypeError, /near must be a number/],
+  [(d, t) => bvh.raycastBatch(rays, 0, NaN, d, t), RangeError, /far must be a number, got NaN/],
+  [(d, t) => bvh.raycastBatch(rays), TypeError, /t must be a Float32Array, got undefined/],
   [(d) => bvh.raycastBatch(rays, 0, Infinity, d, [0, 0]), TypeError, /triangles must be a Uint32Array, got Array/],
   [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Float64Array(2), t), TypeError, /Float32Array, got Float64Array/],
   [(d, t) => bvh.raycastBatch(rays, 0, Infinity, new Float32Array(3), t), RangeError, /exactly 2/],
@@ -124,7 +213,7 @@ const batchCases = [
   }
   // The same arrays still work in a correct call afterwards.
   assert.equal(bvh.raycastBatch(rays, undefined, undefined, d, t), 2);
-  assert.equal(d[0], Math.fround(reference.distance));
+  assert.equal(d[0], reference.t);
   assert.equal(t[0], reference.triangle);
 }
 for (const [i, [f, type, words]] of cases.entries()) throws(f, type, words, `case ${i}`);

@@ -3,7 +3,7 @@
 // same full intersection lists, material sides, near/far, a transformed mesh, draw ranges and
 // groups with an array of materials; intersectsGeometry and the mesh–mesh bindings on
 // spheres whose meeting is known from geometry.
-// Run after scripts/wasm.sh: node web/tests/three-dropin.mjs
+// Run after scripts/build-web.sh: node web/tests/three-dropin.mjs
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -11,8 +11,8 @@ import { Worker, isMainThread, parentPort, workerData } from 'node:worker_thread
 import * as THREE from 'three';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { mergeVertices } from 'three/addons/utils/BufferGeometryUtils.js';
-import { AVERAGE, CENTER, CONTAINED, INTERSECTED, NOT_INTERSECTED, SAH, acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from '../../wasm/pkg-nodejs/three.mjs';
-import meshq from '../../wasm/pkg-nodejs/meshq_wasm.js';
+import { AVERAGE, CENTER, CONTAINED, INTERSECTED, NOT_INTERSECTED, SAH, acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from 'meshq-wasm/three';
+import * as meshq from 'meshq-wasm';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const RAYS = Number(process.env.MESHQ_DROPIN_RAYS ?? 10000);

@@ -1,0 +1,132 @@
+//! The TypeScript types the exported functions name (through `unchecked_param_type` and
+//! `unchecked_return_type`), written into the package's `.d.ts` beside the generated
+//! declarations. `web/tests/types/` compiles examples against them with `tsc --noEmit`,
+//! including calls that must be refused.
+
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TYPES: &'static str = r#"
+/** A point or direction: `[x, y, z]` (an array or typed array of three numbers) or an
+ *  object with numeric `x`, `y`, `z` such as three.js's `Vector3`. */
+export type Vec3Like = ArrayLike<number> | { readonly x: number; readonly y: number; readonly z: number };
+
+/** A 4×4 affine matrix: 16 numbers in column-major order (three.js `Matrix4.elements`), or a
+ *  `Matrix4` itself. The bottom row must be `0, 0, 0, 1`. */
+export type Matrix4Like = ArrayLike<number> | { readonly elements: ArrayLike<number> };
+
+/** Which faces a ray hits: `0` front only, `1` back only, `2` both (three.js `FrontSide`,
+ *  `BackSide`, `DoubleSide`). Counter-clockwise triangles face front. */
+export type Side = 0 | 1 | 2;
+
+/** Coordinates in a result. */
+export interface XYZ { x: number; y: number; z: number }
+
+/** A ray hit. `t` is the ray parameter (the hit is at `origin + t·direction`, `t` in units
+ *  of the direction's length); `distance` is the Euclidean distance from the origin to the
+ *  hit, `t·|direction|` (so `t` and `distance` agree, up to rounding, for a unit direction).
+ *  `u`, `v` weigh the triangle's second and third corners; `normal` is the unit geometric
+ *  normal of its front face. */
+export interface RayHit {
+  t: number;
+  distance: number;
+  point: XYZ;
+  triangle: number;
+  u: number;
+  v: number;
+  normal: XYZ;
+}
+
+/** The surface point nearest a query point. `distance` is the Euclidean distance to it. */
+export interface ClosestPoint {
+  distance: number;
+  point: XYZ;
+  triangle: number;
+  u: number;
+  v: number;
+  normal: XYZ;
+}
+
+/** Options of `MeshBvh.build`; every field is optional. */
+export interface MeshBvhOptions {
+  /** Which structure answers (default `'bvh'`); every structure gives the same answers. */
+  structure?: 'bvh' | 'kdtree' | 'octree' | 'grid' | null;
+  /** BVH build quality: `'balanced'` (binned SAH, the default), `'fast'` (centre splits,
+   *  quicker to build, somewhat slower rays) or `'high'`. */
+  quality?: 'fast' | 'balanced' | 'high' | null;
+  /** Largest BVH leaf, in triangles (default 4). */
+  maxLeafSize?: number | null;
+  /** SAH bins per axis (default 32). */
+  bins?: number | null;
+  /** Deepest BVH level (default and maximum 64). */
+  maxDepth?: number | null;
+}
+
+/** How a blob stores its mesh: `'indexed'` (positions and indices; the default), `'packed'`
+ *  (three corners per triangle in leaf order: larger, fastest to query in place) or
+ *  `'omitted'` (no mesh; only for readers that have it). */
+export type BlobLayout = 'indexed' | 'packed' | 'omitted';
+
+/** Triangle pairs that meet: `pairs` holds triangle indices two by two (this mesh's, then
+ *  the other's); `total` counts every pair found, `tested` the triangle pairs tested, and
+ *  `overflowed` says some pairs were left out by `maxPairs`. */
+export interface PairsResult {
+  pairs: Uint32Array;
+  total: number;
+  tested: number;
+  overflowed: boolean;
+}
+
+/** The BVH as flat arrays (see `MeshBvh.treeArrays`). */
+export interface TreeArrays {
+  boxes: Float32Array;
+  first: Uint32Array;
+  count: Uint32Array;
+  order: Uint32Array;
+}
+
+/** Options of `remesh`; every field is optional. Give `targetLength` or `targetRatio`, not
+ *  both. */
+export interface RemeshOptions {
+  /** Target edge length in the mesh's units. */
+  targetLength?: number | null;
+  /** Target edge length as a multiple of the mean edge length (default 1). */
+  targetRatio?: number | null;
+  /** Iterations (default 10). */
+  iterations?: number | null;
+  /** Keep creases sharper than this many degrees (default: none kept). */
+  featureAngle?: number | null;
+}
+
+/** Mesh quality figures, before or after remeshing. */
+export interface MeshQualityFigures {
+  triangles: number;
+  vertices: number;
+  valence6Percent: number;
+  /** Degrees. */
+  minAngleOffBoundary: number;
+  under30Percent: number;
+  meanEdge: number;
+  edgeCv: number;
+  /** Interior vertices by valence; the last entry counts 12 and more. */
+  valences: Uint32Array;
+}
+
+/** What `remesh` returns. */
+export interface RemeshResult {
+  positions: Float32Array;
+  indices: Uint32Array;
+  iterations: number;
+  splits: number;
+  collapses: number;
+  flips: number;
+  relaxed: number;
+  creases: number;
+  peakVertices: number;
+  peakTriangles: number;
+  /** Two-sided distance to the input over its bounding-box diagonal. */
+  distance: number;
+  before: MeshQualityFigures;
+  after: MeshQualityFigures;
+}
+"#;

@@ -1,0 +1,87 @@
+// Compiled by `tsc --noEmit` (web/tests/types.mjs) against the installed package's typings, in
+// bundler and Node resolution: every call of the API as documented, and calls the typings must
+// refuse (each marked as an expected error), so they cannot silently decay to `any`.
+import init, {
+  MeshBvh,
+  cameraRays,
+  queryPoints,
+  randomRays,
+  remesh,
+  type BlobLayout,
+  type ClosestPoint,
+  type MeshBvhOptions,
+  type PairsResult,
+  type RayHit,
+  type RemeshResult,
+  type Vec3Like,
+} from 'meshq-wasm';
+
+export async function everyCall(positions: Float32Array, indices: Uint32Array, blob: Uint8Array): Promise<number> {
+  await init();
+  const options: MeshBvhOptions = { structure: 'grid', quality: 'fast', maxLeafSize: 4, bins: 16, maxDepth: 40 };
+  const bvh = MeshBvh.build(positions, indices);
+  const grid = MeshBvh.build(positions, indices, options);
+  const soup = MeshBvh.build([0, 0, 0, 1, 0, 0, 0, 1, 0]);
+  const loaded = MeshBvh.fromBlob(blob);
+
+  const origin: Vec3Like = [0, 0, 1];
+  const hit: RayHit | null = bvh.raycast(origin, { x: 0, y: 0, z: -1 });
+  const t: number | undefined = hit?.t;
+  const distance: number | undefined = hit?.distance;
+  bvh.raycast(new Float32Array(3), [0, 0, -1], 0, 10, 2);
+  bvh.raycastXyz(0, 0, 1, 0, 0, -1);
+  bvh.raycastXyz(0, 0, 1, 0, 0, -1, 0, Infinity, 0);
+  const any: boolean = bvh.raycastAny(origin, [0, 0, -1]);
+  const all: RayHit[] = bvh.raycastAll(origin, [0, 0, -1], null, null, 1);
+  const near: ClosestPoint | null = bvh.closestPoint([1, 2, 3]);
+  bvh.closestPoint({ x: 1, y: 2, z: 3 }, 0.5);
+
+  const rays = randomRays(bvh.bounds(), 1, 100);
+  const ts = new Float32Array(100);
+  const triangles = new Uint32Array(100);
+  const hits: number = bvh.raycastBatch(rays, undefined, undefined, ts, triangles);
+  bvh.raycastBatch(rays, 0, 5, ts, triangles, 0);
+  bvh.raycastBatchBarycentric(rays, null, null, ts, triangles, new Float32Array(200));
+  bvh.raycastAnyBatch(cameraRays(bvh.bounds(), 10, 10), 0, 1, new Uint8Array(100));
+  const points = queryPoints(bvh.bounds(), 1, 10);
+  bvh.closestPointBatch(points, undefined, new Float32Array(30), new Uint32Array(10), new Float32Array(10));
+  const misses: number = MeshBvh.MISS_T + MeshBvh.MISS_DISTANCE + MeshBvh.MISS_TRIANGLE;
+
+  const layout: BlobLayout = 'packed';
+  const bytes: Uint8Array = loaded.toBlob();
+  grid.toBlob(layout);
+  const pairs: PairsResult = bvh.intersectingPairs(grid, [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], 10);
+  bvh.intersectingPairs(grid, { elements: new Float64Array(16) });
+  bvh.intersectsMesh(grid);
+  bvh.intersectionSegments(grid, null);
+  bvh.selfIntersections();
+  bvh.overlapsSphere([0, 0, 0], 1);
+  bvh.overlapsOrientedBox([0, 0, 0], [1, 0, 0, 0, 1, 0, 0, 0, 1], [1, 1, 1]);
+  bvh.overlapsTriangle([0, 0, 0], [1, 0, 0], [0, 1, 0]);
+  const boxes: Float32Array = bvh.levelBoxes(2);
+  const structure: 'bvh' | 'kdtree' | 'octree' | 'grid' = grid.structure;
+  const remeshed: RemeshResult = remesh(bvh.vertexPositions(), bvh.indices(), { targetRatio: 1, iterations: 3, featureAngle: 45 });
+  remesh(positions);
+  const tree = bvh.treeArrays();
+  soup.free();
+
+  // @ts-expect-error a ray needs a direction
+  bvh.raycast(origin);
+  // @ts-expect-error points are Vec3Like, not strings
+  bvh.closestPoint('1, 2, 3');
+  // @ts-expect-error side is 0, 1 or 2
+  bvh.raycast(origin, origin, 0, 1, 3);
+  // @ts-expect-error a closest point has no ray parameter
+  near?.t;
+  // @ts-expect-error unknown build option
+  MeshBvh.build(positions, indices, { maxLeafTris: 4 });
+  // @ts-expect-error unknown structure
+  MeshBvh.build(positions, indices, { structure: 'quadtree' });
+  // @ts-expect-error unknown blob layout
+  bvh.toBlob('zip');
+  // @ts-expect-error batches write into typed arrays
+  bvh.raycastBatch(rays, 0, 1, [], triangles);
+
+  return (t ?? 0) + (distance ?? 0) + Number(any) + all.length + hits + misses + bytes.length
+    + pairs.total + boxes.length + structure.length + remeshed.after.valence6Percent + tree.first.length;
+}
