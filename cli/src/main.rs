@@ -16,6 +16,7 @@ mod records;
 mod remesh;
 mod structure;
 mod structure_arg;
+mod threads;
 mod workload;
 
 use meshq_cli::mesh_file;

@@ -7,12 +7,16 @@ use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use meshq::MeshQuery;
 use meshq::math::{Ray, RayHit, Vec3};
+use meshq::owned::MeshIndex;
+use meshq::parallel;
 use meshq::query::RayOptions;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::output::say;
 use crate::records::{RecordReader, ResultWriter};
 use crate::structure::{PrepareTime, QueryInput, with_structure};
+use crate::threads::Threads;
 use crate::{output, progress};
 
 /// Rays read and queried per chunk (24 MB of input).
@@ -40,7 +44,8 @@ pub enum HitFormat {
 #[command(after_help = "Examples:\n  \
     meshq workload assets/stanford-bunny.obj -o rays.bin\n  \
     meshq raycast bunny.meshq --rays rays.bin --out hits.bin --json\n  \
-    meshq raycast assets/spot.obj --rays rays.bin --out hits.bin --format full --hits 4")]
+    meshq raycast assets/spot.obj --rays rays.bin --out hits.bin --format full --hits 4\n  \
+    meshq raycast bunny.meshq --rays rays.bin --out hits.bin --threads 0 --json")]
 pub struct RaycastArgs {
     #[command(flatten)]
     pub input: QueryInput,
@@ -75,7 +80,9 @@ struct Summary {
     hits: u64,
     #[serde(flatten)]
     prepare: PrepareTime,
-    /// The queries alone, one thread.
+    /// Threads that answered (`--threads`).
+    threads: usize,
+    /// The queries alone, on those threads.
     query_seconds: f64,
     rays_per_second: f64,
 }
@@ -110,10 +117,86 @@ fn write_record(
     Ok(())
 }
 
+/// The record of an any-hit answer.
+fn any_record(hit: bool) -> RayHit {
+    if hit {
+        RayHit {
+            t: 0.0,
+            tri: ANY_HIT,
+            ..MISS
+        }
+    } else {
+        MISS
+    }
+}
+
+/// Answers `rays` on this thread, one query per call, appending each ray's records.
+fn query_here(
+    scene: &MeshIndex,
+    rays: &[Ray],
+    args: &RaycastArgs,
+    nearest: &mut [RayHit],
+    results: &mut Vec<RayHit>,
+) {
+    let options = RayOptions::default();
+    if args.hits.is_some() {
+        for r in rays {
+            let found = scene.raycast_all(r, &options, nearest);
+            let (written, _) = nearest.split_at(found.written);
+            results.extend_from_slice(written);
+            results.extend((found.written..nearest.len()).map(|_| MISS));
+        }
+    } else if args.any {
+        results.extend(rays.iter().map(|r| any_record(scene.raycast_any(r))));
+    } else {
+        results.extend(rays.iter().map(|r| scene.raycast(r).unwrap_or(MISS)));
+    }
+}
+
+/// Answers `rays` on the current rayon pool (`meshq::parallel` batches, or one every-hit
+/// query per ray), appending the same records as [`query_here`].
+fn query_on_threads(
+    scene: &MeshIndex,
+    rays: &[Ray],
+    args: &RaycastArgs,
+    per_ray: usize,
+    answers: &mut Vec<Option<RayHit>>,
+    results: &mut Vec<RayHit>,
+) -> Result<()> {
+    let options = RayOptions::default();
+    if args.hits.is_some() {
+        let records: Vec<RayHit> = rays
+            .par_iter()
+            .map_init(
+                || vec![MISS; per_ray],
+                |nearest, r| {
+                    let found = scene.raycast_all(r, &options, nearest);
+                    let mut out = nearest.clone();
+                    out.iter_mut().skip(found.written).for_each(|h| *h = MISS);
+                    out
+                },
+            )
+            .flatten_iter()
+            .collect();
+        results.extend(records);
+    } else if args.any {
+        let mut flags = vec![false; rays.len()];
+        parallel::raycast_any_batch(scene, rays, &options, &mut flags)?;
+        results.extend(flags.into_iter().map(any_record));
+    } else {
+        answers.clear();
+        answers.resize(rays.len(), None);
+        parallel::raycast_batch(scene, rays, &options, answers)?;
+        results.extend(answers.iter().map(|a| a.unwrap_or(MISS)));
+    }
+    Ok(())
+}
+
 pub fn run(args: &RaycastArgs) -> Result<()> {
     if args.any && args.format != HitFormat::TTri {
         bail!("--any records only that something is hit: use --format t-tri");
     }
+    let threads = Threads::new(args.input.threads)?;
     let mut reader = RecordReader::open(&args.rays, 6, "ray")?;
     let mut inputs = args.input.paths();
     inputs.push(&args.rays);
@@ -128,7 +211,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
         let mut results: Vec<RayHit> = Vec::with_capacity(CHUNK);
         let (mut hits, mut query_seconds) = (0u64, 0.0f64);
         let mut nearest = vec![MISS; per_ray];
-        let options = RayOptions::default();
+        let mut answers = Vec::new();
         while reader.next_chunk(CHUNK, &mut floats)? > 0 {
             rays.clear();
             let (records, _) = floats.as_chunks::<6>();
@@ -137,27 +220,11 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             }));
             results.clear();
             let start = Instant::now();
-            if args.hits.is_some() {
-                for r in &rays {
-                    let found = s.scene.raycast_all(r, &options, &mut nearest);
-                    let (written, _) = nearest.split_at(found.written);
-                    results.extend_from_slice(written);
-                    results.extend((found.written..per_ray).map(|_| MISS));
-                }
-            } else if args.any {
-                results.extend(rays.iter().map(|r| {
-                    if s.scene.raycast_any(r) {
-                        RayHit {
-                            t: 0.0,
-                            tri: ANY_HIT,
-                            ..MISS
-                        }
-                    } else {
-                        MISS
-                    }
-                }));
-            } else {
-                results.extend(rays.iter().map(|r| s.scene.raycast(r).unwrap_or(MISS)));
+            match threads.pool() {
+                None => query_here(&s.scene, &rays, args, &mut nearest, &mut results),
+                Some(pool) => pool.install(|| {
+                    query_on_threads(&s.scene, &rays, args, per_ray, &mut answers, &mut results)
+                })?,
             }
             query_seconds += start.elapsed().as_secs_f64();
             for (i, hit) in results.iter().enumerate() {
@@ -173,6 +240,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             rays: reader.count,
             hits,
             prepare: s.time(),
+            threads: threads.count(),
             query_seconds,
             rays_per_second: per_second(reader.count, query_seconds),
         })

@@ -7,7 +7,6 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use meshq::MeshBvh;
 use meshq::blob::{BlobHeader, MAGIC};
 use meshq::bvh::BuildConfig;
 use meshq::error::BlobError;
@@ -17,6 +16,7 @@ use meshq::owned::{MeshIndex, StructureKind};
 use crate::mesh_file::{MeshData, read_mesh};
 use crate::quality::Quality;
 use crate::structure_arg::StructureArg;
+use crate::threads::Threads;
 
 /// What a query command gets: the mesh with its trees, and how long preparing them took
 /// (building from a mesh, or validating and decoding a blob; file reading excluded).
@@ -87,6 +87,10 @@ pub struct QueryInput {
     /// it must hold.
     #[arg(long, value_enum)]
     pub structure: Option<StructureArg>,
+    /// Threads answering the queries: 1 (the default) on this thread, one query per call; N
+    /// spread over N threads (0: one per core). The records are the same whatever the count.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub threads: usize,
 }
 
 impl QueryInput {
@@ -128,6 +132,7 @@ pub fn with_structure<R>(
             input,
             args.structure.unwrap_or_default().kind(),
             config,
+            &Threads::new(args.threads)?,
             query,
         )
     }
@@ -161,6 +166,7 @@ pub fn with_built<R>(
     path: &Path,
     kind: StructureKind,
     config: &BuildConfig,
+    threads: &Threads,
     query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
     let mesh = MeshRef::new(&data.positions, &data.triangles)
@@ -168,7 +174,7 @@ pub fn with_built<R>(
         .with_context(|| format!("{}: invalid mesh", path.display()))?;
     let start = Instant::now();
     let scene = match kind {
-        StructureKind::Bvh => MeshIndex::Bvh(MeshBvh::build(&mesh, config)?),
+        StructureKind::Bvh => MeshIndex::Bvh(threads.build_bvh(&mesh, config)?),
         other => MeshIndex::build(&mesh, other)?,
     };
     let prepare_seconds = start.elapsed().as_secs_f64();

@@ -768,3 +768,103 @@ fn check_reports_self_intersections_and_contacts_as_brute_force_finds_them() {
     );
     fails(&[&"check", &spot, &"--transform", &"1"], 2, "--against");
 }
+
+/// `--threads` changes who answers, never the answer: raycast (closest hit, any hit, every
+/// hit) and closest records on 2 threads and on one per core equal a brute-force scan and the
+/// one-thread records byte for byte; the JSON says how many threads answered.
+#[test]
+fn threads_give_the_same_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let brute = BruteForce::new(&mesh);
+    let obj = asset("spot.obj");
+    // More than one run of meshq::parallel, so several threads share the work.
+    let rays = workload::random_rays(&loaded.positions, 9_000, 21);
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let points = workload::closest_points(&loaded.positions, 9_000, 22);
+    let point_file = dir.path().join("points.bin");
+    write_f32s(&point_file, points.iter().flat_map(|p| p.to_array()));
+    let options = RayOptions::default();
+    for flags in [&[][..], &["--any"][..], &["--hits", "3"][..]] {
+        let mut outputs = Vec::new();
+        for threads in ["1", "2", "0"] {
+            let out = dir.path().join(format!("hits-{threads}.bin"));
+            let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
+                &"raycast",
+                &obj,
+                &"--rays",
+                &ray_file,
+                &"--out",
+                &out,
+                &"--threads",
+                &threads,
+                &"--json",
+            ];
+            args.extend(flags.iter().map(|f| f as &dyn AsRef<std::ffi::OsStr>));
+            let json = ok(&args);
+            let want = if threads == "2" {
+                "\"threads\":2"
+            } else {
+                "\"threads\":"
+            };
+            assert!(json.contains(want), "{json}");
+            outputs.push(std::fs::read(&out).unwrap());
+        }
+        assert_eq!(outputs[1], outputs[0], "{flags:?}: 2 threads");
+        assert_eq!(outputs[2], outputs[0], "{flags:?}: a thread per core");
+        if flags.is_empty() {
+            let records = read_records(&dir.path().join("hits-2.bin"));
+            for (i, (ray, &(t, tri))) in rays.iter().zip(&records).enumerate() {
+                let want = brute.raycast(ray, &options);
+                assert_eq!(
+                    (t.to_bits(), tri),
+                    want.map_or((f32::INFINITY.to_bits(), u32::MAX), |h| (
+                        h.t.to_bits(),
+                        h.tri
+                    )),
+                    "ray {i}"
+                );
+            }
+        }
+    }
+    let mut outputs = Vec::new();
+    for threads in ["1", "2"] {
+        let out = dir.path().join(format!("closest-{threads}.bin"));
+        ok(&[
+            &"closest",
+            &obj,
+            &"--points",
+            &point_file,
+            &"--out",
+            &out,
+            &"--threads",
+            &threads,
+        ]);
+        outputs.push(std::fs::read(&out).unwrap());
+    }
+    assert_eq!(outputs[1], outputs[0], "closest on 2 threads");
+    // A bake on threads (the bunny is large enough to be split in parallel): the same bytes.
+    let bunny = asset("stanford-bunny.obj");
+    let blobs: Vec<Vec<u8>> = ["1", "2"]
+        .iter()
+        .map(|threads| {
+            let blob = dir.path().join(format!("bunny-{threads}.meshq"));
+            ok(&[&"bake", &bunny, &"-o", &blob, &"--threads", threads]);
+            std::fs::read(&blob).unwrap()
+        })
+        .collect();
+    assert_eq!(blobs[1], blobs[0], "bake on 2 threads");
+    let records = read_records(&dir.path().join("closest-2.bin"));
+    for (i, (&p, &(d, tri))) in points.iter().zip(&records).enumerate() {
+        let want = brute
+            .closest_point(p, f32::INFINITY)
+            .expect("a nearest point");
+        assert_eq!(
+            (d.to_bits(), tri),
+            (want.distance_squared.sqrt().to_bits(), want.tri),
+            "point {i}"
+        );
+    }
+}

@@ -51,6 +51,8 @@
 //! - [`error`]: [`MeshError`](error::MeshError), [`BuildError`](error::BuildError),
 //!   [`StructureError`](error::StructureError), [`BatchError`](error::BatchError).
 //! - [`prelude`]: the names most code needs, in one `use`.
+//! - `parallel` (feature `parallel`): the batches spread over a thread pool, with the same
+//!   answers.
 //!
 //! ## Conventions
 //! - `f32` everywhere, no fused multiply-add, transcendental functions only through `libm`.
@@ -101,6 +103,8 @@ pub mod mesh;
 pub mod octree;
 #[cfg(feature = "alloc")]
 pub mod owned;
+#[cfg(feature = "parallel")]
+pub mod parallel;
 pub mod prelude;
 pub mod query;
 pub mod remesh;

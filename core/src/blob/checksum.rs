@@ -4,12 +4,19 @@ use crc::{CRC_32_ISO_HDLC, Crc, Digest, Table};
 
 use crate::mesh::ValidMesh;
 
-/// The one-table (1 KiB) variant: small enough for firmware flash, fast enough to check a
-/// multi-megabyte blob once at load.
-static CRC32: Crc<u32, Table<1>> = Crc::<u32, Table<1>>::new(&CRC_32_ISO_HDLC);
+/// Lookup tables of the CRC: one (1 KiB) on bare-metal targets, where flash is scarce and
+/// blobs are small; sixteen (16 KiB, "slice-by-16", about ten times the speed) everywhere
+/// else, where checking a multi-megabyte blob at load is most of the load time. The same
+/// checksum either way.
+#[cfg(target_os = "none")]
+type Tables = Table<1>;
+#[cfg(not(target_os = "none"))]
+type Tables = Table<16>;
+
+static CRC32: Crc<u32, Tables> = Crc::<u32, Tables>::new(&CRC_32_ISO_HDLC);
 
 /// A running CRC-32.
-pub(crate) fn digest() -> Digest<'static, u32, Table<1>> {
+pub(crate) fn digest() -> Digest<'static, u32, Tables> {
     CRC32.digest()
 }
 

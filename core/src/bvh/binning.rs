@@ -183,8 +183,7 @@ impl Binning {
         centroids: &BuildBox,
         bins: u32,
     ) -> Option<Split> {
-        let wanted = (bins as usize).min(prims.len()).clamp(2, MAX_BINS);
-        let binner = Binner::new(centroids, wanted as u32);
+        let (wanted, binner) = Self::binner(prims.len(), centroids, bins);
         for axis in &mut self.axes {
             axis.reset(wanted);
         }
@@ -224,6 +223,58 @@ impl Binning {
                 even.merge(odd, wanted);
             }
         }
+        self.sweep(wanted, binner)
+    }
+
+    /// [`Binning::find_split`] with the triangles binned on rayon's thread pool, in runs
+    /// whose bins are then merged: a bin's box is a union and its count a sum, both exact in
+    /// any order, so the split is the one `find_split` finds, bit for bit.
+    #[cfg(feature = "parallel")]
+    pub fn find_split_parallel(
+        &mut self,
+        prims: &[PrimRef],
+        centroids: &BuildBox,
+        bins: u32,
+    ) -> Option<Split> {
+        use rayon::prelude::*;
+        /// Triangles binned per task.
+        const RUN: usize = 16 * 1024;
+        let (wanted, binner) = Self::binner(prims.len(), centroids, bins);
+        let empty = || [AxisBins::EMPTY, AxisBins::EMPTY, AxisBins::EMPTY];
+        let merged = prims
+            .par_chunks(RUN)
+            .map(|run| {
+                let mut axes = empty();
+                let [xs, ys, zs] = &mut axes;
+                for p in run {
+                    let [bx, by, bz] = binner.bins(p.centroid2());
+                    xs.add(bx, p);
+                    ys.add(by, p);
+                    zs.add(bz, p);
+                }
+                axes
+            })
+            .reduce(empty, |mut a, b| {
+                for (x, y) in a.iter_mut().zip(&b) {
+                    x.merge(y, wanted);
+                }
+                a
+            });
+        for (axis, bins) in self.axes.iter_mut().zip(&merged) {
+            axis.reset(wanted);
+            axis.merge(bins, wanted);
+        }
+        self.sweep(wanted, binner)
+    }
+
+    /// How many bins a node of `count` triangles uses, and the binner for them.
+    fn binner(count: usize, centroids: &BuildBox, bins: u32) -> (usize, Binner) {
+        let wanted = (bins as usize).min(count).clamp(2, MAX_BINS);
+        (wanted, Binner::new(centroids, wanted as u32))
+    }
+
+    /// The cheapest split over the filled bins (see [`Binning::find_split`]).
+    fn sweep(&mut self, wanted: usize, binner: Binner) -> Option<Split> {
         let as_f32 = |c: [u32; 3]| Vec3A::new(c[0] as f32, c[1] as f32, c[2] as f32);
         // Right to left: what lies at or above each bin.
         let mut run = [BuildBox::EMPTY; 3];

@@ -3,7 +3,7 @@
 
 use glam::Vec3A;
 
-use super::binning::{Binning, partition};
+use super::binning::{Binning, Split, partition};
 use super::build_box::BuildBox;
 use super::centre::{Side, centre_split};
 use super::lanes::{max_lanes, min_lanes};
@@ -19,15 +19,17 @@ pub(super) struct Built {
     pub depth: u32,
 }
 
+/// A node to build: its slot, its triangles `begin..end` (positions in the build's arrays),
+/// its level (the root is 1) and the bounds of its triangles and of their centroids.
 #[derive(Clone, Copy)]
-struct Task {
-    node: usize,
-    begin: usize,
-    end: usize,
-    level: u32,
-    bounds: BuildBox,
+pub(super) struct Task {
+    pub node: usize,
+    pub begin: usize,
+    pub end: usize,
+    pub level: u32,
+    pub bounds: BuildBox,
     /// Bounds of the doubled centroids ([`PrimRef::centroid2`]).
-    centroids: BuildBox,
+    pub centroids: BuildBox,
 }
 
 fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildError> {
@@ -48,9 +50,34 @@ pub(super) fn build_into(
     order: &mut [u32],
     scratch: &mut [PrimRef],
 ) -> Result<Built, BuildError> {
+    let Some((prims, order, root)) = prepare(mesh, config, nodes.len(), order, scratch)? else {
+        return Ok(Built {
+            node_count: 0,
+            depth: 0,
+        });
+    };
+    build_subtree(config, root, prims, order, nodes, 0, &mut Binning::new())
+}
+
+/// A build's triangle boxes and order (trimmed to the triangle count), with the root's task.
+pub(super) type Prepared<'s> = (&'s mut [PrimRef], &'s mut [u32], Task);
+
+/// How a node's split is searched: [`Binning::find_split`] or its parallel twin.
+pub(super) type FindSplit<'f> = dyn FnMut(&[PrimRef], &BuildBox, u32) -> Option<Split> + 'f;
+
+/// The first step of every build: checks the config, the buffer lengths and the depth limit,
+/// then fills one [`PrimRef`] per triangle and the identity order. Returns them (trimmed to
+/// the triangle count) with the root's task, or `None` for a mesh without triangles.
+pub(super) fn prepare<'s>(
+    mesh: &ValidMesh<'_>,
+    config: &BuildConfig,
+    nodes_len: usize,
+    order: &'s mut [u32],
+    scratch: &'s mut [PrimRef],
+) -> Result<Option<Prepared<'s>>, BuildError> {
     config.check()?;
     let n = mesh.triangle_count();
-    check_len(BufferKind::Nodes, node_capacity(n), nodes.len())?;
+    check_len(BufferKind::Nodes, node_capacity(n), nodes_len)?;
     check_len(BufferKind::Order, n, order.len())?;
     check_len(BufferKind::Scratch, n, scratch.len())?;
     if n > config.subtree_capacity(1) {
@@ -60,16 +87,10 @@ pub(super) fn build_into(
         });
     }
     let (Some(prims), Some(order)) = (scratch.get_mut(..n), order.get_mut(..n)) else {
-        return Ok(Built {
-            node_count: 0,
-            depth: 0,
-        });
+        return Ok(None);
     };
     if n == 0 {
-        return Ok(Built {
-            node_count: 0,
-            depth: 0,
-        });
+        return Ok(None);
     }
     for ((tri, p), o) in (0u32..).zip(prims.iter_mut()).zip(order.iter_mut()) {
         *p = mesh.triangle(tri).map_or(PrimRef::EMPTY, |t| {
@@ -82,20 +103,37 @@ pub(super) fn build_into(
         *o = tri;
     }
     let (bounds, centroids) = bounds_of(prims);
-
-    let mut stack = [None::<Task>; MAX_DEPTH as usize];
-    let mut sp = 0;
-    let mut next = Some(Task {
+    let root = Task {
         node: 0,
         begin: 0,
         end: n,
         level: 1,
         bounds,
         centroids,
-    });
+    };
+    Ok(Some((prims, order, root)))
+}
+
+/// Builds the subtree of `root` (a task over all of `prims` and `order`, `root.node` = 0)
+/// depth first, left child first, into `nodes`: the root at 0 and each split's children as
+/// the next free pair. Leaves name their triangles by position in `order` plus `base`, the
+/// position of `prims[0]` in the whole build. So a subtree built on its own is the same nodes
+/// the whole build makes, moved to where it puts them (the parallel build relies on this).
+pub(super) fn build_subtree(
+    config: &BuildConfig,
+    root: Task,
+    prims: &mut [PrimRef],
+    order: &mut [u32],
+    nodes: &mut [BvhNode],
+    base: usize,
+    binning: &mut Binning,
+) -> Result<Built, BuildError> {
+    let n = prims.len();
+    let mut stack = [None::<Task>; MAX_DEPTH as usize];
+    let mut sp = 0;
+    let mut next = Some(root);
     let mut node_count = 1;
     let mut depth = 0;
-    let mut binning = Binning::new();
     while let Some(task) = next.take() {
         depth = depth.max(task.level);
         let count = task.end - task.begin;
@@ -105,16 +143,18 @@ pub(super) fn build_into(
         ) else {
             break;
         };
-        let children = split_node(config, &task, range, tris, &mut binning);
+        let children = split_node(config, &task, range, tris, &mut |p, c, k| {
+            binning.find_split(p, c, k)
+        });
         let Some(slot) = nodes.get_mut(task.node) else {
             break;
         };
         match children {
             None => {
-                // Leaf: begin < n ≤ u32::MAX and count ≤ max_leaf_size, so both fit.
+                // Leaf: base + begin < n ≤ u32::MAX and count ≤ max_leaf_size, so both fit.
                 *slot = BvhNode::new(
                     task.bounds.to_aabb().padded(),
-                    task.begin as u32,
+                    (base + task.begin) as u32,
                     count as u32,
                 );
             }
@@ -161,13 +201,14 @@ pub(super) fn build_into(
 }
 
 /// Decides a node: `None` for a leaf, or the left count and both sides' bounds after reordering
-/// `prims` (and `tris` alongside) into left-then-right.
-fn split_node(
+/// `prims` (and `tris` alongside) into left-then-right. `find_split` is
+/// [`Binning::find_split`] or its parallel twin, which finds the same split.
+pub(super) fn split_node(
     config: &BuildConfig,
     task: &Task,
     prims: &mut [PrimRef],
     tris: &mut [u32],
-    binning: &mut Binning,
+    find_split: &mut FindSplit<'_>,
 ) -> Option<(usize, Side, Side)> {
     let count = prims.len();
     if count <= 1 {
@@ -185,7 +226,7 @@ fn split_node(
     }
     let area = task.bounds.half_area();
     if area > 0.0
-        && let Some(split) = binning.find_split(prims, &task.centroids, config.bins)
+        && let Some(split) = find_split(prims, &task.centroids, config.bins)
     {
         {
             let split_cost = config.traversal_cost + config.triangle_cost * (split.cost / area);

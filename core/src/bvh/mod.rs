@@ -36,6 +36,8 @@ mod lanes;
 mod median;
 mod node;
 mod packed;
+#[cfg(feature = "parallel")]
+mod parallel_build;
 mod partition;
 mod prim_ref;
 mod refit;

@@ -48,6 +48,32 @@ impl<'a> Bvh<'a> {
         })
     }
 
+    /// [`Bvh::build`] on rayon's thread pool (feature `parallel`): the same nodes and order,
+    /// bit for bit, whatever the number of threads. Large nodes bin their triangles in
+    /// parallel and build their two children concurrently; subtrees under about 16,000
+    /// triangles are built as [`Bvh::build`] builds them. Buffers and errors as
+    /// [`Bvh::build`]; the build allocates room for the pieces it builds concurrently.
+    ///
+    /// # Errors
+    /// As [`Bvh::build`].
+    #[cfg(feature = "parallel")]
+    pub fn build_parallel(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        nodes: &'a mut [BvhNode],
+        order: &'a mut [u32],
+        scratch: &mut [PrimRef],
+    ) -> Result<Self, BuildError> {
+        let built = super::parallel_build::build_parallel(mesh, config, nodes, order, scratch)?;
+        let nodes: &'a [BvhNode] = nodes;
+        let order: &'a [u32] = order;
+        Ok(Self {
+            nodes: nodes.get(..built.node_count).unwrap_or_default(),
+            order: order.get(..mesh.triangle_count()).unwrap_or_default(),
+            depth: built.depth,
+        })
+    }
+
     /// A view over nodes and order kept from an earlier build (or decoded from storage),
     /// after checking them fully against `mesh` (see [`Bvh::check`]).
     ///

@@ -40,6 +40,26 @@ impl MeshBvh {
     /// # Errors
     /// [`BuildError::TooDeep`] or [`BuildError::InvalidConfig`], as [`Bvh::build`].
     pub fn build(mesh: &ValidMesh<'_>, config: &BuildConfig) -> Result<Self, BuildError> {
+        Self::build_with(mesh, config, false)
+    }
+
+    /// [`MeshBvh::build`] with the tree built on rayon's thread pool ([`Bvh::build_parallel`],
+    /// feature `parallel`): the same buffers, bit for bit.
+    ///
+    /// # Errors
+    /// As [`MeshBvh::build`].
+    #[cfg(feature = "parallel")]
+    pub fn build_parallel(mesh: &ValidMesh<'_>, config: &BuildConfig) -> Result<Self, BuildError> {
+        Self::build_with(mesh, config, true)
+    }
+
+    /// Copies the mesh, builds its tree (on the thread pool when `parallel`), packs and
+    /// widens.
+    fn build_with(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        parallel: bool,
+    ) -> Result<Self, BuildError> {
         let positions = mesh.positions().to_vec();
         let triangles = mesh.triangles().to_vec();
         let n = triangles.len();
@@ -48,7 +68,17 @@ impl MeshBvh {
         let mut scratch = vec![PrimRef::EMPTY; n];
         let depth = {
             let copy = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
-            let bvh = Bvh::build(&copy, config, &mut nodes, &mut order, &mut scratch)?;
+            #[cfg(feature = "parallel")]
+            let bvh = if parallel {
+                Bvh::build_parallel(&copy, config, &mut nodes, &mut order, &mut scratch)?
+            } else {
+                Bvh::build(&copy, config, &mut nodes, &mut order, &mut scratch)?
+            };
+            #[cfg(not(feature = "parallel"))]
+            let bvh = {
+                let _ = parallel;
+                Bvh::build(&copy, config, &mut nodes, &mut order, &mut scratch)?
+            };
             let used = bvh.nodes().len();
             let depth = bvh.depth();
             nodes.truncate(used);

@@ -1,0 +1,109 @@
+//! Batches across threads (feature `parallel`, which links `std` and
+//! [rayon](https://docs.rs/rayon)): the same batch queries as [`MeshQuery`], spread over
+//! rayon's thread pool, with the same answers.
+//!
+//! Each call cuts its queries into runs of [`RUN`] consecutive queries and hands the runs to
+//! the pool; a run is answered by the single-threaded batch call ([`MeshQuery::raycast_batch`]
+//! and friends), whose answer for query `i` is exactly the single call's. So `out[i]` is the
+//! same, bit for bit, whatever the number of threads, the run length or the other queries —
+//! and the same as on a target without threads. The pool is rayon's global one unless the
+//! call runs inside [`rayon::ThreadPool::install`] (the `meshq` command's `--threads`).
+//!
+//! ```
+//! use meshq::prelude::*;
+//! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+//! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
+//! let scene = MeshBvh::build(&mesh, &BuildConfig::default())?;
+//! let rays = [Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z); 3];
+//! let mut out = [None; 3];
+//! meshq::parallel::raycast_batch(&scene, &rays, &RayOptions::default(), &mut out)?;
+//! assert_eq!(out.map(|h| h.map(|h| h.tri)), [Some(0); 3]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use alloc::vec;
+
+use rayon::prelude::*;
+
+use crate::error::{BatchBuffer, BatchError};
+use crate::math::{ClosestPoint, Ray, RayHit, Vec3};
+use crate::query::{MeshQuery, RayOptions};
+
+/// Queries per run handed to a thread: long enough for the Morton order inside a run to keep
+/// neighbouring queries together and for a thread's start-up to vanish, short enough for the
+/// runs to spread evenly over the threads.
+pub const RUN: usize = 4096;
+
+/// `out` must hold at least one element per query.
+fn check(buffer: BatchBuffer, needed: usize, got: usize) -> Result<(), BatchError> {
+    if got < needed {
+        return Err(BatchError::BufferTooSmall {
+            buffer,
+            needed,
+            got,
+        });
+    }
+    Ok(())
+}
+
+/// [`MeshQuery::raycast_batch`] on every thread of the pool: `out[i]` is exactly
+/// [`MeshQuery::raycast_with`] for `rays[i]`. Elements of `out` past `rays.len()` are left
+/// alone.
+///
+/// # Errors
+/// [`BatchError::BufferTooSmall`] when `out` is shorter than `rays`; nothing is written then.
+pub fn raycast_batch<Q: MeshQuery + Sync + ?Sized>(
+    query: &Q,
+    rays: &[Ray],
+    options: &RayOptions,
+    out: &mut [Option<RayHit>],
+) -> Result<(), BatchError> {
+    check(BatchBuffer::Results, rays.len(), out.len())?;
+    rays.par_chunks(RUN)
+        .zip(out.par_chunks_mut(RUN))
+        .try_for_each(|(run, answers)| {
+            let mut keys = vec![0u64; run.len()];
+            query.raycast_batch(run, options, &mut keys, answers)
+        })
+}
+
+/// [`MeshQuery::raycast_any_batch`] on every thread of the pool: `out[i]` is exactly
+/// [`MeshQuery::raycast_any_with`] for `rays[i]`.
+///
+/// # Errors
+/// As [`raycast_batch`].
+pub fn raycast_any_batch<Q: MeshQuery + Sync + ?Sized>(
+    query: &Q,
+    rays: &[Ray],
+    options: &RayOptions,
+    out: &mut [bool],
+) -> Result<(), BatchError> {
+    check(BatchBuffer::Results, rays.len(), out.len())?;
+    rays.par_chunks(RUN)
+        .zip(out.par_chunks_mut(RUN))
+        .try_for_each(|(run, answers)| {
+            let mut keys = vec![0u64; run.len()];
+            query.raycast_any_batch(run, options, &mut keys, answers)
+        })
+}
+
+/// [`MeshQuery::closest_points`] on every thread of the pool: `out[i]` is exactly
+/// [`MeshQuery::closest_point`] for `points[i]` and `max_distance`.
+///
+/// # Errors
+/// As [`raycast_batch`].
+pub fn closest_points<Q: MeshQuery + Sync + ?Sized>(
+    query: &Q,
+    points: &[Vec3],
+    max_distance: f32,
+    out: &mut [Option<ClosestPoint>],
+) -> Result<(), BatchError> {
+    check(BatchBuffer::Results, points.len(), out.len())?;
+    points
+        .par_chunks(RUN)
+        .zip(out.par_chunks_mut(RUN))
+        .try_for_each(|(run, answers)| {
+            let mut keys = vec![0u64; run.len()];
+            query.closest_points(run, max_distance, &mut keys, answers)
+        })
+}
