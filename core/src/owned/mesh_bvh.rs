@@ -100,7 +100,11 @@ impl MeshBvh {
         nodes.shrink_to_fit();
         let n = order.len();
         let mut packed = vec![PackedTriangle::EMPTY; n];
-        let mut wide = vec![WideNode::EMPTY; wide_node_capacity(n)];
+        // One wide node per inner binary node at most: sized by the tree, not by the triangle
+        // count (a quarter to a third of `wide_node_capacity(n)` with small leaves), so
+        // loading and building zero far less memory.
+        let inner = nodes.len().saturating_sub(1) / 2;
+        let mut wide = vec![WideNode::EMPTY; inner.max(1).min(wide_node_capacity(n))];
         let wide_count = {
             let mesh = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
             let bvh = Bvh::from_validated(&nodes, &order, depth);
