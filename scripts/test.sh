@@ -52,6 +52,9 @@ node web/tests/pack.mjs
 step "TypeScript: the typings against the run-time API, tsc --noEmit (bundler, Node, beside three-mesh-bvh)"
 node web/tests/types.mjs
 
+step "worker pool (meshq-wasm/pool) in Node: 1-3 workers, shared and copied memory, equal to one thread"
+node web/tests/pool.mjs
+
 step "three.js drop-in against three's brute-force Raycaster, in Node"
 node web/tests/three-dropin.mjs
 

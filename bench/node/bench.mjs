@@ -3,9 +3,11 @@
 // ratios (meshq / three-mesh-bvh); --json prints them as JSON. Build the package first:
 // scripts/wasm.sh. Environment: MESHQ_BENCH_RAYS (default 1,000,000), MESHQ_BENCH_SINGLE
 // (rays for the one-call-per-ray runs, default 200,000), MESHQ_BENCH_POINTS (default 100,000).
+import os from 'node:os';
 import * as THREE from 'three';
 import { MeshBVH, SAH } from 'three-mesh-bvh';
 import meshq from '../../wasm/pkg/node/meshq_wasm.js';
+import { MeshqPool } from '../../wasm/pkg/node/pool.mjs';
 import { geometry, index, positions } from './bunny.mjs';
 
 const RAYS = Number(process.env.MESHQ_BENCH_RAYS ?? 1_000_000);
@@ -179,6 +181,35 @@ const peerClosest = () => {
 };
 report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
   time(peerClosest, 3), POINTS, 'points');
+
+// The worker pool (meshq-wasm/pool): the same batch on 1 worker and on one per core, each
+// loading the blob; the answers are checked equal to the single-thread batch first.
+{
+  const cores = os.availableParallelism();
+  const pools = [await MeshqPool.fromBlob(blob, { workers: 1 }), await MeshqPool.fromBlob(blob, { workers: cores })];
+  const want = new Uint32Array(RAYS);
+  bvh.raycastBatch(random, 0, Infinity, new Float32Array(RAYS), want);
+  for (const pool of pools) {
+    const got = await pool.raycastBatch(random);
+    if (!got.triangles.every((x, i) => x === want[i])) throw new Error(`pool of ${pool.size}: other answers`);
+  }
+  const timeAsync = async (f, runs) => {
+    await f();
+    const times = [];
+    for (let i = 0; i < runs; i++) {
+      const t0 = performance.now();
+      await f();
+      times.push(performance.now() - t0);
+    }
+    return times.sort((a, b) => a - b)[Math.floor(runs / 2)];
+  };
+  const [one, all] = [await timeAsync(() => pools[0].raycastBatch(random), 3), await timeAsync(() => pools[1].raycastBatch(random), 3)];
+  const peer = time(() => peerFirstHits(random, nRandom), 3);
+  report(`random rays, pool of ${cores} workers vs raycastFirst`, all, peer, nRandom, 'rays');
+  log(`pool scaling: ${cores} workers ${(one / all).toFixed(2)}× one worker (${one.toFixed(0)} vs ${all.toFixed(0)} ms)`);
+  results.push({ workload: 'pool scaling', workers: cores, one_worker_ms: one, all_workers_ms: all, ratio: one / all });
+  for (const pool of pools) pool.terminate();
+}
 
 if (json) console.log(JSON.stringify({ triangles: index.length / 3, results }, null, 2));
 bvh.free();

@@ -109,6 +109,29 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
   writeFileSync(join(out, 'node', 'three-augment.d.mts'), augment.replace("from './three.js'", "from './three.mjs'"));
   writeFileSync(join(out, 'node', 'three-augment.mjs'), augmentJs);
   cpSync(join(js, 'node-entry.mjs'), join(out, 'node', 'index.mjs'));
+  // The worker pool: one source, and a worker body behind a prologue per environment.
+  const pool = readFileSync(join(js, 'pool.js'), 'utf8');
+  const poolTypes = readFileSync(join(js, 'pool.d.ts'), 'utf8');
+  const body = readFileSync(join(js, 'pool-worker-body.js'), 'utf8');
+  writeFileSync(join(out, 'web', 'pool.js'), pool);
+  writeFileSync(join(out, 'web', 'pool.d.ts'), poolTypes);
+  writeFileSync(join(out, 'node', 'pool.mjs'), pool);
+  writeFileSync(join(out, 'node', 'pool.d.mts'), poolTypes);
+  writeFileSync(join(out, 'web', 'pool-worker.js'), `// meshq-wasm/pool's worker, browser build.
+import init, { MeshBvh } from './meshq_wasm.js';
+const ready = init();
+const post = (message, transfer) => self.postMessage(message, transfer);
+self.onmessage = (event) => handle(event.data);
+
+${body}`);
+  writeFileSync(join(out, 'node', 'pool-worker.mjs'), `// meshq-wasm/pool's worker, Node build.
+import { parentPort } from 'node:worker_threads';
+import { MeshBvh } from './meshq_wasm.js';
+const ready = Promise.resolve();
+const post = (message, transfer) => parentPort.postMessage(message, transfer);
+parentPort.on('message', (message) => handle(message));
+
+${body}`);
   cpSync(join(js, 'node-entry.d.mts'), join(out, 'node', 'index.d.mts'));
   cpSync(join(js, 'README.md'), join(out, 'README.md'));
 
@@ -135,6 +158,11 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
       },
       './three': three,
       './three.js': three,
+      './pool': {
+        node: { types: './node/pool.d.mts', default: './node/pool.mjs' },
+        types: './web/pool.d.ts',
+        default: './web/pool.js',
+      },
       './three-augment': {
         node: { types: './node/three-augment.d.mts', default: './node/three-augment.mjs' },
         types: './web/three-augment.d.ts',

@@ -30,7 +30,8 @@ const { filename, files } = packed[0];
 const paths = files.map((f) => f.path).sort();
 for (const needed of ['package.json', 'README.md', 'web/meshq_wasm.js', 'web/meshq_wasm_bg.wasm', 'web/meshq_wasm.d.ts',
   'web/three.js', 'web/three.d.ts', 'web/three-augment.d.ts', 'node/meshq_wasm.js', 'node/meshq_wasm_bg.wasm',
-  'node/index.mjs', 'node/index.d.mts', 'node/three.mjs', 'node/three.d.mts']) {
+  'node/index.mjs', 'node/index.d.mts', 'node/three.mjs', 'node/three.d.mts', 'web/pool.js', 'web/pool-worker.js',
+  'node/pool.mjs', 'node/pool-worker.mjs']) {
   assert.ok(paths.includes(needed), `tarball lacks ${needed}`);
 }
 assert.ok(paths.every((p) => /^(package\.json|README\.md|web\/|node\/)/.test(p)), `unexpected files: ${paths}`);
@@ -158,8 +159,27 @@ try {
     return JSON.stringify(a) === JSON.stringify(b) && a.length === 1;
   });
   assert.ok(same, 'meshq-wasm/three in the browser equals three');
+  // The worker pool through the same map: Web Workers loading the blob (copied: this page is
+  // not cross-origin isolated) answer as one thread does.
+  const pooled = await page.evaluate(async () => {
+    const { MeshBvh, randomRays } = await import('meshq-wasm');
+    const { MeshqPool } = await import('meshq-wasm/pool');
+    const bytes = new Uint8Array(await (await fetch('assets/bunny.meshq')).arrayBuffer());
+    const bvh = MeshBvh.fromBlob(bytes);
+    const rays = randomRays(bvh.bounds(), 5, 20000);
+    const t = new Float32Array(20000);
+    const triangles = new Uint32Array(20000);
+    const hits = bvh.raycastBatch(rays, 0, Infinity, t, triangles);
+    const pool = await MeshqPool.fromBlob(bytes, { workers: 2 });
+    const got = await pool.raycastBatch(rays);
+    const { size, shared } = pool;
+    pool.terminate();
+    const same = got.hits === hits && got.t.every((x, i) => Object.is(x, t[i])) && got.triangles.every((x, i) => x === triangles[i]);
+    return { same, hits, shared, size };
+  });
+  assert.ok(pooled.same && pooled.hits > 5000 && pooled.size === 2 && !pooled.shared, JSON.stringify(pooled));
   assert.deepEqual(errors, [], 'no console errors');
-  console.log('browser: the demo and meshq-wasm/three run from the installed tarball through the import map');
+  console.log('browser: the demo, meshq-wasm/three and meshq-wasm/pool (2 Web Workers) run from the installed tarball through the import map');
 } finally {
   await browser?.close();
   server.kill();

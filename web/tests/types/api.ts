@@ -15,6 +15,7 @@ import init, {
   type RemeshResult,
   type Vec3Like,
 } from 'meshq-wasm';
+import { MeshqPool } from 'meshq-wasm/pool';
 
 export async function everyCall(positions: Float32Array, indices: Uint32Array, blob: Uint8Array): Promise<number> {
   await init();
@@ -65,6 +66,14 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const tree = bvh.treeArrays();
   soup.free();
 
+  const pool = await MeshqPool.fromBlob(blob, { workers: 2 });
+  const pooled: { t: Float32Array; triangles: Uint32Array; hits: number } = await pool.raycastBatch(rays, 0, 1);
+  const flags: Uint8Array = (await pool.raycastAnyBatch(rays)).hits;
+  const nearest: Float32Array = (await pool.closestPointBatch(points, 0.5)).distances;
+  pool.terminate();
+  // @ts-expect-error a pool answers typed arrays of queries
+  await pool.raycastBatch([0, 0, 0, 0, 0, 1]);
+
   // @ts-expect-error a ray needs a direction
   bvh.raycast(origin);
   // @ts-expect-error points are Vec3Like, not strings
@@ -83,5 +92,6 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.raycastBatch(rays, 0, 1, [], triangles);
 
   return (t ?? 0) + (distance ?? 0) + Number(any) + all.length + hits + misses + bytes.length
-    + pairs.total + boxes.length + structure.length + remeshed.after.valence6Percent + tree.first.length;
+    + pairs.total + boxes.length + structure.length + remeshed.after.valence6Percent + tree.first.length
+    + pooled.hits + flags.length + nearest.length;
 }

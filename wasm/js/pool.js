@@ -1,0 +1,235 @@
+// meshq-wasm/pool: batches spread over a pool of workers (Web Workers in the browser,
+// worker_threads in Node), each holding the same blob.
+//
+//   import { MeshqPool } from 'meshq-wasm/pool';
+//   const pool = await MeshqPool.fromBlob(bytes);           // one worker per core by default
+//   const { t, triangles, hits } = await pool.raycastBatch(rays);
+//   pool.terminate();
+//
+// Every worker loads the blob once (`MeshBvh.fromBlob`). Where SharedArrayBuffer is available
+// (Node; a cross-origin-isolated page), the blob, the queries and the answers live in shared
+// memory: nothing is copied between threads but each worker's own load. Elsewhere each worker
+// gets a copy of the blob and of its share of the queries, and sends its answers back.
+// A batch is cut into one contiguous share per worker, each answered by the same batch call
+// as on one thread, so every answer is the single-thread answer, bit for bit.
+
+const inNode = typeof process !== 'undefined' && process.versions?.node !== undefined
+  && typeof window === 'undefined';
+
+/** Whether typed arrays can live in memory shared with workers. */
+function canShare() {
+  if (typeof SharedArrayBuffer === 'undefined') return false;
+  return inNode || globalThis.crossOriginIsolated === true;
+}
+
+/** A worker running pool-worker, with a promise-per-message interface. */
+class Thread {
+  constructor(worker) {
+    this.worker = worker;
+    this.pending = new Map();
+    this.next = 0;
+    const receive = (message) => {
+      const waiting = this.pending.get(message.id);
+      if (!waiting) return;
+      this.pending.delete(message.id);
+      if (message.error) {
+        const Type = { TypeError, RangeError }[message.error.name] ?? Error;
+        waiting.reject(new Type(message.error.message));
+      } else {
+        waiting.resolve(message.result);
+      }
+    };
+    const fail = (error) => {
+      for (const w of this.pending.values()) w.reject(error instanceof Error ? error : new Error(String(error)));
+      this.pending.clear();
+    };
+    if (inNode) {
+      worker.on('message', receive);
+      worker.on('error', fail);
+    } else {
+      worker.onmessage = (e) => receive(e.data);
+      worker.onerror = (e) => fail(new Error(e.message ?? 'a pool worker failed'));
+    }
+  }
+
+  call(request, transfer = []) {
+    const id = this.next++;
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { resolve, reject });
+      this.worker.postMessage({ ...request, id }, transfer);
+    });
+  }
+}
+
+async function startWorker() {
+  if (inNode) {
+    const { Worker } = await import('node:worker_threads');
+    return new Worker(new URL('./pool-worker.mjs', import.meta.url));
+  }
+  return new Worker(new URL('./pool-worker.js', import.meta.url), { type: 'module' });
+}
+
+function defaultSize() {
+  const cores = inNode ? globalThis.process?.availableParallelism?.() : globalThis.navigator?.hardwareConcurrency;
+  return Math.max(1, Math.min(Number(cores) || 1, 16));
+}
+
+/** `values` in memory the workers can read: shared when possible, else as they are. */
+function shareable(values, share) {
+  if (!share || values.buffer instanceof SharedArrayBuffer) return values;
+  const copy = new values.constructor(new SharedArrayBuffer(values.byteLength));
+  copy.set(values);
+  return copy;
+}
+
+/** A typed array of `length` elements, in shared memory when `share`. */
+function output(Type, length, share) {
+  return share ? new Type(new SharedArrayBuffer(length * Type.BYTES_PER_ELEMENT)) : new Type(length);
+}
+
+/**
+ * A pool of workers answering batches on one blob. Create it with `MeshqPool.fromBlob`; free
+ * it with `terminate()`.
+ */
+export class MeshqPool {
+  #threads;
+  #share;
+
+  constructor(threads, share) {
+    this.#threads = threads;
+    this.#share = share;
+  }
+
+  /**
+   * Starts `workers` workers (default: one per core, at most 16) that each load `bytes` (a
+   * `Uint8Array` holding a blob baked by `meshq bake` or `toBlob`). `shared: false` copies
+   * instead of sharing memory even where it could be shared. Rejects with the blob's error
+   * if it does not load.
+   */
+  static async fromBlob(bytes, { workers, shared } = {}) {
+    if (!(bytes instanceof Uint8Array)) throw new TypeError('a blob must be a Uint8Array (a Buffer is one)');
+    const size = workers ?? defaultSize();
+    if (!Number.isInteger(size) || size < 1 || size > 256) throw new RangeError(`workers must be a whole number in 1..256, got ${size}`);
+    const share = shared !== false && canShare();
+    const blob = shareable(bytes, share);
+    const threads = [];
+    try {
+      for (let i = 0; i < size; i++) threads.push(new Thread(await startWorker()));
+      await Promise.all(threads.map((t) => t.call({ kind: 'load', blob })));
+    } catch (error) {
+      for (const t of threads) t.worker.terminate();
+      throw error;
+    }
+    return new MeshqPool(threads, share);
+  }
+
+  /** How many workers answer. */
+  get size() {
+    return this.#threads.length;
+  }
+
+  /** Whether queries and answers live in shared memory (no copies between threads). */
+  get shared() {
+    return this.#share;
+  }
+
+  /** Stops the workers; later calls reject. */
+  terminate() {
+    for (const t of this.#threads) t.worker.terminate();
+    this.#threads = [];
+  }
+
+  /** Cuts `count` queries into one contiguous share per worker and runs `ask` on each. */
+  async #spread(count, ask) {
+    if (this.#threads.length === 0) throw new Error('this pool was terminated');
+    const per = Math.ceil(count / this.#threads.length);
+    const jobs = [];
+    for (let w = 0, from = 0; w < this.#threads.length && from < count; w++, from += per) {
+      jobs.push(ask(this.#threads[w], from, Math.min(count, from + per)));
+    }
+    return Promise.all(jobs);
+  }
+
+  /** Queries `input` (values `stride` per query) from `from` to `to`, for a worker. */
+  #share_of(input, stride, from, to) {
+    return this.#share ? { input, from, to } : { input: input.slice(stride * from, stride * to), from: 0, to: to - from };
+  }
+
+  /**
+   * `MeshBvh.raycastBatch` on the pool: `rays` a `Float32Array` of 6 numbers per ray; `near`,
+   * `far` and `side` as there. Resolves to `{ t, triangles, hits }`: a `Float32Array` and a
+   * `Uint32Array` of one entry per ray (misses: `MISS_T`, `MISS_TRIANGLE`) and the number of
+   * hits.
+   */
+  async raycastBatch(rays, near, far, side) {
+    const n = checkQueries(rays, 6, 'rays');
+    const input = shareable(rays, this.#share);
+    const t = output(Float32Array, n, this.#share);
+    const triangles = output(Uint32Array, n, this.#share);
+    const parts = await this.#spread(n, (thread, from, to) => thread.call({
+      kind: 'raycast', ...this.#share_of(input, 6, from, to), near, far, side,
+      out: this.#share ? { t, triangles } : null,
+    }).then((result) => {
+      if (!this.#share) {
+        t.set(result.t, from);
+        triangles.set(result.triangles, from);
+      }
+      return result.hits;
+    }));
+    return { t, triangles, hits: parts.reduce((a, b) => a + b, 0) };
+  }
+
+  /**
+   * `MeshBvh.raycastAnyBatch` on the pool. Resolves to `{ hits, count }`: a `Uint8Array` of
+   * one flag per ray (1: something is hit) and how many rays hit.
+   */
+  async raycastAnyBatch(rays, near, far, side) {
+    const n = checkQueries(rays, 6, 'rays');
+    const input = shareable(rays, this.#share);
+    const hits = output(Uint8Array, n, this.#share);
+    const parts = await this.#spread(n, (thread, from, to) => thread.call({
+      kind: 'any', ...this.#share_of(input, 6, from, to), near, far, side,
+      out: this.#share ? { hits } : null,
+    }).then((result) => {
+      if (!this.#share) hits.set(result.hits, from);
+      return result.count;
+    }));
+    return { hits, count: parts.reduce((a, b) => a + b, 0) };
+  }
+
+  /**
+   * `MeshBvh.closestPointBatch` on the pool: `points` a `Float32Array` of 3 numbers per
+   * point. Resolves to `{ closest, triangles, distances, found }` as that call fills them
+   * (misses: `NaN` coordinates, `MISS_TRIANGLE`, `MISS_DISTANCE`).
+   */
+  async closestPointBatch(points, maxDistance) {
+    const n = checkQueries(points, 3, 'points');
+    const input = shareable(points, this.#share);
+    const closest = output(Float32Array, 3 * n, this.#share);
+    const triangles = output(Uint32Array, n, this.#share);
+    const distances = output(Float32Array, n, this.#share);
+    const parts = await this.#spread(n, (thread, from, to) => thread.call({
+      kind: 'closest', ...this.#share_of(input, 3, from, to), maxDistance,
+      out: this.#share ? { closest, triangles, distances } : null,
+    }).then((result) => {
+      if (!this.#share) {
+        closest.set(result.closest, 3 * from);
+        triangles.set(result.triangles, from);
+        distances.set(result.distances, from);
+      }
+      return result.found;
+    }));
+    return { closest, triangles, distances, found: parts.reduce((a, b) => a + b, 0) };
+  }
+}
+
+/** The number of queries in `values` (a `Float32Array` of `stride` numbers per query). */
+function checkQueries(values, stride, what) {
+  if (!(values instanceof Float32Array)) {
+    throw new TypeError(`${what} must be a Float32Array, got ${values?.constructor?.name ?? typeof values}`);
+  }
+  if (values.length % stride !== 0) {
+    throw new RangeError(`${what} hold ${values.length} numbers, not a multiple of ${stride}`);
+  }
+  return values.length / stride;
+}
