@@ -193,17 +193,16 @@ report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
     const got = await pool.raycastBatch(random);
     if (!got.triangles.every((x, i) => x === want[i])) throw new Error(`pool of ${pool.size}: other answers`);
   }
-  const timeAsync = async (f, runs) => {
-    await f();
-    const times = [];
-    for (let i = 0; i < runs; i++) {
+  // Interleaved, best of 3 rounds, so machine noise hits both pools alike.
+  let [one, all] = [Infinity, Infinity];
+  for (let round = 0; round < 4; round++) {
+    for (const [k, pool] of pools.entries()) {
       const t0 = performance.now();
-      await f();
-      times.push(performance.now() - t0);
+      await pool.raycastBatch(random);
+      const ms = performance.now() - t0;
+      if (round > 0) k === 0 ? (one = Math.min(one, ms)) : (all = Math.min(all, ms));
     }
-    return times.sort((a, b) => a - b)[Math.floor(runs / 2)];
-  };
-  const [one, all] = [await timeAsync(() => pools[0].raycastBatch(random), 3), await timeAsync(() => pools[1].raycastBatch(random), 3)];
+  }
   const peer = time(() => peerFirstHits(random, nRandom), 3);
   report(`random rays, pool of ${cores} workers vs raycastFirst`, all, peer, nRandom, 'rays');
   log(`pool scaling: ${cores} workers ${(one / all).toFixed(2)}× one worker (${one.toFixed(0)} vs ${all.toFixed(0)} ms)`);

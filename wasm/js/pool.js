@@ -77,7 +77,9 @@ function defaultSize() {
 /** `values` in memory the workers can read: shared when possible, else as they are. */
 function shareable(values, share) {
   if (!share || values.buffer instanceof SharedArrayBuffer) return values;
-  const copy = new values.constructor(new SharedArrayBuffer(values.byteLength));
+  // A Node Buffer is a Uint8Array; its own constructor is deprecated.
+  const Type = values instanceof Uint8Array ? Uint8Array : values.constructor;
+  const copy = new Type(new SharedArrayBuffer(values.byteLength));
   copy.set(values);
   return copy;
 }
