@@ -1,5 +1,5 @@
-//! meshq against obvhs (BVH2), parry3d and bvh on the bunny, with the DESIGN.md workloads and
-//! identical inputs for every library, in one run. Each benchmark's throughput is in elements
+//! meshq against obvhs (BVH2 and CWBVH), parry3d and bvh on the bunny, with the DESIGN.md
+//! workloads and identical inputs for every library, in one run. Each benchmark's throughput is in elements
 //! (rays or points); `scripts/bench_ratios.py` turns criterion's JSON into ratios.
 //!
 //! Every peer gets its best documented usage: obvhs's triangles are reordered by its primitive
@@ -113,6 +113,49 @@ mod obvhs_peer {
     pub fn any_hit(p: &Peer, r: &Ray) -> bool {
         !p.bvh
             .ray_traverse_miss(ray(r), |ray, id| p.tris[id].intersect(ray))
+    }
+}
+
+/// obvhs's compressed wide tree (CWBVH, eight children per node, quantized boxes): its
+/// fastest tree for rays.
+mod obvhs_cwbvh_peer {
+    use super::*;
+    use obvhs::BvhBuildParams;
+    use obvhs::cwbvh::CwBvh;
+    use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+    use obvhs::ray::RayHit as OHit;
+    use obvhs::triangle::Triangle as OTri;
+
+    pub struct Peer {
+        pub bvh: CwBvh,
+        /// Triangles in BVH primitive order.
+        pub tris: Vec<OTri>,
+        /// Mesh triangle index of each reordered triangle.
+        pub original: Vec<u32>,
+    }
+
+    pub fn peer(m: &LoadedMesh, params: BvhBuildParams) -> Peer {
+        let all = obvhs_peer::tris(m);
+        let bvh = build_cwbvh_from_tris(&all, params, &mut Duration::default());
+        let tris = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| all[i as usize])
+            .collect();
+        Peer {
+            original: bvh.primitive_indices.clone(),
+            bvh,
+            tris,
+        }
+    }
+
+    pub fn closest_hit(p: &Peer, r: &Ray) -> Option<(f32, u32)> {
+        let mut hit = OHit::none();
+        p.bvh
+            .ray_traverse(obvhs_peer::ray(r), &mut hit, |ray, id| {
+                p.tris[id].intersect(ray)
+            })
+            .then(|| (hit.t, p.original[hit.primitive_id as usize]))
     }
 }
 
@@ -270,6 +313,7 @@ fn raycast(c: &mut Criterion) {
     let (packed, wide) = (owned.packed(), owned.wide());
     let obvhs_medium = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
     let obvhs_fast = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::fast_build());
+    let obvhs_cwbvh = obvhs_cwbvh_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
     let parry = parry_peer::build(&s.mesh);
     let mut shapes = bvh_peer::shapes(&s.mesh);
     let bvh_crate = bvh_peer::build(&mut shapes);
@@ -279,6 +323,7 @@ fn raycast(c: &mut Criterion) {
         let ours = bvh.with(&mesh).raycast(r).map(|h| h.t);
         let theirs = [
             obvhs_peer::closest_hit(&obvhs_medium, r).map(|h| h.0),
+            obvhs_cwbvh_peer::closest_hit(&obvhs_cwbvh, r).map(|h| h.0),
             parry_peer::closest_hit(&parry, r),
             bvh_peer::closest_hit(&bvh_crate, &shapes, r),
         ];
@@ -349,6 +394,13 @@ fn raycast(c: &mut Criterion) {
             b.iter(|| {
                 rays.iter()
                     .filter(|r| obvhs_peer::closest_hit(&obvhs_fast, r).is_some())
+                    .count()
+            })
+        });
+        group.bench_function("obvhs_cwbvh_medium", |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|r| obvhs_cwbvh_peer::closest_hit(&obvhs_cwbvh, r).is_some())
                     .count()
             })
         });

@@ -17,38 +17,13 @@ use meshq::bvh::BuildConfig;
 use meshq::mesh::MeshRef;
 use meshq::parallel;
 use meshq::query::RayOptions;
-use meshq_tests::{LoadedMesh, load_obj, workload};
+use meshq_tests::{load_obj, subdivided, workload};
 
 fn pool(threads: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap_or_else(|e| panic!("threads: {e}"))
-}
-
-/// Each triangle into four through its edge midpoints (shared between neighbours).
-fn subdivide(mesh: &LoadedMesh) -> LoadedMesh {
-    let mut positions = mesh.positions.clone();
-    let mut midpoints = std::collections::HashMap::new();
-    let mut mid = |a: u32, b: u32, positions: &mut Vec<[f32; 3]>| {
-        *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
-            let (p, q) = (positions[a as usize], positions[b as usize]);
-            positions.push([0, 1, 2].map(|k| (p[k] + q[k]) * 0.5));
-            (positions.len() - 1) as u32
-        })
-    };
-    let mut triangles = Vec::with_capacity(4 * mesh.triangles.len());
-    for &[a, b, c] in &mesh.triangles {
-        let ab = mid(a, b, &mut positions);
-        let bc = mid(b, c, &mut positions);
-        let ca = mid(c, a, &mut positions);
-        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-    }
-    LoadedMesh {
-        positions,
-        triangles,
-        name: format!("{}-x4", mesh.name),
-    }
 }
 
 /// Best time in ms of each closure over `rounds` rounds, the closures interleaved.
@@ -62,6 +37,39 @@ fn best_of(rounds: usize, runs: &mut [Box<dyn FnMut() + '_>]) -> Vec<f64> {
         }
     }
     best
+}
+
+/// Times `batch` on every pool (each pool filling its own copy of `empty`), checks that every
+/// pool's answers equal the one-thread answers, and reports.
+fn batches<O: Clone + PartialEq + Send>(
+    what: &str,
+    pools: &[rayon::ThreadPool],
+    empty: Vec<O>,
+    batch: impl Fn(&mut [O]) -> Result<(), meshq::error::BatchError> + Sync,
+) {
+    let mut outs: Vec<Vec<O>> = pools.iter().map(|_| empty.clone()).collect();
+    let batch = &batch;
+    let mut runs: Vec<Box<dyn FnMut() + '_>> = pools
+        .iter()
+        .zip(outs.iter_mut())
+        .map(|(pool, out)| {
+            Box::new(move || {
+                pool.install(|| batch(out))
+                    .unwrap_or_else(|e| panic!("{e}"));
+            }) as Box<dyn FnMut()>
+        })
+        .collect();
+    let ms = best_of(5, &mut runs);
+    drop(runs);
+    assert!(
+        outs.windows(2).all(|w| w[0] == w[1]),
+        "{what}: answers differ between pools"
+    );
+    let threads: Vec<usize> = pools
+        .iter()
+        .map(rayon::ThreadPool::current_num_threads)
+        .collect();
+    report(what, &threads, &ms);
 }
 
 fn report(what: &str, threads: &[usize], ms: &[f64]) {
@@ -117,77 +125,32 @@ fn main() {
     let options = RayOptions::default();
     // Borrowed by every timed closure.
     let (scene, random, camera, points, options) = (&scene, &random, &camera, &points, &options);
-    for (what, rays) in [
-        ("random rays (1M), closest hit", random),
-        ("camera rays (1024²), closest hit", camera),
-    ] {
-        let mut want = vec![None; rays.len()];
-        pools[0]
-            .install(|| parallel::raycast_batch(scene, rays, options, &mut want))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let mut outs: Vec<_> = pools.iter().map(|_| vec![None; rays.len()]).collect();
-        let mut runs: Vec<Box<dyn FnMut()>> = pools
-            .iter()
-            .zip(outs.iter_mut())
-            .map(|(p, out)| {
-                Box::new(move || {
-                    p.install(|| parallel::raycast_batch(scene, rays, options, out))
-                        .unwrap_or_else(|e| panic!("{e}"));
-                }) as Box<dyn FnMut()>
-            })
-            .collect();
-        let ms = best_of(5, &mut runs);
-        drop(runs);
-        assert!(
-            outs.iter().all(|o| *o == want),
-            "{what}: answers differ between pools"
-        );
-        report(what, &threads, &ms);
-    }
-    {
-        let mut outs: Vec<_> = pools.iter().map(|_| vec![false; random.len()]).collect();
-        let mut runs: Vec<Box<dyn FnMut()>> = pools
-            .iter()
-            .zip(outs.iter_mut())
-            .map(|(p, out)| {
-                Box::new(move || {
-                    p.install(|| parallel::raycast_any_batch(scene, random, options, out))
-                        .unwrap_or_else(|e| panic!("{e}"));
-                }) as Box<dyn FnMut()>
-            })
-            .collect();
-        let ms = best_of(5, &mut runs);
-        drop(runs);
-        assert!(
-            outs.windows(2).all(|w| w[0] == w[1]),
-            "any hit: answers differ"
-        );
-        report("random rays (1M), any hit", &threads, &ms);
-    }
-    {
-        let mut outs: Vec<_> = pools.iter().map(|_| vec![None; points.len()]).collect();
-        let mut runs: Vec<Box<dyn FnMut()>> = pools
-            .iter()
-            .zip(outs.iter_mut())
-            .map(|(p, out)| {
-                Box::new(move || {
-                    p.install(|| parallel::closest_points(scene, points, f32::INFINITY, out))
-                        .unwrap_or_else(|e| panic!("{e}"));
-                }) as Box<dyn FnMut()>
-            })
-            .collect();
-        let ms = best_of(5, &mut runs);
-        drop(runs);
-        assert!(
-            outs.windows(2).all(|w| w[0] == w[1]),
-            "closest points: answers differ"
-        );
-        report("closest points (100k)", &threads, &ms);
-    }
+    let n = random.len();
+    batches(
+        "random rays (1M), closest hit",
+        &pools,
+        vec![None; n],
+        |out| parallel::raycast_batch(scene, random, options, out),
+    );
+    batches(
+        "camera rays (1024²), closest hit",
+        &pools,
+        vec![None; camera.len()],
+        |out| parallel::raycast_batch(scene, camera, options, out),
+    );
+    batches("random rays (1M), any hit", &pools, vec![false; n], |out| {
+        parallel::raycast_any_batch(scene, random, options, out)
+    });
+    batches(
+        "closest points (100k)",
+        &pools,
+        vec![None; points.len()],
+        |out| parallel::closest_points(scene, points, f32::INFINITY, out),
+    );
 
     let mut big = loaded.clone();
     for _ in 0..subdivisions {
-        big = subdivide(&big);
+        big = subdivided(&big);
     }
     let big_mesh = MeshRef::new(&big.positions, &big.triangles)
         .validate()

@@ -39,40 +39,10 @@ import time
 import numpy as np
 from embreex import rtcore_scene as rtcs
 from embreex.mesh_construction import TriangleMesh
+from meshfiles import read_mesh, read_obj, write_ply
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 DEFAULT_MESHES = ["stanford-bunny", "fandisk", "spot", "cow", "teapot", "bunny-x16"]
-
-
-def read_obj(path):
-    """Positions and fan-triangulated faces in file order, as the meshq command reads them."""
-    v, f = [], []
-    for line in pathlib.Path(path).read_text().splitlines():
-        parts = line.split()
-        if not parts:
-            continue
-        if parts[0] == "v":
-            v.append([float(x) for x in parts[1:4]])
-        elif parts[0] == "f":
-            idx = [int(x.split("/")[0]) - 1 for x in parts[1:]]
-            f.extend([idx[0], idx[k], idx[k + 1]] for k in range(1, len(idx) - 1))
-    return np.array(v, dtype=np.float32), np.array(f, dtype=np.int64)
-
-
-def write_ply(path, v, f):
-    """A binary little-endian PLY with float32 positions and uint32 triangle lists."""
-    header = (
-        "ply\nformat binary_little_endian 1.0\n"
-        f"element vertex {len(v)}\nproperty float x\nproperty float y\nproperty float z\n"
-        f"element face {len(f)}\nproperty list uchar uint vertex_indices\nend_header\n"
-    )
-    faces = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<u4", 3)])
-    faces["n"] = 3
-    faces["i"] = f
-    with open(path, "wb") as out:
-        out.write(header.encode("ascii"))
-        out.write(np.ascontiguousarray(v, dtype="<f4").tobytes())
-        out.write(faces.tobytes())
 
 
 def subdivide(v, f):
@@ -97,7 +67,7 @@ def mesh_path(name, scratch):
     if name == "bunny-x16":
         path = ROOT / "target/peers/bunny-x16.ply"
         if not path.exists():
-            v, f = read_obj(ROOT / "assets/stanford-bunny.obj")
+            v, f = read_obj(ROOT / "assets/stanford-bunny.obj", np.float32)
             for _ in range(2):
                 v, f = subdivide(v, f)
             path.parent.mkdir(parents=True, exist_ok=True)
@@ -107,19 +77,6 @@ def mesh_path(name, scratch):
     if p.exists():
         return p
     return ROOT / "assets" / f"{name}.obj"
-
-
-def read_mesh(path):
-    if path.suffix == ".ply":
-        data = path.read_bytes()
-        end = data.index(b"end_header\n") + len(b"end_header\n")
-        header = data[:end].decode("latin1")
-        nv = int(header.split("element vertex ")[1].split()[0])
-        nf = int(header.split("element face ")[1].split()[0])
-        v = np.frombuffer(data, dtype="<f4", count=3 * nv, offset=end).reshape(nv, 3)
-        faces = np.frombuffer(data, dtype=[("n", "u1"), ("i", "<u4", 3)], count=nf, offset=end + 12 * nv)
-        return v.copy(), faces["i"].astype(np.int64)
-    return read_obj(path)
 
 
 def meshq(binary, mesh, rays, out, *flags):
@@ -169,7 +126,7 @@ def main():
         s = pathlib.Path(scratch)
         for name in args.meshes:
             path = mesh_path(name, s)
-            v, f = read_mesh(path)
+            v, f = read_mesh(path, np.float32)
             label = pathlib.Path(name).stem
             say(f"== {label}: {len(f):,} triangles")
             workloads = {}

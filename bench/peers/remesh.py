@@ -14,7 +14,6 @@ Run: target/peers-venv/bin/python bench/peers/remesh.py [meshq binary]
 """
 import json
 import pathlib
-import struct
 import subprocess
 import sys
 import tempfile
@@ -22,40 +21,11 @@ import time
 
 import gpytoolbox as gpy
 import numpy as np
+from meshfiles import read_obj, read_ply
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 MESHQ = sys.argv[1] if len(sys.argv) > 1 else str(ROOT / "target/release/meshq")
 CASES = [("stanford-bunny", None), ("fandisk", None), ("spot", None), ("fandisk", 45.0)]
-
-
-def read_obj(path):
-    """Positions and fan-triangulated faces, in file order (as the meshq command reads them)."""
-    v, f = [], []
-    for line in pathlib.Path(path).read_text().splitlines():
-        parts = line.split()
-        if not parts:
-            continue
-        if parts[0] == "v":
-            v.append([float(x) for x in parts[1:4]])
-        elif parts[0] == "f":
-            idx = [int(x.split("/")[0]) - 1 for x in parts[1:]]
-            f.extend([idx[0], idx[k], idx[k + 1]] for k in range(1, len(idx) - 1))
-    return np.array(v, dtype=np.float64), np.array(f, dtype=np.int64)
-
-
-def read_ply(path):
-    data = pathlib.Path(path).read_bytes()
-    end = data.index(b"end_header\n") + len(b"end_header\n")
-    header = data[:end].decode("latin1")
-    nv = int(header.split("element vertex ")[1].split()[0])
-    nf = int(header.split("element face ")[1].split()[0])
-    v = np.frombuffer(data, dtype="<f4", count=3 * nv, offset=end).reshape(nv, 3)
-    f = np.empty((nf, 3), dtype=np.int64)
-    at = end + 12 * nv
-    for i in range(nf):
-        f[i] = struct.unpack_from("<3I", data, at + 1)
-        at += 13
-    return v.astype(np.float64), f
 
 
 def quality(v, f, v_in, f_in):

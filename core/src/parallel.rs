@@ -34,16 +34,25 @@ use crate::query::{MeshQuery, RayOptions};
 /// runs to spread evenly over the threads.
 pub const RUN: usize = 4096;
 
-/// `out` must hold at least one element per query.
-fn check(buffer: BatchBuffer, needed: usize, got: usize) -> Result<(), BatchError> {
-    if got < needed {
+/// Answers `queries` in runs of [`RUN`] on the pool: `batch(run, keys, answers)` is the
+/// single-threaded batch call for one run, with `keys` its scratch. `out` must hold at least
+/// one element per query; nothing is written otherwise.
+fn in_runs<T: Sync, O: Send>(
+    queries: &[T],
+    out: &mut [O],
+    batch: impl Fn(&[T], &mut [u64], &mut [O]) -> Result<(), BatchError> + Sync + Send,
+) -> Result<(), BatchError> {
+    if out.len() < queries.len() {
         return Err(BatchError::BufferTooSmall {
-            buffer,
-            needed,
-            got,
+            buffer: BatchBuffer::Results,
+            needed: queries.len(),
+            got: out.len(),
         });
     }
-    Ok(())
+    queries
+        .par_chunks(RUN)
+        .zip(out.par_chunks_mut(RUN))
+        .try_for_each(|(run, answers)| batch(run, &mut vec![0u64; run.len()], answers))
 }
 
 /// [`MeshQuery::raycast_batch`] on every thread of the pool: `out[i]` is exactly
@@ -58,13 +67,9 @@ pub fn raycast_batch<Q: MeshQuery + Sync + ?Sized>(
     options: &RayOptions,
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
-    check(BatchBuffer::Results, rays.len(), out.len())?;
-    rays.par_chunks(RUN)
-        .zip(out.par_chunks_mut(RUN))
-        .try_for_each(|(run, answers)| {
-            let mut keys = vec![0u64; run.len()];
-            query.raycast_batch(run, options, &mut keys, answers)
-        })
+    in_runs(rays, out, |run, keys, answers| {
+        query.raycast_batch(run, options, keys, answers)
+    })
 }
 
 /// [`MeshQuery::raycast_any_batch`] on every thread of the pool: `out[i]` is exactly
@@ -78,13 +83,9 @@ pub fn raycast_any_batch<Q: MeshQuery + Sync + ?Sized>(
     options: &RayOptions,
     out: &mut [bool],
 ) -> Result<(), BatchError> {
-    check(BatchBuffer::Results, rays.len(), out.len())?;
-    rays.par_chunks(RUN)
-        .zip(out.par_chunks_mut(RUN))
-        .try_for_each(|(run, answers)| {
-            let mut keys = vec![0u64; run.len()];
-            query.raycast_any_batch(run, options, &mut keys, answers)
-        })
+    in_runs(rays, out, |run, keys, answers| {
+        query.raycast_any_batch(run, options, keys, answers)
+    })
 }
 
 /// [`MeshQuery::closest_points`] on every thread of the pool: `out[i]` is exactly
@@ -98,12 +99,7 @@ pub fn closest_points<Q: MeshQuery + Sync + ?Sized>(
     max_distance: f32,
     out: &mut [Option<ClosestPoint>],
 ) -> Result<(), BatchError> {
-    check(BatchBuffer::Results, points.len(), out.len())?;
-    points
-        .par_chunks(RUN)
-        .zip(out.par_chunks_mut(RUN))
-        .try_for_each(|(run, answers)| {
-            let mut keys = vec![0u64; run.len()];
-            query.closest_points(run, max_distance, &mut keys, answers)
-        })
+    in_runs(points, out, |run, keys, answers| {
+        query.closest_points(run, max_distance, keys, answers)
+    })
 }

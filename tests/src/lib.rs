@@ -9,7 +9,9 @@ pub mod suite;
 pub mod topology;
 pub mod workload;
 
-pub use assets::{LoadedMesh, MESHES, assets_dir, in_stadium, load_mesh, load_obj, spot_patch};
+pub use assets::{
+    LoadedMesh, MESHES, assets_dir, in_stadium, load_mesh, load_obj, spot_patch, subdivided,
+};
 pub use meshq_workload::SplitMix64;
 pub use topology::Topology;
 

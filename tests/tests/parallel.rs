@@ -16,7 +16,7 @@ use meshq::owned::{MeshIndex, StructureKind};
 use meshq::parallel::{self, RUN};
 use meshq::query::RayOptions;
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{LoadedMesh, bake, in_stadium, load_mesh, workload};
+use meshq_tests::{bake, in_stadium, load_mesh, subdivided, workload};
 
 fn ray_bits(h: Option<RayHit>) -> Option<(u32, u32, u32, u32)> {
     h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
@@ -134,42 +134,11 @@ fn parallel_batches_equal_brute_force_on_every_structure() {
     }
 }
 
-/// The bunny with every triangle cut into four through its edge midpoints (each midpoint made
-/// once): 277,804 triangles, well past the size the parallel build splits in parallel.
-fn subdivided_bunny() -> LoadedMesh {
-    let loaded = load_mesh("stanford-bunny");
-    let mut positions = loaded.positions.clone();
-    let mut midpoints = std::collections::HashMap::new();
-    let mut mid = |a: u32, b: u32, positions: &mut Vec<[f32; 3]>| {
-        *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
-            let (p, q) = (positions[a as usize], positions[b as usize]);
-            positions.push([0, 1, 2].map(|k| (p[k] + q[k]) * 0.5));
-            (positions.len() - 1) as u32
-        })
-    };
-    let mut triangles = Vec::with_capacity(4 * loaded.triangles.len());
-    for &[a, b, c] in &loaded.triangles {
-        let (ab, bc, ca) = (
-            mid(a, b, &mut positions),
-            mid(b, c, &mut positions),
-            mid(c, a, &mut positions),
-        );
-        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-    }
-    LoadedMesh {
-        positions,
-        triangles,
-        ..loaded
-    }
-}
-
 #[test]
 fn the_parallel_build_is_the_sequential_build() {
-    let meshes = [
-        load_mesh("stanford-bunny"),
-        in_stadium(&load_mesh("stanford-bunny")),
-        subdivided_bunny(),
-    ];
+    let bunny = load_mesh("stanford-bunny");
+    // 277,804 triangles: well past the size the parallel build splits in parallel.
+    let meshes = [in_stadium(&bunny), subdivided(&bunny), bunny];
     for (m, loaded) in meshes.iter().enumerate() {
         let mesh = loaded.valid();
         let n = mesh.triangle_count();

@@ -6,12 +6,12 @@
 // command bit for bit), and save screenshots.
 // Run after scripts/build-web.sh: node web/tests/e2e.mjs (MESHQ_BIN: the native meshq binary).
 import assert from 'node:assert/strict';
-import { spawn, execFileSync } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { mkdirSync, mkdtempSync, readFileSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { launchChromium, startServer } from './browser.mjs';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const meshq = process.env.MESHQ_BIN ?? join(root, 'target/release/meshq');
@@ -19,23 +19,8 @@ const out = join(root, 'target/e2e');
 mkdirSync(out, { recursive: true });
 const scratch = mkdtempSync(join(tmpdir(), 'meshq-e2e-'));
 
-// Our server, on a port the OS picks; the token proves it is ours answering.
-const token = `e2e-${process.pid}-${Date.now()}`;
-const server = spawn(process.execPath, [join(root, 'web/serve.mjs')], {
-  env: { ...process.env, MESHQ_PORT: '0', MESHQ_SERVER_TOKEN: token },
-  stdio: ['ignore', 'pipe', 'inherit'],
-});
-const url = await new Promise((resolve, reject) => {
-  let text = '';
-  server.stdout.on('data', (chunk) => {
-    text += chunk;
-    const m = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) resolve(m[0]);
-  });
-  server.on('exit', (code) => reject(new Error(`server exited with ${code}`)));
-});
-const identity = await (await fetch(new URL('__meshq-demo', url))).text();
-assert.equal(identity, `meshq-demo ${token}`, 'another server answers on our port');
+// Our server, on a port the OS picks, checked to be ours.
+const { url, server } = await startServer(join(root, 'web'), 'e2e');
 
 // Never hang CI: whatever happens, stop after three minutes.
 const watchdog = setTimeout(() => {
@@ -43,18 +28,12 @@ const watchdog = setTimeout(() => {
   server.kill();
   process.exit(1);
 }, 180000);
-process.on('exit', () => server.kill());
 
 // launch() gives the browser a fresh temporary profile (--user-data-dir) of its own.
 let browser = null;
 const errors = [];
 try {
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    timeout: 60000,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
+  browser = await launchChromium();
   const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));

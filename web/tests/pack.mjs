@@ -7,12 +7,12 @@
 //   imports `meshq-wasm/three` through the same map.
 // Run after scripts/build-web.sh (which bakes web/assets/bunny.meshq): node web/tests/pack.mjs
 import assert from 'node:assert/strict';
-import { execFileSync, spawn } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { copyFileSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { launchChromium, startServer } from './browser.mjs';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const scratch = mkdtempSync(join(tmpdir(), 'meshq-pack-'));
@@ -104,33 +104,12 @@ for (const file of ['index.html', 'main.js', 'collide.js', 'style.css', 'serve.m
 }
 mkdirSync(join(app, 'assets'));
 copyFileSync(join(root, 'web/assets/bunny.meshq'), join(app, 'assets/bunny.meshq'));
-const token = `pack-${process.pid}`;
-const server = spawn(process.execPath, [join(app, 'serve.mjs')], {
-  cwd: app,
-  env: { ...process.env, MESHQ_PORT: '0', MESHQ_SERVER_TOKEN: token },
-  stdio: ['ignore', 'pipe', 'inherit'],
-});
-process.on('exit', () => server.kill());
-const url = await new Promise((resolve, reject) => {
-  let text = '';
-  server.stdout.on('data', (chunk) => {
-    text += chunk;
-    const m = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) resolve(m[0]);
-  });
-  server.on('exit', (code) => reject(new Error(`server exited with ${code}`)));
-});
-assert.equal(await (await fetch(new URL('__meshq-demo', url))).text(), `meshq-demo ${token}`, 'our server answers');
+const { url, server } = await startServer(app, 'pack');
 
 let browser = null;
 const errors = [];
 try {
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    timeout: 60000,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
+  browser = await launchChromium();
   const page = await browser.newPage({ viewport: { width: 900, height: 600 } });
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
