@@ -318,7 +318,8 @@ fn raycast(c: &mut Criterion) {
     let mut shapes = bvh_peer::shapes(&s.mesh);
     let bvh_crate = bvh_peer::build(&mut shapes);
     // The peers must answer the same question: same hits, same distances (to rounding).
-    let mut disagreements = 0;
+    let names = ["obvhs BVH2", "obvhs CWBVH", "parry3d", "bvh"];
+    let mut disagreements = [0usize; 4];
     for r in &s.random {
         let ours = bvh.with(&mesh).raycast(r).map(|h| h.t);
         let theirs = [
@@ -332,11 +333,19 @@ fn raycast(c: &mut Criterion) {
             (None, None) => true,
             _ => false,
         };
-        disagreements += theirs.iter().filter(|&&t| !agree(t)).count();
+        for (count, t) in disagreements.iter_mut().zip(theirs) {
+            *count += usize::from(!agree(t));
+        }
     }
+    let listed: Vec<String> = names
+        .iter()
+        .zip(disagreements)
+        .map(|(name, n)| format!("{name} {n}"))
+        .collect();
     eprintln!(
-        "peer disagreements on {} random rays: {disagreements}",
-        s.random.len()
+        "peer disagreements on {} random rays: {}",
+        s.random.len(),
+        listed.join(", ")
     );
     for (group_name, rays) in [("raycast_random", &s.random), ("raycast_camera", &s.camera)] {
         let mut group = c.benchmark_group(group_name);
