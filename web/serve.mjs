@@ -20,7 +20,15 @@ const types = {
 };
 
 const server = createServer((request, response) => {
-  const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
+  // The request's own path, parsed as a path (never as `//host/…`); a malformed one is a 400,
+  // never a crash.
+  let path;
+  try {
+    path = decodeURIComponent(new URL(`http://localhost/${request.url.replace(/^\/+/, '')}`).pathname);
+  } catch {
+    response.writeHead(400, { 'content-type': 'text/plain' }).end('bad request');
+    return;
+  }
   if (path === '/__meshq-demo') {
     response.writeHead(200, { 'content-type': 'text/plain' });
     response.end(`meshq-demo ${token}`);

@@ -7,6 +7,7 @@
 // Run after scripts/build-web.sh: node web/tests/e2e.mjs (MESHQ_BIN: the native meshq binary).
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
+import http from 'node:http';
 import { mkdirSync, mkdtempSync, readFileSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -21,6 +22,18 @@ const scratch = mkdtempSync(join(tmpdir(), 'meshq-e2e-'));
 
 // Our server, on a port the OS picks, checked to be ours.
 const { url, server } = await startServer(join(root, 'web'), 'e2e');
+
+// Odd request paths get an answer, never a crash: `//` (once fatal), a malformed escape, a
+// climb out of the folder.
+const status = (path) => new Promise((resolve, reject) => {
+  const { hostname, port } = new URL(url);
+  http.get({ hostname, port, path }, (r) => { r.resume(); resolve(r.statusCode); }).on('error', reject);
+});
+assert.deepEqual(
+  [await status('//'), await status('/%E0%A4%A'), await status('/../../etc/passwd'), await status('/')],
+  [200, 400, 404, 200],
+  'odd paths',
+);
 
 // Never hang CI: whatever happens, stop after three minutes.
 const watchdog = setTimeout(() => {
