@@ -17,7 +17,7 @@ export class MeshqPool {
   readonly size: number;
   /** Whether queries and answers live in shared memory. */
   readonly shared: boolean;
-  /** Stops the workers; later calls reject. */
+  /** Stops the workers; batches still running and later calls reject. */
   terminate(): void;
   /** `MeshBvh.raycastBatch` on the pool: `t` and `triangles` one per ray, and the hit count. */
   raycastBatch(rays: Float32Array, near?: number | null, far?: number | null, side?: 0 | 1 | 2 | null):

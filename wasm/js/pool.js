@@ -39,17 +39,27 @@ class Thread {
         waiting.resolve(message.result);
       }
     };
-    const fail = (error) => {
-      for (const w of this.pending.values()) w.reject(error instanceof Error ? error : new Error(String(error)));
-      this.pending.clear();
-    };
+    const fail = (error) => this.fail(error instanceof Error ? error : new Error(String(error)));
     if (inNode) {
       worker.on('message', receive);
       worker.on('error', fail);
+      worker.on('exit', () => fail(new Error('a pool worker stopped')));
     } else {
       worker.onmessage = (e) => receive(e.data);
       worker.onerror = (e) => fail(new Error(e.message ?? 'a pool worker failed'));
     }
+  }
+
+  /** Rejects every call still waiting for an answer. */
+  fail(error) {
+    for (const w of this.pending.values()) w.reject(error);
+    this.pending.clear();
+  }
+
+  /** Stops the worker; calls still waiting reject. */
+  stop() {
+    this.fail(new Error('this pool was terminated'));
+    this.worker.terminate();
   }
 
   call(request, transfer = []) {
@@ -119,7 +129,7 @@ export class MeshqPool {
       for (let i = 0; i < size; i++) threads.push(new Thread(await startWorker()));
       await Promise.all(threads.map((t) => t.call({ kind: 'load', blob })));
     } catch (error) {
-      for (const t of threads) t.worker.terminate();
+      for (const t of threads) t.stop();
       throw error;
     }
     return new MeshqPool(threads, share);
@@ -135,9 +145,9 @@ export class MeshqPool {
     return this.#share;
   }
 
-  /** Stops the workers; later calls reject. */
+  /** Stops the workers; batches still running and later calls reject. */
   terminate() {
-    for (const t of this.#threads) t.worker.terminate();
+    for (const t of this.#threads) t.stop();
     this.#threads = [];
   }
 

@@ -63,7 +63,13 @@ for (const shared of [true, false]) {
     await assert.rejects(pool.closestPointBatch(points, -1), RangeError);
     // Still answering after errors.
     assert.equal((await pool.raycastBatch(rays)).hits, hits);
+    // Two batches at once share the workers; terminating rejects a batch still running.
+    const [x, y] = await Promise.all([pool.raycastBatch(rays), pool.raycastAnyBatch(rays)]);
+    assert.equal(x.hits, hits, `${what}: concurrent batches`);
+    assert.equal(y.count, anyCount, `${what}: concurrent batches`);
+    const running = pool.raycastBatch(rays);
     pool.terminate();
+    await assert.rejects(running, /terminated/);
     await assert.rejects(pool.raycastBatch(rays), /terminated/);
   }
 }
