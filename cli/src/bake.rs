@@ -45,8 +45,9 @@ pub struct BakeArgs {
     pub packed: bool,
     /// Threads building a BVH: 1 (the default), N, or 0 for one per core. The blob is the
     /// same, byte for byte, whatever the count.
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub threads: usize,
+    #[arg(long, value_name = "N", default_value_t = 1,
+          value_parser = clap::value_parser!(u16).range(0..=crate::threads::MAX_THREADS))]
+    pub threads: u16,
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,

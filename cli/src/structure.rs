@@ -89,8 +89,9 @@ pub struct QueryInput {
     pub structure: Option<StructureArg>,
     /// Threads answering the queries: 1 (the default) on this thread, one query per call; N
     /// spread over N threads (0: one per core). The records are the same whatever the count.
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub threads: usize,
+    #[arg(long, value_name = "N", default_value_t = 1,
+          value_parser = clap::value_parser!(u16).range(0..=crate::threads::MAX_THREADS))]
+    pub threads: u16,
 }
 
 impl QueryInput {

@@ -9,16 +9,20 @@ use meshq::bvh::BuildConfig;
 use meshq::error::BuildError;
 use meshq::mesh::ValidMesh;
 
+/// The most threads `--threads` takes: more would only exhaust the system's threads (the
+/// request is refused as a usage error rather than failing while the threads start).
+pub const MAX_THREADS: i64 = 1024;
+
 /// The pool for `--threads N`: `None` for 1; for 0, one thread per core.
 pub struct Threads(Option<rayon::ThreadPool>);
 
 impl Threads {
-    pub fn new(threads: usize) -> Result<Self> {
+    pub fn new(threads: u16) -> Result<Self> {
         if threads == 1 {
             return Ok(Self(None));
         }
         let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
+            .num_threads(usize::from(threads))
             .build()
             .context("cannot start the threads")?;
         Ok(Self(Some(pool)))

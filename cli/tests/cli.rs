@@ -856,6 +856,23 @@ fn threads_give_the_same_records() {
         })
         .collect();
     assert_eq!(blobs[1], blobs[0], "bake on 2 threads");
+    // A thread count past the limit is a usage error, not a crash while the threads start.
+    let out = dir.path().join("never.bin");
+    fails(
+        &[
+            &"raycast",
+            &obj,
+            &"--rays",
+            &ray_file,
+            &"--out",
+            &out,
+            &"--threads",
+            &"100000",
+        ],
+        2,
+        "not in 0..=1024",
+    );
+    assert!(!out.exists());
     let records = read_records(&dir.path().join("closest-2.bin"));
     for (i, (&p, &(d, tri))) in points.iter().zip(&records).enumerate() {
         let want = brute

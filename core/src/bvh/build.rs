@@ -19,6 +19,14 @@ pub(super) struct Built {
     pub depth: u32,
 }
 
+impl Built {
+    /// The build of a mesh without triangles.
+    pub const NOTHING: Self = Self {
+        node_count: 0,
+        depth: 0,
+    };
+}
+
 /// A node to build: its slot, its triangles `begin..end` (positions in the build's arrays),
 /// its level (the root is 1) and the bounds of its triangles and of their centroids.
 #[derive(Clone, Copy)]
@@ -51,10 +59,7 @@ pub(super) fn build_into(
     scratch: &mut [PrimRef],
 ) -> Result<Built, BuildError> {
     let Some((prims, order, root)) = prepare(mesh, config, nodes.len(), order, scratch)? else {
-        return Ok(Built {
-            node_count: 0,
-            depth: 0,
-        });
+        return Ok(Built::NOTHING);
     };
     build_subtree(config, root, prims, order, nodes, 0, &mut Binning::new())
 }

@@ -41,10 +41,7 @@ pub(super) fn build_parallel(
     scratch: &mut [PrimRef],
 ) -> Result<Built, BuildError> {
     let Some((prims, order, root)) = prepare(mesh, config, nodes.len(), order, scratch)? else {
-        return Ok(Built {
-            node_count: 0,
-            depth: 0,
-        });
+        return Ok(Built::NOTHING);
     };
     let (piece, depth) = build_piece(config, root, prims, order, 0)?;
     let mut next = 1;

@@ -39,13 +39,21 @@ impl<'a> Bvh<'a> {
         scratch: &mut [PrimRef],
     ) -> Result<Self, BuildError> {
         let built = build_into(mesh, config, nodes, order, scratch)?;
-        let nodes: &'a [BvhNode] = nodes;
-        let order: &'a [u32] = order;
-        Ok(Self {
+        Ok(Self::of_built(&built, mesh, nodes, order))
+    }
+
+    /// The view of what a builder wrote into `nodes` and `order`.
+    fn of_built(
+        built: &super::build::Built,
+        mesh: &ValidMesh<'_>,
+        nodes: &'a [BvhNode],
+        order: &'a [u32],
+    ) -> Self {
+        Self {
             nodes: nodes.get(..built.node_count).unwrap_or_default(),
             order: order.get(..mesh.triangle_count()).unwrap_or_default(),
             depth: built.depth,
-        })
+        }
     }
 
     /// [`Bvh::build`] on rayon's thread pool (feature `parallel`): the same nodes and order,
@@ -65,13 +73,7 @@ impl<'a> Bvh<'a> {
         scratch: &mut [PrimRef],
     ) -> Result<Self, BuildError> {
         let built = super::parallel_build::build_parallel(mesh, config, nodes, order, scratch)?;
-        let nodes: &'a [BvhNode] = nodes;
-        let order: &'a [u32] = order;
-        Ok(Self {
-            nodes: nodes.get(..built.node_count).unwrap_or_default(),
-            order: order.get(..mesh.triangle_count()).unwrap_or_default(),
-            depth: built.depth,
-        })
+        Ok(Self::of_built(&built, mesh, nodes, order))
     }
 
     /// A view over nodes and order kept from an earlier build (or decoded from storage),
