@@ -273,15 +273,16 @@ fn a_closed_pipe_or_a_full_disk_is_never_a_panic() {
         }
     }
     // A reader that closed its end first: quiet, with the status of a command stopped by
-    // SIGPIPE.
-    let mut child = Command::new(bin())
+    // SIGPIPE. The read end is closed before the command starts (closing it after the spawn
+    // raced with the command: a fast one wrote into the pipe's buffer and exited 0).
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(bin())
         .args(["inspect".as_ref(), blob.as_os_str()])
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
-        .spawn()
+        .output()
         .unwrap();
-    drop(child.stdout.take());
-    let out = child.wait_with_output().unwrap();
     assert_eq!(out.status.code(), Some(141), "{:?}", out);
     assert!(
         out.stderr.is_empty(),
