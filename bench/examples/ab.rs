@@ -18,8 +18,32 @@ const ROUNDS: usize = 11;
 fn main() {
     let loaded = load_mesh("stanford-bunny");
     let mesh = loaded.valid();
-    let rays = workload::random_rays(&loaded.positions, 200_000, 1);
+    let count = std::env::var("RAYS")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(200_000);
+    let rays = workload::random_rays(&loaded.positions, count, 1);
     let camera = workload::camera_rays(&loaded.positions, 512, 512);
+    let tiled = std::env::var("TILE")
+        .ok()
+        .and_then(|t| t.parse::<usize>().ok());
+    let camera: Vec<_> = match tiled {
+        Some(h) => {
+            let w = 8 / h;
+            let mut out = Vec::new();
+            for ty in (0..512).step_by(h) {
+                for tx in (0..512).step_by(w) {
+                    for y in ty..ty + h {
+                        for x in tx..tx + w {
+                            out.push(camera[y * 512 + x]);
+                        }
+                    }
+                }
+            }
+            out
+        }
+        None => camera,
+    };
     let points = workload::closest_points(&loaded.positions, 100_000, 2);
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).expect("build");
     let bvh = checked_bvh(&owned, &mesh).expect("view");
@@ -81,6 +105,42 @@ fn main() {
                     .iter()
                     .filter(|r| wide.with(&packed).raycast(r).is_some())
                     .count()
+            }),
+        ),
+        (
+            "camera wide batch",
+            camera.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; camera.len()];
+                let mut out = vec![None; camera.len()];
+                let options = meshq::query::RayOptions::default();
+                wide.with(&packed)
+                    .raycast_batch(&camera, &options, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
+            "camera any wide packed",
+            camera.len(),
+            Box::new(|| {
+                camera
+                    .iter()
+                    .filter(|r| wide.with(&packed).raycast_any(r))
+                    .count()
+            }),
+        ),
+        (
+            "camera any wide batch",
+            camera.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; camera.len()];
+                let mut out = vec![false; camera.len()];
+                let options = meshq::query::RayOptions::default();
+                wide.with(&packed)
+                    .raycast_any_batch(&camera, &options, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|&&h| h).count()
             }),
         ),
         (

@@ -9,9 +9,11 @@ TBB threads, so builds are single-threaded too.
 For each mesh:
 - the rays are the DESIGN.md workloads written by `meshq workload` (random rays, default
   1,000,000, and the 1024x1024 camera); Embree reads the same float32 files;
-- meshq: `meshq raycast MESH --rays FILE --out HITS --json` (and `--any`), its own
+- meshq: `meshq raycast MESH --rays FILE --out HITS --json --per-ray` (and `--any`), its own
   `query_seconds` (queries only, one ray per call) and `build_seconds` (MeshBvh::build:
-  the binned-SAH tree, packed triangles and the 4-wide collapse);
+  the binned-SAH tree, packed triangles and the 4-wide collapse); then the same without
+  `--per-ray` (the batch entry point: packets for the camera's rays, which share an origin),
+  whose records must equal the per-ray ones byte for byte;
 - Embree: a scene with the robust flag (`RTC_SCENE_FLAG_ROBUST`), one triangle mesh; the build
   is the commit (timed through the first `run` call, with one ray); closest hit is
   `rtcIntersect1` and any hit `rtcOccluded1`, one ray per call, looped in embreex's compiled
@@ -143,8 +145,9 @@ def main():
             for kind, file in workloads.items():
                 o, d = read_rays(file)
                 out = s / "hits.bin"
-                runs = [meshq(args.meshq, path, file, out) for _ in range(args.repeat)]
+                runs = [meshq(args.meshq, path, file, out, "--per-ray") for _ in range(args.repeat)]
                 ours = np.fromfile(out, dtype=[("t", "<f4"), ("tri", "<u4")])
+                per_ray_bytes = out.read_bytes()
                 mq = min(r["query_seconds"] for r in runs)
                 row["meshq_build_s"] = min(row.get("meshq_build_s", 1e9), *(r["build_seconds"] for r in runs))
                 em, theirs = best(args.repeat, lambda: scene.run(o, d, output=1))
@@ -155,8 +158,19 @@ def main():
                     <= 1e-5 * size)
                 agree = int(np.count_nonzero(same | close))
                 anyq = min(r["query_seconds"] for r in
-                           [meshq(args.meshq, path, file, out, "--any") for _ in range(args.repeat)])
+                           [meshq(args.meshq, path, file, out, "--any", "--per-ray") for _ in range(args.repeat)])
                 ours_any = np.fromfile(out, dtype=[("t", "<f4"), ("tri", "<u4")])["tri"] != 0xFFFFFFFF
+                any_bytes = out.read_bytes()
+                # The batch entry point (packets for rays that share an origin): timed, and its
+                # records checked equal to one ray per call, byte for byte.
+                batch = min(r["query_seconds"] for r in
+                            [meshq(args.meshq, path, file, out) for _ in range(args.repeat)])
+                batch_same = out.read_bytes() == per_ray_bytes
+                batch_any = min(r["query_seconds"] for r in
+                                [meshq(args.meshq, path, file, out, "--any") for _ in range(args.repeat)])
+                batch_any_same = out.read_bytes() == any_bytes
+                if not (batch_same and batch_any_same):
+                    sys.exit(f"{label} {kind}: batched records differ from one ray per call")
                 em_any, occluded = best(args.repeat, lambda: scene.run(o, d, query="OCCLUDED"))
                 agree_any = int(np.count_nonzero(ours_any == (occluded >= 0)))
                 n = len(o)
@@ -164,10 +178,13 @@ def main():
                     "rays": n, "hits": int(np.count_nonzero(hit)), "agree": agree, "agree_any": agree_any,
                     "meshq_s": mq, "embree_s": em, "ratio": em / mq,
                     "meshq_any_s": anyq, "embree_any_s": em_any, "ratio_any": em_any / anyq,
+                    "meshq_batch_s": batch, "ratio_batch": em / batch,
+                    "meshq_batch_any_s": batch_any, "ratio_batch_any": em_any / batch_any,
                 }
                 say(f"  {kind}: closest hit meshq {n / mq / 1e6:.2f} M rays/s, Embree {n / em / 1e6:.2f} "
                     f"-> {em / mq:.2f}x; any hit {n / anyq / 1e6:.2f} vs {n / em_any / 1e6:.2f} -> "
-                    f"{em_any / anyq:.2f}x; answers agree on {agree:,} of {n:,} (any hit {agree_any:,})")
+                    f"{em_any / anyq:.2f}x; answers agree on {agree:,} of {n:,} (any hit {agree_any:,}); "
+                    f"meshq batched: {em / batch:.2f}x, any hit {em_any / batch_any:.2f}x (same records)")
             say(f"  build: meshq {row['meshq_build_s'] * 1e3:.1f} ms, Embree commit {embree_build_s * 1e3:.1f} ms "
                 f"-> meshq takes {row['meshq_build_s'] / embree_build_s:.2f}x Embree's time")
             rows.append(row)
@@ -175,14 +192,17 @@ def main():
         json.dump(rows, sys.stdout, indent=2)
         print()
     else:
-        print("\n| mesh | triangles | random rays | camera rays | random any hit | camera any hit | build time (meshq / Embree) |")
-        print("|---|---:|---:|---:|---:|---:|---:|")
+        print("\n| mesh | triangles | random rays | camera rays | camera, batch | random any hit | "
+              "camera any hit | camera any, batch | build time (meshq / Embree) |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
         for r in rows:
             print(f"| {r['mesh']} | {r['triangles']:,} | {r['random']['ratio']:.2f}x | {r['camera']['ratio']:.2f}x | "
-                  f"{r['random']['ratio_any']:.2f}x | {r['camera']['ratio_any']:.2f}x | "
+                  f"{r['camera']['ratio_batch']:.2f}x | {r['random']['ratio_any']:.2f}x | "
+                  f"{r['camera']['ratio_any']:.2f}x | {r['camera']['ratio_batch_any']:.2f}x | "
                   f"{r['meshq_build_s'] / r['embree_build_s']:.2f} |")
-        print("\nray columns: meshq's throughput / Embree's (one core, one ray per call, best of "
-              f"{args.repeat}); build: meshq's time / Embree's commit.")
+        print("\nray columns: meshq's throughput / Embree's (one core, best of "
+              f"{args.repeat}; Embree one ray per call; meshq one ray per call, or its batch entry "
+              "point where it says batch); build: meshq's time / Embree's commit.")
 
 
 if __name__ == "__main__":

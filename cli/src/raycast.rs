@@ -68,6 +68,10 @@ pub struct RaycastArgs {
     /// hit written as misses.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub hits: Option<u32>,
+    /// Answer one ray per call instead of in batches (Morton order of the origins, packets
+    /// of rays sharing an origin): the same records; for comparing with one-ray-per-call APIs.
+    #[arg(long)]
+    pub per_ray: bool,
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -130,15 +134,26 @@ fn any_record(hit: bool) -> RayHit {
     }
 }
 
-/// Answers `rays` on this thread, one query per call, appending each ray's records.
+/// Scratch of the batch calls on this thread.
+#[derive(Default)]
+struct Scratch {
+    keys: Vec<u64>,
+    answers: Vec<Option<RayHit>>,
+    flags: Vec<bool>,
+}
+
+/// Answers `rays` on this thread — in batches, or one query per call with `--per-ray` (every
+/// hit queries always go one per call) — appending each ray's records.
 fn query_here(
     scene: &MeshIndex,
     rays: &[Ray],
     args: &RaycastArgs,
     nearest: &mut [RayHit],
+    scratch: &mut Scratch,
     results: &mut Vec<RayHit>,
-) {
+) -> Result<()> {
     let options = RayOptions::default();
+    scratch.keys.resize(rays.len(), 0);
     if args.hits.is_some() {
         for r in rays {
             let found = scene.raycast_all(r, &options, nearest);
@@ -146,11 +161,22 @@ fn query_here(
             results.extend_from_slice(written);
             results.extend((found.written..nearest.len()).map(|_| MISS));
         }
-    } else if args.any {
+    } else if args.any && args.per_ray {
         results.extend(rays.iter().map(|r| any_record(scene.raycast_any(r))));
-    } else {
+    } else if args.any {
+        scratch.flags.clear();
+        scratch.flags.resize(rays.len(), false);
+        scene.raycast_any_batch(rays, &options, &mut scratch.keys, &mut scratch.flags)?;
+        results.extend(scratch.flags.iter().map(|&f| any_record(f)));
+    } else if args.per_ray {
         results.extend(rays.iter().map(|r| scene.raycast(r).unwrap_or(MISS)));
+    } else {
+        scratch.answers.clear();
+        scratch.answers.resize(rays.len(), None);
+        scene.raycast_batch(rays, &options, &mut scratch.keys, &mut scratch.answers)?;
+        results.extend(scratch.answers.iter().map(|a| a.unwrap_or(MISS)));
     }
+    Ok(())
 }
 
 /// Answers `rays` on the current rayon pool (`meshq::parallel` batches, or one every-hit
@@ -212,6 +238,7 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
         let (mut hits, mut query_seconds) = (0u64, 0.0f64);
         let mut nearest = vec![MISS; per_ray];
         let mut answers = Vec::new();
+        let mut scratch = Scratch::default();
         while reader.next_chunk(CHUNK, &mut floats)? > 0 {
             rays.clear();
             let (records, _) = floats.as_chunks::<6>();
@@ -221,7 +248,14 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             results.clear();
             let start = Instant::now();
             match threads.pool() {
-                None => query_here(&s.scene, &rays, args, &mut nearest, &mut results),
+                None => query_here(
+                    &s.scene,
+                    &rays,
+                    args,
+                    &mut nearest,
+                    &mut scratch,
+                    &mut results,
+                )?,
                 Some(pool) => pool.install(|| {
                     query_on_threads(&s.scene, &rays, args, per_ray, &mut answers, &mut results)
                 })?,

@@ -87,8 +87,8 @@ pub struct QueryInput {
     /// it must hold.
     #[arg(long, value_enum)]
     pub structure: Option<StructureArg>,
-    /// Threads answering the queries: 1 (the default) on this thread, one query per call; N
-    /// spread over N threads (0: one per core). The records are the same whatever the count.
+    /// Threads answering the queries: 1 (the default) on this thread; N spread over N threads
+    /// (0: one per core). The records are the same whatever the count.
     #[arg(long, value_name = "N", default_value_t = 1,
           value_parser = clap::value_parser!(u16).range(0..=crate::threads::MAX_THREADS))]
     pub threads: u16,

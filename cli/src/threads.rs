@@ -1,5 +1,5 @@
 //! `--threads`: how many threads build and answer. One (the default) works on the calling
-//! thread, one query per call; more spread the queries over a rayon pool of that many threads
+//! thread; more spread the queries over a rayon pool of that many threads
 //! through `meshq::parallel`, and build a BVH with `MeshBvh::build_parallel`: the same tree
 //! and the same answers, bit for bit.
 

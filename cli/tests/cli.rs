@@ -772,6 +772,50 @@ fn check_reports_self_intersections_and_contacts_as_brute_force_finds_them() {
 /// `--threads` changes who answers, never the answer: raycast (closest hit, any hit, every
 /// hit) and closest records on 2 threads and on one per core equal a brute-force scan and the
 /// one-thread records byte for byte; the JSON says how many threads answered.
+/// Camera rays share an origin, so batches walk them in packets: the records are those of one
+/// ray per call (`--per-ray`) and of a brute-force scan, for closest and any hit.
+#[test]
+fn batched_camera_rays_give_the_records_of_one_ray_per_call() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let brute = BruteForce::new(&mesh);
+    let obj = asset("spot.obj");
+    let rays = workload::camera_rays(&loaded.positions, 101, 67);
+    let ray_file = dir.path().join("camera.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let options = RayOptions::default();
+    for any in [false, true] {
+        let mut outputs = Vec::new();
+        for (name, extra) in [("batch", &[][..]), ("per-ray", &["--per-ray"][..])] {
+            let out = dir.path().join(format!("{name}-{any}.bin"));
+            let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> =
+                vec![&"raycast", &obj, &"--rays", &ray_file, &"--out", &out];
+            if any {
+                args.push(&"--any");
+            }
+            args.extend(extra.iter().map(|f| f as &dyn AsRef<std::ffi::OsStr>));
+            ok(&args);
+            outputs.push(std::fs::read(&out).unwrap());
+        }
+        assert_eq!(outputs[0], outputs[1], "any: {any}");
+        let records = read_records(&dir.path().join(format!("batch-{any}.bin")));
+        assert_eq!(records.len(), rays.len());
+        let mut hits = 0;
+        for (i, (ray, &(t, tri))) in rays.iter().zip(&records).enumerate() {
+            let want = brute.raycast(ray, &options);
+            hits += usize::from(want.is_some());
+            let want = match (want, any) {
+                (None, _) => (f32::INFINITY.to_bits(), u32::MAX),
+                (Some(_), true) => (0f32.to_bits(), 0xFFFF_FFFE),
+                (Some(h), false) => (h.t.to_bits(), h.tri),
+            };
+            assert_eq!((t.to_bits(), tri), want, "any: {any}, ray {i}");
+        }
+        assert!(hits > rays.len() / 10, "{hits} hits");
+    }
+}
+
 #[test]
 fn threads_give_the_same_records() {
     let dir = tempfile::tempdir().unwrap();

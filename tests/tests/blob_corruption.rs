@@ -6,6 +6,7 @@ use meshq::blob::{self, BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
 use meshq::error::{BlobError, BlobSection};
 use meshq::mesh::MeshRef;
+use meshq::owned::MeshIndex;
 use meshq_tests::{bake, load_mesh};
 
 #[test]
@@ -34,12 +35,26 @@ fn every_single_byte_corruption_and_truncation_is_handled() {
                 // With the checksum recomputed, validation itself must catch what matters; a
                 // blob it accepts must still be safe to query.
                 if blob::reseal(&mut damaged).is_ok() {
+                    // The owned loaders check boxes on their decoded copy: they must refuse
+                    // exactly what the view refuses, with the same error.
+                    let owned = MeshBvh::from_blob(&damaged);
+                    let index = MeshIndex::from_blob(&damaged);
                     match BlobView::parse(&damaged) {
                         Ok(view) => {
                             meshq_tests::suite::exercise(&view);
                             resealed_accepted += 1;
+                            for err in [owned.err(), index.err()].into_iter().flatten() {
+                                assert!(
+                                    matches!(err, BlobError::RepeatedTriangle { .. }),
+                                    "{layout:?} byte {i} ^ {flip:#x}: {err:?}"
+                                );
+                            }
                         }
-                        Err(_) => resealed_refused += 1,
+                        Err(err) => {
+                            resealed_refused += 1;
+                            assert_eq!(owned.err(), Some(err), "{layout:?} byte {i} ^ {flip:#x}");
+                            assert_eq!(index.err(), Some(err), "{layout:?} byte {i} ^ {flip:#x}");
+                        }
                     }
                 }
             }

@@ -191,3 +191,68 @@ fn culling_and_ray_ranges_match_brute_force() {
         }
     }
 }
+
+/// Rays from one origin, as a batch walks them in packets: a narrow cone from outside (packets
+/// of one direction sign pattern), every direction from a point inside (mixed signs: packets
+/// fall back to single rays), per-ray ranges, invalid rays among valid ones, and a length
+/// that leaves a short last packet.
+#[test]
+fn rays_from_one_origin_match_brute_force() {
+    for name in ["spot", "teapot"] {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
+        let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+        let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
+        let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+        let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
+        let brute = BruteForce::new(&mesh);
+        let (centre, r, _) = workload::centre_radius(&loaded.positions);
+        let jitter = workload::random_rays(&loaded.positions, 2_003, 11);
+        let eye = centre + meshq::math::Vec3::new(1.2, 1.0, 2.5) * r;
+        let cone = jitter.iter().enumerate().map(|(i, j)| {
+            let ray = Ray::new(eye, (centre - eye) + j.dir.normalize() * (0.35 * r));
+            match i % 5 {
+                1 => ray.with_range(2.2 * r, 2.6 * r),
+                2 => ray.with_range(f32::NEG_INFINITY, 2.4 * r),
+                // Invalid: never hits, alone or in a packet.
+                3 if i % 7 == 0 => Ray::new(eye, meshq::math::Vec3::ZERO),
+                _ => ray,
+            }
+        });
+        let inside = jitter.iter().map(|j| Ray::new(centre, j.dir));
+        for (rays, what) in [
+            (cone.collect::<Vec<_>>(), "cone"),
+            (inside.collect::<Vec<_>>(), "inside"),
+        ] {
+            assert_eq!(rays.len() % 8, 3, "a short last packet");
+            for test in [TriangleTest::Watertight, TriangleTest::MollerTrumbore] {
+                for cull in [CullMode::None, CullMode::Back] {
+                    let options = RayOptions { test, cull };
+                    let what = format!("{name} {what} {test:?} {cull:?}");
+                    let hits =
+                        assert_same(&bvh, &wide, &mesh, &packed, &brute, &rays, &options, &what);
+                    // From inside a closed mesh every ray sees back faces: with those culled
+                    // few hit, rightly.
+                    if cull == CullMode::None {
+                        assert!(hits > rays.len() / 4, "{what}: only {hits} hits");
+                    }
+                    // The owned structure walks its packets too.
+                    let mut keys = vec![0u64; rays.len()];
+                    let mut out = vec![None; rays.len()];
+                    owned
+                        .raycast_batch(&rays, &options, &mut keys, &mut out)
+                        .unwrap();
+                    for (ray, got) in rays.iter().zip(&out) {
+                        let want = brute.raycast(ray, &options);
+                        assert_eq!(
+                            got.map(|h| (h.t.to_bits(), h.tri)),
+                            want.map(|h| (h.t.to_bits(), h.tri))
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

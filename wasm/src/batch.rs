@@ -68,7 +68,10 @@ impl MeshBvh {
     /// direction) with `t` in `[near, far]` (`undefined` or `null`: `0`, `Infinity`), writing
     /// ray `i`'s hit parameter to `t[i]` (a `Float32Array` of exactly one number per ray) and
     /// its triangle to `triangles[i]` (a `Uint32Array`, one per ray); a miss writes `MISS_T`
-    /// and `MISS_TRIANGLE`. `side` as in `raycast`. Returns the number of hits.
+    /// and `MISS_TRIANGLE`. `side` as in `raycast`. Returns the number of hits. Each answer is
+    /// exactly `raycast`'s; rays are cast in the given order, and runs of eight consecutive
+    /// rays from one origin (a camera's: give them in rows or small tiles) walk the tree
+    /// together.
     #[wasm_bindgen(js_name = raycastBatch)]
     pub fn raycast_batch(
         &self,

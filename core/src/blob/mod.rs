@@ -65,6 +65,8 @@
 //! Within a version the bytes are stable: the same mesh and config give the same blob on every
 //! target and every release that writes that version.
 
+#[cfg(feature = "alloc")]
+mod boxes_deferred;
 mod checksum;
 mod decode;
 mod encode;
@@ -79,6 +81,8 @@ mod structure_config;
 mod tree;
 mod view;
 
+#[cfg(feature = "alloc")]
+pub(crate) use boxes_deferred::BoxesUnchecked;
 pub use checksum::mesh_checksum;
 pub use encode::{
     EncodeOptions, encode_into, encode_structure_into, encoded_len, reseal, structure_encoded_len,

@@ -51,7 +51,7 @@ pub struct BlobView<'a> {
 }
 
 /// A structure's arrays, cut out of the bytes and counted but not yet validated.
-enum RawStructure<'a> {
+pub(super) enum RawStructure<'a> {
     Bvh(BlobTree<'a>),
     /// Node words (k-d tree, octree) or cell offsets (grid), then references.
     #[cfg_attr(not(feature = "blob-cells"), allow(dead_code))]
@@ -59,10 +59,10 @@ enum RawStructure<'a> {
 }
 
 /// The arrays of a blob, split out and counted but not yet validated.
-struct Sections<'a> {
-    header: BlobHeader,
-    structure: RawStructure<'a>,
-    mesh: Option<BlobMesh<'a>>,
+pub(super) struct Sections<'a> {
+    pub(super) header: BlobHeader,
+    pub(super) structure: RawStructure<'a>,
+    pub(super) mesh: Option<BlobMesh<'a>>,
 }
 
 impl<'a> BlobView<'a> {
@@ -153,7 +153,7 @@ impl LeafTriangles for BlobView<'_> {
 }
 
 /// Header, checksum, then each array counted against the header and cut out of the bytes.
-fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
+pub(super) fn sections(bytes: &[u8]) -> Result<Sections<'_>, BlobError> {
     let header = BlobHeader::read(bytes)?;
     let short = bytes.len() < header.total_len;
     if bytes.len() > header.total_len {
@@ -256,20 +256,25 @@ fn cell_arrays<'a>(header: &BlobHeader, _: &mut Reader<'a>) -> Result<RawStructu
     })
 }
 
+/// Checks a mesh stored in a blob: coordinates finite and bounded, indices in range.
+pub(super) fn check_mesh(mesh: &BlobMesh<'_>) -> Result<(), BlobError> {
+    match *mesh {
+        BlobMesh::Indexed {
+            positions,
+            triangles,
+        } => check_indexed(positions, triangles),
+        BlobMesh::Packed { corners } => check_packed(corners),
+        BlobMesh::External(_) => Ok(()),
+    }
+}
+
 /// Validates the mesh, then the structure against it and the header; returns the view.
 fn finish<'a>(
     header: BlobHeader,
     raw: RawStructure<'a>,
     mesh: BlobMesh<'a>,
 ) -> Result<BlobView<'a>, BlobError> {
-    match mesh {
-        BlobMesh::Indexed {
-            positions,
-            triangles,
-        } => check_indexed(positions, triangles)?,
-        BlobMesh::Packed { corners } => check_packed(corners)?,
-        BlobMesh::External(_) => {}
-    }
+    check_mesh(&mesh)?;
     let structure = check_structure(&header, raw, Some(&mesh))?;
     Ok(BlobView {
         header,
@@ -353,7 +358,7 @@ fn check_cells<'a>(
 }
 
 /// Refuses a header box that differs from the structure's, bit for bit.
-fn same_bounds(found: &Aabb, header: &Aabb) -> Result<(), BlobError> {
+pub(super) fn same_bounds(found: &Aabb, header: &Aabb) -> Result<(), BlobError> {
     let bits = |v: Vec3| v.to_array().map(f32::to_bits);
     if bits(found.min) != bits(header.min) || bits(found.max) != bits(header.max) {
         return Err(BlobError::HeaderMismatch { field: "bounds" });

@@ -4,16 +4,18 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::MeshBvh;
-use crate::blob::{self, BlobView, EncodeOptions, MeshLayout};
+use crate::blob::{self, BlobView, BoxesUnchecked, EncodeOptions, MeshLayout};
 use crate::bvh::BvhNode;
+use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 
 impl MeshBvh {
-    /// Validates a self-contained blob once ([`BlobView::parse`]) and decodes it into owned
-    /// buffers, so it queries as a built one does and answers the same, bit for bit. The
-    /// config is the one the blob records.
+    /// Validates a self-contained blob with every check of [`BlobView::parse`] and decodes it
+    /// into owned buffers, so it queries as a built one does and answers the same, bit for bit.
+    /// The config is the one the blob records. The boxes are checked on the decoded copy; a
+    /// blob refused there is parsed again, so the error is the one `parse` reports.
     ///
     /// A blob baked with [`MeshLayout::Packed`] stores corners, not the indexed mesh: the mesh
     /// becomes three vertices of its own per triangle, in triangle order (same triangles,
@@ -24,7 +26,29 @@ impl MeshBvh {
     /// without its mesh: use [`MeshBvh::from_blob_with_mesh`]), and
     /// [`BlobError::RepeatedTriangle`] for an order that names a triangle twice.
     pub fn from_blob(bytes: &[u8]) -> Result<Self, BlobError> {
-        Self::decode(&BlobView::parse(bytes)?)
+        // Sound blobs take the quicker path; anything it refuses is loaded again the checked
+        // way, so every error is the one `BlobView::parse` (then `decode`) reports.
+        Self::decode_then_check_boxes(bytes)
+            .or_else(|_| BlobView::parse(bytes).and_then(|view| Self::decode(&view)))
+    }
+
+    /// [`MeshBvh::from_blob`] for a sound BVH blob, with the leaf and node boxes checked on the
+    /// decoded copy, whose triangles are packed in leaf order, instead of on the bytes: the
+    /// same checks over the same bits, without gathering every triangle through the blob's
+    /// indices a second time.
+    pub(super) fn decode_then_check_boxes(bytes: &[u8]) -> Result<Self, BlobError> {
+        let unchecked = BoxesUnchecked::parse(bytes)?;
+        let loaded = Self::decode(unchecked.view())?;
+        let shape = check(
+            &loaded.bvh(),
+            Some(&loaded.packed()),
+            CheckLevel::Full,
+            Extent::Exact,
+        )?;
+        if shape.depth != loaded.depth {
+            return Err(BlobError::HeaderMismatch { field: "depth" });
+        }
+        Ok(loaded)
     }
 
     /// [`MeshBvh::from_blob`] for any blob, with the mesh it was baked from
@@ -137,4 +161,74 @@ pub(super) fn unshared_mesh(
         .map(|v| [v, v + 1, v + 2])
         .collect();
     (positions, triangles)
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec::Vec;
+
+    use super::MeshBvh;
+    use crate::blob::{self, BlobHeader, BlobView, MeshLayout};
+    use crate::bvh::BuildConfig;
+    use crate::mesh::MeshRef;
+
+    /// A wavy sheet of `2·n²` triangles.
+    fn sheet(n: u32) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        let mut positions = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+                positions.push([x, y, 0.1 * libm::sinf(7.0 * x) * libm::cosf(5.0 * y)]);
+            }
+        }
+        let mut triangles = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let v = j * (n + 1) + i;
+                triangles.push([v, v + 1, v + n + 2]);
+                triangles.push([v, v + n + 2, v + n + 1]);
+            }
+        }
+        (positions, triangles)
+    }
+
+    #[test]
+    fn sound_blobs_take_the_quick_path_and_damaged_boxes_are_refused_there_too() {
+        let (positions, triangles) = sheet(12);
+        let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+        let built = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
+            let bytes = built.to_blob(layout).unwrap();
+            // The quick path accepts a sound blob (or every load would silently take the
+            // slower one) and gives what the checked path gives.
+            let quick = MeshBvh::decode_then_check_boxes(&bytes).unwrap();
+            let checked = MeshBvh::decode(&BlobView::parse(&bytes).unwrap()).unwrap();
+            assert_eq!(quick.bvh().nodes(), checked.bvh().nodes());
+            assert_eq!(quick.packed().as_slice(), checked.packed().as_slice());
+            // Nodes are 32-byte records after the header and their count's varint: shrink
+            // each node's box in turn, one coordinate pulled to its centre.
+            let header = BlobHeader::read(&bytes).unwrap();
+            let count = header.node_count as usize;
+            let varint = (count.max(1).ilog2() / 7 + 1) as usize;
+            let first = header.header_len + varint;
+            let mut refused = 0;
+            for node in 0..count {
+                let at = first + 32 * node;
+                let mut damaged = bytes.clone();
+                let min = f32::from_le_bytes(damaged[at..at + 4].try_into().unwrap());
+                let max = f32::from_le_bytes(damaged[at + 16..at + 20].try_into().unwrap());
+                let mid = 0.5 * (min + max);
+                damaged[at + 16..at + 20].copy_from_slice(&mid.to_le_bytes());
+                blob::reseal(&mut damaged).unwrap();
+                let expected = BlobView::parse(&damaged).unwrap_err();
+                assert!(
+                    MeshBvh::decode_then_check_boxes(&damaged).is_err(),
+                    "node {node}"
+                );
+                assert_eq!(MeshBvh::from_blob(&damaged).err(), Some(expected));
+                refused += 1;
+            }
+            assert_eq!(refused, count);
+        }
+    }
 }

@@ -19,9 +19,10 @@ use crate::mesh::ValidMesh;
 use crate::query::LeafTriangles;
 
 impl MeshIndex {
-    /// Validates a self-contained blob of any kind once ([`BlobView::parse`]) and decodes it
-    /// into owned buffers, so it queries as a built structure does and answers the same, bit
-    /// for bit. The config is the one the blob records.
+    /// Validates a self-contained blob of any kind with every check of [`BlobView::parse`]
+    /// (as [`MeshBvh::from_blob`] does for a BVH) and decodes it into owned buffers, so it
+    /// queries as a built structure does and answers the same, bit for bit. The config is the
+    /// one the blob records.
     ///
     /// A blob baked with [`MeshLayout::Packed`] stores corners, not the indexed mesh: the mesh
     /// becomes three vertices of its own per triangle, in triangle order (same triangles, same
@@ -32,7 +33,11 @@ impl MeshIndex {
     /// without its mesh: use [`MeshIndex::from_blob_with_mesh`]), and
     /// [`BlobError::RepeatedTriangle`] for a BVH order that names a triangle twice.
     pub fn from_blob(bytes: &[u8]) -> Result<Self, BlobError> {
-        Self::decode(&BlobView::parse(bytes)?)
+        // As `MeshBvh::from_blob`: a sound BVH blob takes the quicker path, anything else the
+        // checked one.
+        MeshBvh::decode_then_check_boxes(bytes)
+            .map(Self::Bvh)
+            .or_else(|_| BlobView::parse(bytes).and_then(|view| Self::decode(&view)))
     }
 
     /// [`MeshIndex::from_blob`] for any blob, with the mesh it was baked from

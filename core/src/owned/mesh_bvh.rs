@@ -175,6 +175,11 @@ impl Traverse for MeshBvh {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         self.wide().traverse(visitor);
     }
+
+    #[inline(always)]
+    fn walks_packets(&self) -> bool {
+        true
+    }
 }
 
 impl LeafTriangles for MeshBvh {

@@ -87,6 +87,16 @@ impl Traverse for MeshIndex {
             Self::Grid(s) => s.traverse(visitor),
         }
     }
+
+    #[inline]
+    fn walks_packets(&self) -> bool {
+        match self {
+            Self::Bvh(s) => s.walks_packets(),
+            Self::KdTree(s) => s.walks_packets(),
+            Self::Octree(s) => s.walks_packets(),
+            Self::Grid(s) => s.walks_packets(),
+        }
+    }
 }
 
 impl LeafTriangles for MeshIndex {

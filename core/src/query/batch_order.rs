@@ -1,6 +1,6 @@
-//! The order a batch of queries is answered in: Morton order of each query's position (a
-//! point, or a ray's origin), so that neighbouring queries run one after another and find the
-//! nodes and triangles they read still in cache. Answers never depend on this order.
+//! The order a batch of queries is answered in: Morton order of each point, so that
+//! neighbouring queries run one after another and find the nodes and triangles they read still
+//! in cache; rays keep the order they are given in. Answers never depend on this order.
 
 use glam::Vec3;
 
@@ -20,22 +20,7 @@ pub(crate) fn morton_order(
     keys: &mut [u64],
     out_len: usize,
 ) -> Result<&[u64], BatchError> {
-    let n = positions.len();
-    if u32::try_from(n).is_err() {
-        return Err(BatchError::TooLarge);
-    }
-    let too_small = |buffer, got| BatchError::BufferTooSmall {
-        buffer,
-        needed: n,
-        got,
-    };
-    if out_len < n {
-        return Err(too_small(BatchBuffer::Results, out_len));
-    }
-    let got = keys.len();
-    let keys = keys
-        .get_mut(..n)
-        .ok_or(too_small(BatchBuffer::SortKeys, got))?;
+    let keys = checked_keys(positions.len(), keys, out_len)?;
     // The grid spans the batch itself, so a cluster of queries still spreads over its cells.
     let bounds = positions
         .clone()
@@ -55,6 +40,39 @@ pub(crate) fn morton_order(
     Ok(keys)
 }
 
+/// [`morton_order`] without the sort: the first `n` keys hold the query indices in the given
+/// order. The same checks and errors.
+pub(crate) fn given_order(
+    n: usize,
+    keys: &mut [u64],
+    out_len: usize,
+) -> Result<&[u64], BatchError> {
+    let keys = checked_keys(n, keys, out_len)?;
+    for (key, i) in keys.iter_mut().zip(0u64..) {
+        *key = i;
+    }
+    Ok(keys)
+}
+
+/// The first `n` of `keys`, after checking a batch of `n` queries against them and its
+/// `out_len` answers.
+fn checked_keys(n: usize, keys: &mut [u64], out_len: usize) -> Result<&mut [u64], BatchError> {
+    if u32::try_from(n).is_err() {
+        return Err(BatchError::TooLarge);
+    }
+    let too_small = |buffer, got| BatchError::BufferTooSmall {
+        buffer,
+        needed: n,
+        got,
+    };
+    if out_len < n {
+        return Err(too_small(BatchBuffer::Results, out_len));
+    }
+    let got = keys.len();
+    keys.get_mut(..n)
+        .ok_or(too_small(BatchBuffer::SortKeys, got))
+}
+
 /// The query index a [`morton_order`] key carries.
 #[inline(always)]
 pub(crate) const fn query_index(key: u64) -> usize {
@@ -66,7 +84,8 @@ pub(crate) const fn query_index(key: u64) -> usize {
 /// per query between long searches. Small, so a batch costs little stack on a microcontroller.
 const CHUNK: usize = 16;
 
-/// Answers `queries` in the order of `order` (keys from [`morton_order`]) with `answer`,
+/// Answers `queries` in the order of `order` (keys from [`morton_order`] or [`given_order`])
+/// with `answer`,
 /// writing each answer to `out` at its query's index.
 #[inline(always)]
 pub(crate) fn answer_in_order<Q: Copy, T: Copy + Default>(

@@ -71,7 +71,7 @@ impl LaneRay {
 
 /// One axis's (near, far) planes for a ray whose inverse direction is `negative` or not.
 #[inline(always)]
-fn near_far(negative: bool, min: [f32; 4], max: [f32; 4]) -> (Vec4, Vec4) {
+pub(super) fn near_far(negative: bool, min: [f32; 4], max: [f32; 4]) -> (Vec4, Vec4) {
     if negative {
         (Vec4::from_array(max), Vec4::from_array(min))
     } else {

@@ -5,7 +5,7 @@ use core::ops::ControlFlow;
 use glam::Vec3;
 
 use super::box_lanes::{LaneRay, MARGIN};
-use super::leaf_batches::{LANES_PAY, for_each_batch};
+use super::leaf_batches::{Batch, LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::{CullMode, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore};
 use crate::math::{Aabb, Aabb4, Ray, RayHit, Triangle};
@@ -92,6 +92,14 @@ fn enter_box(slab: &SlabRay, aabb: &Aabb) -> Option<f32> {
     (lo <= hi).then_some(lo)
 }
 
+/// Whether a box deferred with entry `key` may still hold a hit no farther than `t_max`
+/// (with the margin). Monotone in `t_max`: the largest `t_max` of several rays decides for
+/// all of them.
+#[inline(always)]
+pub(super) fn within_reach(key: f32, t_max: f32) -> bool {
+    key <= t_max + t_max.abs() * MARGIN
+}
+
 /// What a ray query keeps of the hits its kernel finds.
 pub(super) trait Goal {
     /// Whether a closer hit bounds the walk (deferred boxes beyond it are skipped).
@@ -110,7 +118,7 @@ pub(super) trait Goal {
 }
 
 /// The closest hit: the best so far, under the tie rule.
-struct Nearest(Option<RayHit>);
+pub(super) struct Nearest(pub(super) Option<RayHit>);
 
 impl Goal for Nearest {
     const PRUNES: bool = true;
@@ -141,7 +149,7 @@ impl Goal for Nearest {
 }
 
 /// Any hit: the first non-degenerate one ends the walk.
-struct Occluded(bool);
+pub(super) struct Occluded(pub(super) bool);
 
 impl Goal for Occluded {
     const PRUNES: bool = false;
@@ -165,15 +173,15 @@ impl Goal for Occluded {
 }
 
 /// The ray visitor: boxes by the slab test, leaves by the kernel, hits to the goal.
-struct RayVisitor<'m, S: ?Sized, K, G> {
+pub(super) struct RayVisitor<'m, S: ?Sized, K, G> {
     source: &'m S,
     /// The ray as given, for structures that walk along it.
     ray: Ray,
-    slab: SlabRay,
+    pub(super) slab: SlabRay,
     /// The same ray for four boxes at once (optimised away when no structure asks).
     lanes: LaneRay,
     kernel: K,
-    goal: G,
+    pub(super) goal: G,
 }
 
 impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S, K, G> {
@@ -200,25 +208,14 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
-        let t = self.slab.t_max;
-        !G::PRUNES || key <= t + t.abs() * MARGIN
+        !G::PRUNES || within_reach(key, self.slab.t_max)
     }
 
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
         if K::LANES {
             let source = self.source;
-            return for_each_batch(source, tris, |batch| {
-                let mut maybe = self.kernel.may_hit(&batch.lanes) & batch.used;
-                while maybe != 0 {
-                    let lane = maybe.trailing_zeros() as usize;
-                    maybe &= maybe - 1;
-                    if let Some((tri, corners)) = batch.triangle(lane) {
-                        self.offer(tri, &corners)?;
-                    }
-                }
-                ControlFlow::Continue(())
-            });
+            return for_each_batch(source, tris, |batch| self.offer_batch(batch));
         }
         for (slot, tri) in tris {
             if let Some(corners) = self.source.corners(slot, tri) {
@@ -230,6 +227,20 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 }
 
 impl<S: ?Sized, K: Kernel, G: Goal> RayVisitor<'_, S, K, G> {
+    /// Tests the triangles of `batch` the kernel's lane test lets through, one by one.
+    #[inline(always)]
+    pub(super) fn offer_batch(&mut self, batch: &Batch<'_>) -> ControlFlow<()> {
+        let mut maybe = self.kernel.may_hit(&batch.lanes) & batch.used;
+        while maybe != 0 {
+            let lane = maybe.trailing_zeros() as usize;
+            maybe &= maybe - 1;
+            if let Some((tri, corners)) = batch.triangle(lane) {
+                self.offer(tri, &corners)?;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+
     /// Tests triangle `tri` and hands a hit to the goal.
     #[inline(always)]
     fn offer(&mut self, tri: u32, corners: &Triangle) -> ControlFlow<()> {
@@ -312,15 +323,41 @@ fn walk_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, K: Kernel, G: Goal
     kernel: K,
     goal: G,
 ) -> G {
-    let slab = SlabRay::new(ray);
-    let mut v = RayVisitor {
-        source,
-        ray: *ray,
-        slab,
-        lanes: LaneRay::new(&slab),
-        kernel,
-        goal,
-    };
+    let mut v = RayVisitor::new(source, ray, kernel, goal);
     tree.traverse(&mut v);
     v.goal
+}
+
+impl<'m, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, S, K, G> {
+    /// The visitor of `ray` over `source`, with its kernel and goal.
+    #[inline(always)]
+    pub(super) fn new(source: &'m S, ray: &Ray, kernel: K, goal: G) -> Self {
+        let slab = SlabRay::new(ray);
+        Self {
+            source,
+            ray: *ray,
+            slab,
+            lanes: LaneRay::new(&slab),
+            kernel,
+            goal,
+        }
+    }
+}
+
+/// The kernel `options` names for `ray`.
+#[inline(always)]
+pub(super) fn watertight(ray: &Ray, options: &RayOptions) -> impl Kernel + use<> {
+    Wt {
+        ray: WatertightRay::new(ray),
+        cull: options.cull,
+    }
+}
+
+/// The Möller–Trumbore kernel for `ray` with the options' culling.
+#[inline(always)]
+pub(super) fn moller_trumbore_kernel(ray: &Ray, options: &RayOptions) -> impl Kernel + use<> {
+    Mt {
+        ray: *ray,
+        cull: options.cull,
+    }
 }

@@ -1,10 +1,14 @@
 //! Many rays in one call (see
-//! [`MeshQuery::raycast_batch`](crate::query::MeshQuery::raycast_batch)): cast in Morton order
-//! of their origins, so rays that start close together read the same nodes and triangles
-//! while they are still in cache.
+//! [`MeshQuery::raycast_batch`](crate::query::MeshQuery::raycast_batch)): cast in the given
+//! order, runs of rays from one origin as packets on the structures that walk them.
+//!
+//! Rays are not reordered: sorting them by origin (as point batches are) made random rays
+//! slower, gathering each ray and scattering its answer out of cache for no reuse of the tree,
+//! and a caller's order is usually already coherent (a camera's pixels).
 
-use super::batch_order::{answer_in_order, morton_order};
-use super::ray::{raycast_any_with, raycast_with};
+use super::batch_order::{answer_in_order, given_order};
+use super::ray::{Nearest, Occluded, raycast_any_with, raycast_with};
+use super::ray_packet::answer_in_packets;
 use super::{LeafTriangles, RayOptions, Traverse};
 use crate::error::BatchError;
 use crate::math::{Ray, RayHit};
@@ -18,10 +22,23 @@ pub(crate) fn raycast_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     keys: &mut [u64],
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
-    let order = morton_order(rays.iter().map(|r| r.origin), keys, out.len())?;
-    answer_in_order(rays, order, out, |ray| {
-        raycast_with(tree, source, ray, options)
-    });
+    let order = given_order(rays.len(), keys, out.len())?;
+    if tree.walks_packets() {
+        answer_in_packets(
+            tree,
+            source,
+            rays,
+            options,
+            order,
+            out,
+            || Nearest(None),
+            |g| g.0,
+        );
+    } else {
+        answer_in_order(rays, order, out, |ray| {
+            raycast_with(tree, source, ray, options)
+        });
+    }
     Ok(())
 }
 
@@ -35,9 +52,22 @@ pub(crate) fn raycast_any_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>
     keys: &mut [u64],
     out: &mut [bool],
 ) -> Result<(), BatchError> {
-    let order = morton_order(rays.iter().map(|r| r.origin), keys, out.len())?;
-    answer_in_order(rays, order, out, |ray| {
-        raycast_any_with(tree, source, ray, options)
-    });
+    let order = given_order(rays.len(), keys, out.len())?;
+    if tree.walks_packets() {
+        answer_in_packets(
+            tree,
+            source,
+            rays,
+            options,
+            order,
+            out,
+            || Occluded(false),
+            |g| g.0,
+        );
+    } else {
+        answer_in_order(rays, order, out, |ray| {
+            raycast_any_with(tree, source, ray, options)
+        });
+    }
     Ok(())
 }

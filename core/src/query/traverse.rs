@@ -80,6 +80,22 @@ pub trait Visitor {
     /// Visits a leaf (or a cell): its triangles as `(slot, mesh triangle index)` pairs, where
     /// the slot is what [`LeafTriangles::corners`] is asked for. `Break` ends the traversal.
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;
+
+    /// Whether this query reads the box [`leaf_in`](Self::leaf_in) is given. When false (the
+    /// default), structures may skip working the box out and call [`leaf`](Self::leaf).
+    fn wants_leaf_boxes(&self) -> bool {
+        false
+    }
+
+    /// [`leaf`](Self::leaf), with the box the structure entered the leaf by: `aabb` holds the
+    /// leaf's triangles, and [`enter`](Self::enter) or [`enter_lanes`](Self::enter_lanes)
+    /// accepted it. Structures that can name that box call this when
+    /// [`wants_leaf_boxes`](Self::wants_leaf_boxes) says so; a query of several rays uses it
+    /// to let only the rays that enter the box test the leaf. The default calls `leaf`.
+    fn leaf_in(&mut self, aabb: &Aabb, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        let _ = aabb;
+        self.leaf(tris)
+    }
 }
 
 /// An acceleration structure: it runs a [`Visitor`] over its boxes and leaves.
@@ -104,6 +120,17 @@ pub trait Visitor {
 pub trait Traverse {
     /// Runs `visitor` over the structure.
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V);
+
+    /// Whether ray batches ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch) and
+    /// [`raycast_any_batch`](super::MeshQuery::raycast_any_batch)) may walk this structure
+    /// with packets: one visitor for several rays from one origin, which judges boxes for all
+    /// of them at once through [`Visitor::enter_lanes`] and has no single
+    /// [`ray`](Visitor::ray). Answers are the same either way. The default, `false`, suits
+    /// structures that march cells along one ray; the four-wide BVHs say `true`.
+    #[inline(always)]
+    fn walks_packets(&self) -> bool {
+        false
+    }
 
     /// This structure with the triangles it was built over — the
     /// [`ValidMesh`](crate::mesh::ValidMesh), or a packed copy in its leaf order — ready for
@@ -161,6 +188,11 @@ impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         self.structure.traverse(visitor);
+    }
+
+    #[inline(always)]
+    fn walks_packets(&self) -> bool {
+        self.structure.walks_packets()
     }
 }
 

@@ -11,6 +11,9 @@ struct Child {
     child: u32,
     count: u32,
     key: f32,
+    /// The node whose lane `lane` this child is, for its box.
+    parent: u32,
+    lane: u32,
 }
 
 impl Child {
@@ -19,6 +22,8 @@ impl Child {
         child: 0,
         count: 0,
         key: 0.0,
+        parent: 0,
+        lane: 0,
     };
 }
 
@@ -34,6 +39,12 @@ impl Traverse for WideBvh<'_> {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         traverse_wide(self, visitor);
     }
+
+    /// Yes: boxes are judged four at a time through [`Visitor::enter_lanes`].
+    #[inline(always)]
+    fn walks_packets(&self) -> bool {
+        true
+    }
 }
 
 #[inline(always)]
@@ -43,21 +54,31 @@ fn traverse_wide<V: Visitor + ?Sized>(tree: &WideBvh<'_>, visitor: &mut V) {
     let mut at = Child::ROOT;
     loop {
         if at.count > 0 {
-            if let Some(tris) = leaf(tree, at.child, at.count)
-                && visitor.leaf(tris).is_break()
-            {
-                return;
+            if let Some(tris) = leaf(tree, at.child, at.count) {
+                let boxed = visitor.wants_leaf_boxes();
+                let flow = match tree.nodes.get(at.parent as usize) {
+                    Some(parent) if boxed => {
+                        visitor.leaf_in(&parent.bounds.lane(at.lane as usize), tris)
+                    }
+                    _ => visitor.leaf(tris),
+                };
+                if flow.is_break() {
+                    return;
+                }
             }
         } else if let Some(node) = tree.nodes.get(at.child as usize) {
             let (mask, keys) = visitor.enter_lanes(&node.bounds);
             let mask = mask & node.bounds.used_mask() & 0xF;
             if mask != 0 {
+                let parent = at.child;
                 let lane_of = |lane: u32| -> Child {
-                    let lane = lane as usize;
+                    let at = lane as usize;
                     Child {
-                        child: node.child.get(lane).copied().unwrap_or(0),
-                        count: node.count.get(lane).copied().unwrap_or(0),
-                        key: keys.get(lane).copied().unwrap_or(f32::INFINITY),
+                        child: node.child.get(at).copied().unwrap_or(0),
+                        count: node.count.get(at).copied().unwrap_or(0),
+                        key: keys.get(at).copied().unwrap_or(f32::INFINITY),
+                        parent,
+                        lane,
                     }
                 };
                 if mask & (mask - 1) == 0 {

@@ -1,0 +1,268 @@
+//! Ray packets: rays that share an origin (a camera's, a light's) walk a BVH together, each box
+//! judged once for the whole packet ([`PacketLanes`]) and each leaf tested ray by ray.
+//!
+//! Every ray's answer is exactly its own query's. The packet enters every box any of its rays
+//! would enter alone (its test is conservative for each of them) and revisits a deferred box
+//! while any ray still might want it, so each ray's leaf tests include every triangle its own
+//! walk would test; the extra triangles it tests can only be hits it would also accept if they
+//! won, and a ray query's answer is the minimum under a total order, so it does not change.
+
+use core::ops::ControlFlow;
+
+use glam::Vec3;
+
+use super::batch_order::query_index;
+use super::box_lanes::MARGIN;
+use super::leaf_batches::for_each_batch;
+use super::packet_lanes::{PACKET_RAYS, PacketLanes, PacketRays};
+use super::ray::{
+    Goal, Kernel, RayVisitor, moller_trumbore_kernel, walk, watertight, within_reach,
+};
+use super::{LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor};
+use crate::geom::SlabRay;
+use crate::math::{Aabb, Aabb4, Ray};
+
+/// Rays per packet.
+pub(super) const PACKET: usize = PACKET_RAYS;
+
+/// `PACKET` ray visitors walking one structure together.
+pub(super) struct Packet<'m, S: ?Sized, K, G> {
+    source: &'m S,
+    pub(super) rays: [RayVisitor<'m, S, K, G>; PACKET],
+    lanes: PacketLanes,
+    /// The same rays lane by lane, for their leaf boxes.
+    each: PacketRays,
+    /// Bit `i` set: ray `i`'s answer is final (an any-hit query that found one).
+    done: u32,
+    /// The largest `t_max` of the rays still looking (each shrinks as hits are found).
+    t_max: f32,
+}
+
+/// Every ray of a packet done.
+const ALL: u32 = (1 << PACKET) - 1;
+
+impl<'m, S: ?Sized, K: Kernel, G: Goal> Packet<'m, S, K, G> {
+    /// The packet of `rays`, or `None` when they do not share an origin and direction signs.
+    pub(super) fn new(source: &'m S, rays: [RayVisitor<'m, S, K, G>; PACKET]) -> Option<Self> {
+        let slabs: [SlabRay; PACKET] = rays.each_ref().map(|r| r.slab);
+        let mut packet = Self {
+            source,
+            lanes: PacketLanes::new(&slabs)?,
+            each: PacketRays::new(&slabs),
+            rays,
+            done: 0,
+            t_max: f32::NEG_INFINITY,
+        };
+        packet.update_t_max();
+        Some(packet)
+    }
+
+    /// Recomputes [`Self::t_max`] (after a leaf, where rays find hits).
+    #[inline(always)]
+    fn update_t_max(&mut self) {
+        let done = self.done;
+        self.t_max = (0u32..)
+            .zip(&self.rays)
+            .filter(|(i, _)| done & (1 << i) == 0)
+            .map(|(_, r)| r.slab.t_max)
+            .fold(f32::NEG_INFINITY, f32::max);
+        self.each
+            .set_t_max(self.rays.each_ref().map(|r| r.slab.t_max));
+    }
+}
+
+impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K, G> {
+    /// The smallest key of the rays that enter `aabb`.
+    #[inline(always)]
+    fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
+        let done = self.done;
+        (0u32..)
+            .zip(&mut self.rays)
+            .filter(|(i, _)| done & (1 << i) == 0)
+            .filter_map(|(_, r)| r.enter(aabb))
+            .reduce(f32::min)
+    }
+
+    #[inline(always)]
+    fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        self.lanes.enter(boxes, self.t_max, MARGIN)
+    }
+
+    /// Whether any ray still looking would revisit: the one with the largest `t_max` would.
+    #[inline(always)]
+    fn revisit(&self, key: f32) -> bool {
+        !G::PRUNES || within_reach(key, self.t_max)
+    }
+
+    #[inline(always)]
+    fn skips_repeats(&self) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        self.leaf_for(None, tris)
+    }
+
+    #[inline(always)]
+    fn wants_leaf_boxes(&self) -> bool {
+        true
+    }
+
+    /// Only the rays that enter `aabb` on their own test the leaf.
+    #[inline(always)]
+    fn leaf_in(&mut self, aabb: &Aabb, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        self.leaf_for(Some(aabb), tris)
+    }
+}
+
+impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Packet<'_, S, K, G> {
+    /// Each ray still looking (and, given a box, entering it) tests the leaf.
+    #[inline(always)]
+    fn leaf_for(&mut self, aabb: Option<&Aabb>, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        let entering = aabb.map_or(ALL, |b| self.each.entering(b, MARGIN));
+        let mut testing = entering & !self.done & ALL;
+        if testing == 0 {
+            return ControlFlow::Continue(());
+        }
+        if K::LANES {
+            // Each batch of four triangles is loaded into lanes once, for all the rays.
+            let (rays, done) = (&mut self.rays, &mut self.done);
+            let _ = for_each_batch(self.source, tris, |batch| {
+                for (i, ray) in (0u32..).zip(rays.iter_mut()) {
+                    if testing & (1 << i) != 0 && ray.offer_batch(batch).is_break() {
+                        testing &= !(1 << i);
+                        *done |= 1 << i;
+                    }
+                }
+                if testing == 0 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            });
+        } else {
+            for (i, ray) in (0u32..).zip(&mut self.rays) {
+                if testing & (1 << i) != 0 && ray.leaf(tris.clone()).is_break() {
+                    self.done |= 1 << i;
+                }
+            }
+        }
+        self.update_t_max();
+        if self.done == ALL {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+}
+
+/// Answers `rays` in the order of `order` (keys from
+/// [`given_order`](super::batch_order::given_order)): each run of [`PACKET`] (or, at the
+/// end, fewer) valid rays that share an origin and direction signs as one packet, any other
+/// ray alone. `goal` makes an empty goal, `answer` turns a finished one into what `out` holds
+/// at the ray's index.
+#[allow(clippy::too_many_arguments)] // The batch's inputs, its output and the goal's two ends.
+pub(super) fn answer_in_packets<A, S, G, T>(
+    tree: &A,
+    source: &S,
+    rays: &[Ray],
+    options: &RayOptions,
+    order: &[u64],
+    out: &mut [T],
+    goal: impl Fn() -> G,
+    answer: impl Fn(G) -> T,
+) where
+    A: Traverse + ?Sized,
+    S: LeafTriangles + ?Sized,
+    G: Goal,
+{
+    for keys in order.chunks(PACKET) {
+        let ray_of = |k: usize| keys.get(k).and_then(|&key| rays.get(query_index(key)));
+        let together = keys.len() >= 2
+            && ray_of(0).is_some_and(|first| {
+                (0..keys.len()).all(|k| ray_of(k).is_some_and(|r| r.is_valid() && alike(r, first)))
+            });
+        let last = keys.len().saturating_sub(1);
+        // A short run is padded with its last ray, whose extra answers are dropped.
+        let packet = together
+            .then(|| {
+                let gathered: [Ray; PACKET] = core::array::from_fn(|k| {
+                    ray_of(k.min(last))
+                        .copied()
+                        .unwrap_or(Ray::new(Vec3::ZERO, Vec3::X))
+                });
+                walk_packet(tree, source, &gathered, options, &goal)
+            })
+            .flatten();
+        if let Some(goals) = packet {
+            for (g, &key) in goals.into_iter().zip(keys) {
+                if let Some(slot) = out.get_mut(query_index(key)) {
+                    *slot = answer(g);
+                }
+            }
+            continue;
+        }
+        for &key in keys {
+            let i = query_index(key);
+            if let (Some(ray), Some(slot)) = (rays.get(i), out.get_mut(i)) {
+                let g = if ray.is_valid() {
+                    walk(tree, source, ray, options, goal())
+                } else {
+                    goal()
+                };
+                *slot = answer(g);
+            }
+        }
+    }
+}
+
+/// Whether two rays may share a packet: the same origin, bit for bit, and the same direction
+/// sign on every axis (the sign of the padded inverse direction, `−0` negative).
+#[inline(always)]
+fn alike(a: &Ray, b: &Ray) -> bool {
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    let signs = |v: Vec3| v.to_array().map(f32::is_sign_negative);
+    bits(a.origin) == bits(b.origin) && signs(a.dir) == signs(b.dir)
+}
+
+/// The goals of `rays` walked as one packet with the kernel `options` names, or `None` when
+/// they cannot form one.
+fn walk_packet<A, S, G>(
+    tree: &A,
+    source: &S,
+    rays: &[Ray; PACKET],
+    options: &RayOptions,
+    goal: &impl Fn() -> G,
+) -> Option<[G; PACKET]>
+where
+    A: Traverse + ?Sized,
+    S: LeafTriangles + ?Sized,
+    G: Goal,
+{
+    match options.test {
+        TriangleTest::Watertight => walk_packet_with(tree, source, rays, |r| {
+            RayVisitor::new(source, r, watertight(r, options), goal())
+        }),
+        TriangleTest::MollerTrumbore => walk_packet_with(tree, source, rays, |r| {
+            RayVisitor::new(source, r, moller_trumbore_kernel(r, options), goal())
+        }),
+    }
+}
+
+fn walk_packet_with<'m, A, S, K, G>(
+    tree: &A,
+    source: &'m S,
+    rays: &[Ray; PACKET],
+    visitor: impl FnMut(&Ray) -> RayVisitor<'m, S, K, G>,
+) -> Option<[G; PACKET]>
+where
+    A: Traverse + ?Sized,
+    S: LeafTriangles + ?Sized + 'm,
+    K: Kernel,
+    G: Goal,
+{
+    let mut packet = Packet::new(source, rays.each_ref().map(visitor))?;
+    tree.traverse(&mut packet);
+    Some(packet.rays.map(|v| v.goal))
+}
