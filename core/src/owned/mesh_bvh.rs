@@ -177,8 +177,8 @@ impl Traverse for MeshBvh {
     }
 
     #[inline(always)]
-    fn walks_packets(&self) -> bool {
-        true
+    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
+        Some(self.wide())
     }
 }
 

@@ -11,6 +11,7 @@ use crate::mesh::ValidMesh;
 use crate::octree::OctreeConfig;
 use crate::query::{LeafTriangles, Traverse, Visitor};
 use crate::structure_kind::StructureKind;
+use crate::wide::WideBvh;
 
 /// A mesh with one structure of any kind, owning every buffer; it answers every query of
 /// [`MeshQuery`](crate::query::MeshQuery) through whichever structure it holds.
@@ -89,12 +90,10 @@ impl Traverse for MeshIndex {
     }
 
     #[inline]
-    fn walks_packets(&self) -> bool {
+    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
         match self {
-            Self::Bvh(s) => s.walks_packets(),
-            Self::KdTree(s) => s.walks_packets(),
-            Self::Octree(s) => s.walks_packets(),
-            Self::Grid(s) => s.walks_packets(),
+            Self::Bvh(s) => s.wide_bvh(),
+            Self::KdTree(_) | Self::Octree(_) | Self::Grid(_) => None,
         }
     }
 }

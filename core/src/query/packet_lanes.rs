@@ -14,7 +14,7 @@ use glam::Vec4;
 
 use super::box_lanes::near_far;
 use crate::geom::SlabRay;
-use crate::math::{Aabb, Aabb4};
+use crate::math::{Aabb, Aabb4, max_f32, min_f32};
 
 /// A packet's shared origin and interval of padded inverse directions, spread over four lanes.
 #[derive(Clone, Copy, Debug)]
@@ -50,11 +50,11 @@ impl PacketLanes {
                 if let (Some(l), Some(h), Some(&i)) =
                     (lo.get_mut(axis), hi.get_mut(axis), inv.get(axis))
                 {
-                    *l = l.min(i);
-                    *h = h.max(i);
+                    *l = min_f32(*l, i);
+                    *h = max_f32(*h, i);
                 }
             }
-            t_min = t_min.min(ray.t_min);
+            t_min = min_f32(t_min, ray.t_min);
         }
         let [ox, oy, oz] = first.origin.to_array();
         Some(Self {

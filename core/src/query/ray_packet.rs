@@ -20,7 +20,7 @@ use super::ray::{
 };
 use super::{LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor};
 use crate::geom::SlabRay;
-use crate::math::{Aabb, Aabb4, Ray};
+use crate::math::{Aabb, Aabb4, Ray, max_f32, min_f32};
 
 /// Rays per packet.
 pub(super) const PACKET: usize = PACKET_RAYS;
@@ -65,7 +65,7 @@ impl<'m, S: ?Sized, K: Kernel, G: Goal> Packet<'m, S, K, G> {
             .zip(&self.rays)
             .filter(|(i, _)| done & (1 << i) == 0)
             .map(|(_, r)| r.slab.t_max)
-            .fold(f32::NEG_INFINITY, f32::max);
+            .fold(f32::NEG_INFINITY, max_f32);
         self.each
             .set_t_max(self.rays.each_ref().map(|r| r.slab.t_max));
     }
@@ -80,7 +80,7 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K,
             .zip(&mut self.rays)
             .filter(|(i, _)| done & (1 << i) == 0)
             .filter_map(|(_, r)| r.enter(aabb))
-            .reduce(f32::min)
+            .reduce(min_f32)
     }
 
     #[inline(always)]

@@ -23,9 +23,9 @@ pub(crate) fn raycast_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
     let order = given_order(rays.len(), keys, out.len())?;
-    if tree.walks_packets() {
+    if let Some(wide) = tree.wide_bvh() {
         answer_in_packets(
-            tree,
+            &wide,
             source,
             rays,
             options,
@@ -53,9 +53,9 @@ pub(crate) fn raycast_any_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>
     out: &mut [bool],
 ) -> Result<(), BatchError> {
     let order = given_order(rays.len(), keys, out.len())?;
-    if tree.walks_packets() {
+    if let Some(wide) = tree.wide_bvh() {
         answer_in_packets(
-            tree,
+            &wide,
             source,
             rays,
             options,

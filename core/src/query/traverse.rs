@@ -5,6 +5,7 @@ use core::ops::ControlFlow;
 
 use super::{LeafTriangleIds, LeafTriangles};
 use crate::math::{Aabb, Aabb4, PackedTriangle, Ray, Triangle};
+use crate::wide::WideBvh;
 
 /// A query as a structure's traversal sees it: it judges boxes, says when deferred work is no
 /// longer worth doing, and does the triangle work at the leaves.
@@ -121,15 +122,15 @@ pub trait Traverse {
     /// Runs `visitor` over the structure.
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V);
 
-    /// Whether ray batches ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch) and
-    /// [`raycast_any_batch`](super::MeshQuery::raycast_any_batch)) may walk this structure
-    /// with packets: one visitor for several rays from one origin, which judges boxes for all
-    /// of them at once through [`Visitor::enter_lanes`] and has no single
-    /// [`ray`](Visitor::ray). Answers are the same either way. The default, `false`, suits
-    /// structures that march cells along one ray; the four-wide BVHs say `true`.
+    /// The four-wide BVH this structure's traversal walks, when it is one: ray batches
+    /// ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch) and
+    /// [`raycast_any_batch`](super::MeshQuery::raycast_any_batch)) then walk it with packets,
+    /// one visitor for several rays from one origin. Its traversal must be exactly this
+    /// structure's, over the same leaf slots. Answers are the same either way. The default is
+    /// `None`.
     #[inline(always)]
-    fn walks_packets(&self) -> bool {
-        false
+    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
+        None
     }
 
     /// This structure with the triangles it was built over — the
@@ -191,8 +192,8 @@ impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
     }
 
     #[inline(always)]
-    fn walks_packets(&self) -> bool {
-        self.structure.walks_packets()
+    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
+        self.structure.wide_bvh()
     }
 }
 

@@ -40,10 +40,10 @@ impl Traverse for WideBvh<'_> {
         traverse_wide(self, visitor);
     }
 
-    /// Yes: boxes are judged four at a time through [`Visitor::enter_lanes`].
+    /// Itself.
     #[inline(always)]
-    fn walks_packets(&self) -> bool {
-        true
+    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
+        Some(*self)
     }
 }
 
