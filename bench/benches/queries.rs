@@ -310,7 +310,7 @@ fn raycast(c: &mut Criterion) {
         test: TriangleTest::MollerTrumbore,
         ..RayOptions::default()
     };
-    let (packed, wide) = (owned.packed(), owned.wide());
+    let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
     let obvhs_medium = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
     let obvhs_fast = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::fast_build());
     let obvhs_cwbvh = obvhs_cwbvh_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
@@ -480,7 +480,7 @@ fn closest_point(c: &mut Criterion) {
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
     let bvh = checked_bvh(&owned, &mesh).unwrap_or_else(|e| panic!("{e}"));
     let parry = parry_peer::build(&s.mesh);
-    let (packed, wide) = (owned.packed(), owned.wide());
+    let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
     let mut group = c.benchmark_group("closest_point");
     configure(&mut group, s.points.len());
     group.bench_function("meshq", |b| {

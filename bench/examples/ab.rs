@@ -3,7 +3,10 @@
 //! (`cargo bench -p meshq-bench`) remains the measurement of record against the peers.
 //!
 //! `cargo run --release -p meshq-bench --example ab [substring]` (only variants whose name
-//! contains the substring run, e.g. for a profiler).
+//! contains the substring run, e.g. for a profiler). Environment: `MESH` an OBJ file instead
+//! of the bunny, `SUBDIVIDE=k` to split its triangles in four `k` times, `RAYS` random rays
+//! (200,000), `TILE=h` the 512² camera's rays in tiles of `h` rows by `8 / h` pixels instead of
+//! row-major.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -16,7 +19,17 @@ use meshq_tests::{checked_bvh, load_mesh, workload};
 const ROUNDS: usize = 11;
 
 fn main() {
-    let loaded = load_mesh("stanford-bunny");
+    let mut loaded = std::env::var("MESH").map_or_else(
+        |_| load_mesh("stanford-bunny"),
+        |path| meshq_tests::load_obj(std::path::Path::new(&path)),
+    );
+    let subdivisions = std::env::var("SUBDIVIDE")
+        .ok()
+        .and_then(|k| k.parse().ok())
+        .unwrap_or(0);
+    for _ in 0..subdivisions {
+        loaded = meshq_tests::subdivided(&loaded);
+    }
     let mesh = loaded.valid();
     let count = std::env::var("RAYS")
         .ok()
@@ -47,11 +60,16 @@ fn main() {
     let points = workload::closest_points(&loaded.positions, 100_000, 2);
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).expect("build");
     let bvh = checked_bvh(&owned, &mesh).expect("view");
-    let (packed, wide) = (owned.packed(), owned.wide());
+    let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
+    let mut compact_nodes = vec![meshq::wide::CompactNode::EMPTY; wide.nodes().len()];
+    let compact = meshq::wide::CompactWideBvh::build(&wide, &mut compact_nodes).expect("compact");
+    let per_triangle = |bytes: usize| bytes as f64 / mesh.triangle_count() as f64;
     println!(
-        "{} binary nodes -> {} wide nodes",
+        "{} binary nodes -> {} wide nodes: {:.1} bytes per triangle, compact {:.1}",
         bvh.nodes().len(),
-        wide.nodes().len()
+        wide.nodes().len(),
+        per_triangle(size_of_val(wide.nodes())),
+        per_triangle(compact.node_bytes()),
     );
 
     type Run<'a> = Box<dyn Fn() -> usize + 'a>;
@@ -85,6 +103,40 @@ fn main() {
                     .raycast_batch(&rays, &options, &mut keys, &mut out)
                     .expect("batch");
                 out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
+            "rays compact packed",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| compact.with(&packed).raycast(r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "camera compact packed",
+            camera.len(),
+            Box::new(|| {
+                camera
+                    .iter()
+                    .filter(|r| compact.with(&packed).raycast(r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "closest compact packed",
+            points.len(),
+            Box::new(|| {
+                points
+                    .iter()
+                    .filter(|&&p| {
+                        compact
+                            .with(&packed)
+                            .closest_point(p, f32::INFINITY)
+                            .is_some()
+                    })
+                    .count()
             }),
         ),
         (

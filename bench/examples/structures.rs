@@ -34,7 +34,7 @@ fn main() {
                     MeshIndex::Bvh(s) => (
                         size_of_val(s.bvh().nodes())
                             + size_of_val(s.bvh().order())
-                            + size_of_val(s.wide().nodes()),
+                            + s.query_node_bytes(),
                         size_of_val(s.packed().as_slice()),
                     ),
                     MeshIndex::KdTree(s) => (s.structure_bytes(), s.packed_bytes()),

@@ -816,6 +816,72 @@ fn batched_camera_rays_give_the_records_of_one_ray_per_call() {
     }
 }
 
+/// `--compact-nodes` quantizes the BVH's wide nodes: the records of ray and closest-point
+/// queries are byte for byte those of the full nodes, from a mesh file and from a blob; other
+/// structures refuse it.
+#[test]
+fn compact_nodes_give_the_same_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("spot");
+    let obj = asset("spot.obj");
+    let mut rays = workload::random_rays(&loaded.positions, 3_000, 31);
+    rays.extend(workload::camera_rays(&loaded.positions, 40, 30));
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let points = workload::closest_points(&loaded.positions, 2_000, 32);
+    let point_file = dir.path().join("points.bin");
+    write_f32s(&point_file, points.iter().flat_map(|p| p.to_array()));
+    let blob = dir.path().join("spot.meshq");
+    ok(&[&"bake", &obj, &"-o", &blob]);
+    for input in [&obj, &blob] {
+        for any in [false, true] {
+            let mut outputs = Vec::new();
+            for compact in [false, true] {
+                let out = dir.path().join(format!("hits-{compact}.bin"));
+                let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> =
+                    vec![&"raycast", input, &"--rays", &ray_file, &"--out", &out];
+                if any {
+                    args.push(&"--any");
+                }
+                if compact {
+                    args.push(&"--compact-nodes");
+                }
+                ok(&args);
+                outputs.push(std::fs::read(&out).unwrap());
+            }
+            assert_eq!(outputs[0], outputs[1], "{input:?} any: {any}");
+        }
+        let mut outputs = Vec::new();
+        for compact in [false, true] {
+            let out = dir.path().join(format!("closest-{compact}.bin"));
+            let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> =
+                vec![&"closest", input, &"--points", &point_file, &"--out", &out];
+            if compact {
+                args.push(&"--compact-nodes");
+            }
+            ok(&args);
+            outputs.push(std::fs::read(&out).unwrap());
+        }
+        assert_eq!(outputs[0], outputs[1], "{input:?} closest");
+    }
+    let out = dir.path().join("kd.bin");
+    fails(
+        &[
+            &"raycast",
+            &obj,
+            &"--structure",
+            &"kdtree",
+            &"--compact-nodes",
+            &"--rays",
+            &ray_file,
+            &"--out",
+            &out,
+        ],
+        1,
+        "--compact-nodes applies to a BVH",
+    );
+}
+
 #[test]
 fn threads_give_the_same_records() {
     let dir = tempfile::tempdir().unwrap();

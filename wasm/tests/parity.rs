@@ -141,6 +141,18 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let loaded = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
+
+        // Quantized nodes: half the node bytes, the golden answers.
+        let mut compact = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
+        let full_bytes = compact.query_node_bytes();
+        compact.compact_nodes().unwrap();
+        assert_eq!(
+            compact.query_node_bytes() * 2.0,
+            full_bytes,
+            "{name}: node bytes"
+        );
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&compact));
+        assert_eq!(report, golden.report, "{name}: compact nodes");
         assert_eq!(loaded.to_blob(None).unwrap(), blob);
 
         // A packed blob (corners in leaf order, no indexed mesh) answers the same.

@@ -99,6 +99,15 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   assert.deepEqual(MeshBvh.build(positions, indices, { quality: undefined, structure: null }).toBlob(), bvh.toBlob());
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
+  // Compact nodes: half the node bytes, the same blob and answers; twice is once.
+  const compact = MeshBvh.fromBlob(bvh.toBlob());
+  const fullBytes = compact.queryNodeBytes;
+  compact.compactNodes();
+  compact.compactNodes();
+  assert.equal(compact.queryNodeBytes * 2, fullBytes, 'compact nodes are half the bytes');
+  assert.deepEqual(compact.toBlob('packed'), bvh.toBlob('packed'));
+  assert.deepEqual(compact.raycast([0.1, 0.2, 5], [0, 0, -1]), bvh.raycast([0.1, 0.2, 5], [0, 0, -1]));
+  compact.free();
   other.free();
 }
 
@@ -181,6 +190,7 @@ const cases = [
   [() => remesh(positions, indices, { featureAngle: 'sharp' }), TypeError, /options.featureAngle must be a number/],
   [() => remesh(positions, indices, { steps: 3 }), RangeError, /unknown option "steps"/],
   [() => remesh(positions, indices, 10), TypeError, /options must be an object/],
+  [() => MeshBvh.build(positions, indices, { structure: 'kdtree' }).compactNodes(), TypeError, /compactNodes applies to a BVH/],
 ];
 
 // Bad batch outputs: wrong type, wrong length; the arrays stay as they were.

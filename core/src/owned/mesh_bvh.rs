@@ -8,7 +8,7 @@ use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::query::{LeafTriangles, PackedTriangles, Traverse, Visitor};
-use crate::wide::{WideBvh, WideNode, wide_node_capacity};
+use crate::wide::{CompactNode, CompactWideBvh, WideBvh, WideNode, wide_node_capacity};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
 /// (nodes and order), the triangles packed in leaf order, and the tree collapsed four-wide —
@@ -18,7 +18,9 @@ use crate::wide::{WideBvh, WideNode, wide_node_capacity};
 /// [`MeshQuery`](crate::query::MeshQuery) (`scene.raycast(&ray)`, batches, overlaps) and runs
 /// custom visitors ([`Traverse`]). Queries walk the wide tree over the packed triangles; every
 /// answer is exactly what the binary tree over the mesh gives, bit for bit, on every target.
-/// [`MeshBvh::bvh`], [`MeshBvh::wide`], [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the
+/// [`MeshBvh::with_compact_nodes`] trades the wide nodes for quantized ones
+/// ([`CompactWideBvh`]), half the bytes, with the same answers. [`MeshBvh::bvh`],
+/// [`MeshBvh::wide`], [`MeshBvh::compact`], [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the
 /// views for code that wants a particular one.
 #[derive(Clone, Debug)]
 pub struct MeshBvh {
@@ -28,8 +30,15 @@ pub struct MeshBvh {
     pub(super) order: Vec<u32>,
     pub(super) depth: u32,
     pub(super) packed: Vec<PackedTriangle>,
-    pub(super) wide: Vec<WideNode>,
+    pub(super) wide: WideNodes,
     pub(super) config: BuildConfig,
+}
+
+/// The nodes queries walk: the four-wide tree, or the same quantized.
+#[derive(Clone, Debug)]
+pub(super) enum WideNodes {
+    Full(Vec<WideNode>),
+    Compact(Vec<CompactNode>),
 }
 
 impl MeshBvh {
@@ -120,9 +129,32 @@ impl MeshBvh {
             order,
             depth,
             packed,
-            wide,
+            wide: WideNodes::Full(wide),
             config,
         })
+    }
+
+    /// This structure with its wide nodes quantized ([`CompactWideBvh`]): the same answers,
+    /// bit for bit, from nodes half the size. Deterministic. Already compact: unchanged.
+    ///
+    /// # Errors
+    /// Never for a structure built or loaded by this crate (see [`CompactWideBvh::build`]).
+    pub fn with_compact_nodes(mut self) -> Result<Self, BuildError> {
+        self.compact_nodes()?;
+        Ok(self)
+    }
+
+    /// [`MeshBvh::with_compact_nodes`] in place. On error nothing changes.
+    ///
+    /// # Errors
+    /// As [`MeshBvh::with_compact_nodes`].
+    pub fn compact_nodes(&mut self) -> Result<(), BuildError> {
+        if let WideNodes::Full(nodes) = &self.wide {
+            let mut compact = vec![CompactNode::EMPTY; nodes.len()];
+            CompactWideBvh::build(&WideBvh::from_validated(nodes, &self.order), &mut compact)?;
+            self.wide = WideNodes::Compact(compact);
+        }
+        Ok(())
     }
 
     /// The mesh.
@@ -138,10 +170,32 @@ impl MeshBvh {
         Bvh::from_validated(&self.nodes, &self.order, self.depth)
     }
 
-    /// The same tree four-wide, which queries walk.
+    /// The same tree four-wide, which queries walk; `None` once the nodes are compact.
     #[must_use]
-    pub fn wide(&self) -> WideBvh<'_> {
-        WideBvh::from_validated(&self.wide, &self.order)
+    pub fn wide(&self) -> Option<WideBvh<'_>> {
+        match &self.wide {
+            WideNodes::Full(nodes) => Some(WideBvh::from_validated(nodes, &self.order)),
+            WideNodes::Compact(_) => None,
+        }
+    }
+
+    /// The same tree four-wide with quantized nodes, which queries walk after
+    /// [`MeshBvh::with_compact_nodes`]; `None` before.
+    #[must_use]
+    pub fn compact(&self) -> Option<CompactWideBvh<'_>> {
+        match &self.wide {
+            WideNodes::Full(_) => None,
+            WideNodes::Compact(nodes) => Some(CompactWideBvh::from_validated(nodes, &self.order)),
+        }
+    }
+
+    /// Bytes of the nodes queries walk (wide or compact).
+    #[must_use]
+    pub fn query_node_bytes(&self) -> usize {
+        match &self.wide {
+            WideNodes::Full(nodes) => core::mem::size_of_val(nodes.as_slice()),
+            WideNodes::Compact(nodes) => core::mem::size_of_val(nodes.as_slice()),
+        }
     }
 
     /// The triangles in the tree's leaf order, which queries read.
@@ -170,15 +224,21 @@ impl MeshBvh {
 }
 
 impl Traverse for MeshBvh {
-    /// Walks the wide tree.
+    /// Walks the wide tree (or its compact form).
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        self.wide().traverse(visitor);
+        match &self.wide {
+            WideNodes::Full(nodes) => WideBvh::from_validated(nodes, &self.order).traverse(visitor),
+            WideNodes::Compact(nodes) => {
+                CompactWideBvh::from_validated(nodes, &self.order).traverse(visitor);
+            }
+        }
     }
 
     #[inline(always)]
-    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
-        Some(self.wide())
+    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
+        self.traverse(visitor);
+        true
     }
 }
 

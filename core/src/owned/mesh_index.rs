@@ -11,7 +11,6 @@ use crate::mesh::ValidMesh;
 use crate::octree::OctreeConfig;
 use crate::query::{LeafTriangles, Traverse, Visitor};
 use crate::structure_kind::StructureKind;
-use crate::wide::WideBvh;
 
 /// A mesh with one structure of any kind, owning every buffer; it answers every query of
 /// [`MeshQuery`](crate::query::MeshQuery) through whichever structure it holds.
@@ -89,11 +88,12 @@ impl Traverse for MeshIndex {
         }
     }
 
+    /// The BVH walks packets; the cell structures march one ray at a time.
     #[inline]
-    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
+    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
         match self {
-            Self::Bvh(s) => s.wide_bvh(),
-            Self::KdTree(_) | Self::Octree(_) | Self::Grid(_) => None,
+            Self::Bvh(s) => s.traverse_packet(visitor),
+            Self::KdTree(_) | Self::Octree(_) | Self::Grid(_) => false,
         }
     }
 }

@@ -116,7 +116,7 @@ pub trait MeshQuery: Traverse + LeafTriangles {
 
     /// The closest hit of each of `rays`: `out[i]` is exactly what
     /// [`MeshQuery::raycast_with`] returns for `rays[i]`. The rays are cast in the given order;
-    /// on a four-wide BVH ([`Traverse::wide_bvh`](crate::query::Traverse::wide_bvh)), each run of
+    /// on structures that walk packets ([`Traverse::traverse_packet`](crate::query::Traverse::traverse_packet): the four-wide BVHs), each run of
     /// eight consecutive rays with one origin (bit for bit) and the same direction signs walks
     /// the tree together, so give a camera's rays in small tiles or rows. Buffers, errors and
     /// scratch (`keys` holds the order) as [`MeshQuery::closest_points`].

@@ -177,9 +177,12 @@ pub(super) fn answer_in_packets<A, S, G, T>(
     S: LeafTriangles + ?Sized,
     G: Goal,
 {
+    // Cleared at the first packet the structure declines: it answers one ray at a time.
+    let mut packets = true;
     for keys in order.chunks(PACKET) {
         let ray_of = |k: usize| keys.get(k).and_then(|&key| rays.get(query_index(key)));
-        let together = keys.len() >= 2
+        let together = packets
+            && keys.len() >= 2
             && ray_of(0).is_some_and(|first| {
                 (0..keys.len()).all(|k| ray_of(k).is_some_and(|r| r.is_valid() && alike(r, first)))
             });
@@ -192,7 +195,9 @@ pub(super) fn answer_in_packets<A, S, G, T>(
                         .copied()
                         .unwrap_or(Ray::new(Vec3::ZERO, Vec3::X))
                 });
-                walk_packet(tree, source, &gathered, options, &goal)
+                let walked = walk_packet(tree, source, &gathered, options, &goal);
+                packets = walked.is_some();
+                walked
             })
             .flatten();
         if let Some(goals) = packet {
@@ -263,6 +268,6 @@ where
     G: Goal,
 {
     let mut packet = Packet::new(source, rays.each_ref().map(visitor))?;
-    tree.traverse(&mut packet);
-    Some(packet.rays.map(|v| v.goal))
+    tree.traverse_packet(&mut packet)
+        .then(|| packet.rays.map(|v| v.goal))
 }

@@ -6,8 +6,8 @@
 //! slower, gathering each ray and scattering its answer out of cache for no reuse of the tree,
 //! and a caller's order is usually already coherent (a camera's pixels).
 
-use super::batch_order::{answer_in_order, given_order};
-use super::ray::{Nearest, Occluded, raycast_any_with, raycast_with};
+use super::batch_order::given_order;
+use super::ray::{Nearest, Occluded};
 use super::ray_packet::answer_in_packets;
 use super::{LeafTriangles, RayOptions, Traverse};
 use crate::error::BatchError;
@@ -23,22 +23,16 @@ pub(crate) fn raycast_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
     let order = given_order(rays.len(), keys, out.len())?;
-    if let Some(wide) = tree.wide_bvh() {
-        answer_in_packets(
-            &wide,
-            source,
-            rays,
-            options,
-            order,
-            out,
-            || Nearest(None),
-            |g| g.0,
-        );
-    } else {
-        answer_in_order(rays, order, out, |ray| {
-            raycast_with(tree, source, ray, options)
-        });
-    }
+    answer_in_packets(
+        tree,
+        source,
+        rays,
+        options,
+        order,
+        out,
+        || Nearest(None),
+        |g| g.0,
+    );
     Ok(())
 }
 
@@ -53,21 +47,15 @@ pub(crate) fn raycast_any_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>
     out: &mut [bool],
 ) -> Result<(), BatchError> {
     let order = given_order(rays.len(), keys, out.len())?;
-    if let Some(wide) = tree.wide_bvh() {
-        answer_in_packets(
-            &wide,
-            source,
-            rays,
-            options,
-            order,
-            out,
-            || Occluded(false),
-            |g| g.0,
-        );
-    } else {
-        answer_in_order(rays, order, out, |ray| {
-            raycast_any_with(tree, source, ray, options)
-        });
-    }
+    answer_in_packets(
+        tree,
+        source,
+        rays,
+        options,
+        order,
+        out,
+        || Occluded(false),
+        |g| g.0,
+    );
     Ok(())
 }

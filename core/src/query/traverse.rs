@@ -5,7 +5,6 @@ use core::ops::ControlFlow;
 
 use super::{LeafTriangleIds, LeafTriangles};
 use crate::math::{Aabb, Aabb4, PackedTriangle, Ray, Triangle};
-use crate::wide::WideBvh;
 
 /// A query as a structure's traversal sees it: it judges boxes, says when deferred work is no
 /// longer worth doing, and does the triangle work at the leaves.
@@ -122,15 +121,17 @@ pub trait Traverse {
     /// Runs `visitor` over the structure.
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V);
 
-    /// The four-wide BVH this structure's traversal walks, when it is one: ray batches
-    /// ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch) and
-    /// [`raycast_any_batch`](super::MeshQuery::raycast_any_batch)) then walk it with packets,
-    /// one visitor for several rays from one origin. Its traversal must be exactly this
-    /// structure's, over the same leaf slots. Answers are the same either way. The default is
-    /// `None`.
+    /// Runs `visitor` as [`traverse`](Self::traverse) does, if this structure walks packets
+    /// well — visitors for several rays at once, which judge four boxes together through
+    /// [`Visitor::enter_lanes`] and have no single [`ray`](Visitor::ray) — and returns `true`;
+    /// otherwise does nothing and returns `false`. Ray batches
+    /// ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch)) then walk runs of rays
+    /// from one origin together, or one ray at a time; the answers are the same either way.
+    /// The default returns `false`; the four-wide BVHs walk packets.
     #[inline(always)]
-    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
-        None
+    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
+        let _ = visitor;
+        false
     }
 
     /// This structure with the triangles it was built over — the
@@ -192,8 +193,8 @@ impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
     }
 
     #[inline(always)]
-    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
-        self.structure.wide_bvh()
+    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
+        self.structure.traverse_packet(visitor)
     }
 }
 

@@ -16,11 +16,15 @@
 //! ```
 
 mod collapse;
+mod compact_node;
+mod compact_tree;
 mod node;
 mod sizing;
 mod traverse;
 mod tree;
 
+pub use compact_node::CompactNode;
+pub use compact_tree::CompactWideBvh;
 pub use node::WideNode;
 pub use sizing::wide_node_capacity;
 pub use tree::WideBvh;

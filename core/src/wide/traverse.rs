@@ -1,8 +1,9 @@
 //! Depth-first traversal of a four-wide BVH, nearest child first: the structure's half of
 //! every query (see [`Traverse`]).
 
-use super::WideBvh;
+use super::{CompactNode, WideBvh, WideNode};
 use crate::bvh::MAX_DEPTH;
+use crate::math::Aabb4;
 use crate::query::{LeafTriangleIds, Traverse, Visitor};
 
 /// A child to visit: an inner node (`count == 0`, `child` its index) or a leaf.
@@ -31,34 +32,83 @@ impl Child {
 /// the binary tree it came from ([`MAX_DEPTH`]), so the stack never fills.
 const STACK: usize = 3 * MAX_DEPTH as usize;
 
+/// A node of four lanes as the traversal reads it: a [`WideNode`], or a [`CompactNode`]
+/// whose boxes are decoded on the way.
+pub(super) trait LaneNode {
+    /// The four child boxes.
+    fn boxes(&self) -> Aabb4;
+    /// Lane `lane`'s node index or first order slot (0 when unused).
+    fn child(&self, lane: usize) -> u32;
+    /// Lane `lane`'s triangle count (0 for an inner or unused lane).
+    fn count(&self, lane: usize) -> u32;
+}
+
+impl LaneNode for WideNode {
+    #[inline(always)]
+    fn boxes(&self) -> Aabb4 {
+        self.bounds
+    }
+    #[inline(always)]
+    fn child(&self, lane: usize) -> u32 {
+        self.child.get(lane).copied().unwrap_or(0)
+    }
+    #[inline(always)]
+    fn count(&self, lane: usize) -> u32 {
+        self.count.get(lane).copied().unwrap_or(0)
+    }
+}
+
+impl LaneNode for CompactNode {
+    #[inline(always)]
+    fn boxes(&self) -> Aabb4 {
+        CompactNode::boxes(self)
+    }
+    #[inline(always)]
+    fn child(&self, lane: usize) -> u32 {
+        CompactNode::child(self, lane)
+    }
+    #[inline(always)]
+    fn count(&self, lane: usize) -> u32 {
+        CompactNode::count(self, lane)
+    }
+}
+
 impl Traverse for WideBvh<'_> {
     /// Depth first, each node's four child boxes judged at once
     /// ([`Visitor::enter_lanes`]) and visited in ascending key order (the lower lane first on
     /// equal keys), with a fixed stack and no allocation.
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        traverse_wide(self, visitor);
+        traverse_wide(self.nodes, self.order, visitor);
     }
 
-    /// Itself.
+    /// Yes: boxes are judged four at a time.
     #[inline(always)]
-    fn wide_bvh(&self) -> Option<WideBvh<'_>> {
-        Some(*self)
+    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
+        self.traverse(visitor);
+        true
     }
 }
 
+/// The walk of [`Traverse`] over four-lane nodes (root first) and their leaves' order.
 #[inline(always)]
-fn traverse_wide<V: Visitor + ?Sized>(tree: &WideBvh<'_>, visitor: &mut V) {
+pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
+    nodes: &[N],
+    order: &[u32],
+    visitor: &mut V,
+) {
     // Uninitialised until pushed: zeroing kilobytes per query would cost more than a node.
     let mut stack = heapless::Vec::<Child, STACK>::new();
     let mut at = Child::ROOT;
     loop {
         if at.count > 0 {
-            if let Some(tris) = leaf(tree, at.child, at.count) {
+            if let Some(tris) =
+                LeafTriangleIds::in_order(order, at.child as usize, at.count as usize)
+            {
                 let boxed = visitor.wants_leaf_boxes();
-                let flow = match tree.nodes.get(at.parent as usize) {
+                let flow = match nodes.get(at.parent as usize) {
                     Some(parent) if boxed => {
-                        visitor.leaf_in(&parent.bounds.lane(at.lane as usize), tris)
+                        visitor.leaf_in(&parent.boxes().lane(at.lane as usize), tris)
                     }
                     _ => visitor.leaf(tris),
                 };
@@ -66,16 +116,17 @@ fn traverse_wide<V: Visitor + ?Sized>(tree: &WideBvh<'_>, visitor: &mut V) {
                     return;
                 }
             }
-        } else if let Some(node) = tree.nodes.get(at.child as usize) {
-            let (mask, keys) = visitor.enter_lanes(&node.bounds);
-            let mask = mask & node.bounds.used_mask() & 0xF;
+        } else if let Some(node) = nodes.get(at.child as usize) {
+            let boxes = node.boxes();
+            let (mask, keys) = visitor.enter_lanes(&boxes);
+            let mask = mask & boxes.used_mask() & 0xF;
             if mask != 0 {
                 let parent = at.child;
                 let lane_of = |lane: u32| -> Child {
                     let at = lane as usize;
                     Child {
-                        child: node.child.get(at).copied().unwrap_or(0),
-                        count: node.count.get(at).copied().unwrap_or(0),
+                        child: node.child(at),
+                        count: node.count(at),
                         key: keys.get(at).copied().unwrap_or(f32::INFINITY),
                         parent,
                         lane,
@@ -144,9 +195,4 @@ fn by_key(mask: u32, keys: [f32; 4]) -> ([u32; 4], usize) {
         [lane(a), lane(b), lane(c), lane(d)],
         (mask & 0xF).count_ones() as usize,
     )
-}
-
-#[inline(always)]
-fn leaf<'t>(tree: &WideBvh<'t>, first: u32, count: u32) -> Option<LeafTriangleIds<'t>> {
-    LeafTriangleIds::in_order(tree.order, first as usize, count as usize)
 }

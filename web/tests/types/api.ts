@@ -44,6 +44,8 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.raycastBatch(rays, 0, 5, ts, triangles, 0);
   bvh.raycastBatchBarycentric(rays, null, null, ts, triangles, new Float32Array(200));
   bvh.raycastAnyBatch(cameraRays(bvh.bounds(), 10, 10), 0, 1, new Uint8Array(100));
+  loaded.compactNodes();
+  const nodeBytes: number = loaded.queryNodeBytes;
   const points = queryPoints(bvh.bounds(), 1, 10);
   bvh.closestPointBatch(points, undefined, new Float32Array(30), new Uint32Array(10), new Float32Array(10));
   const misses: number = MeshBvh.MISS_T + MeshBvh.MISS_DISTANCE + MeshBvh.MISS_TRIANGLE;
@@ -93,5 +95,5 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
 
   return (t ?? 0) + (distance ?? 0) + Number(any) + all.length + hits + misses + bytes.length
     + pairs.total + boxes.length + structure.length + remeshed.after.valence6Percent + tree.first.length
-    + pooled.hits + flags.length + nearest.length;
+    + pooled.hits + flags.length + nearest.length + nodeBytes;
 }
