@@ -12,9 +12,9 @@ struct Child {
     child: u32,
     count: u32,
     key: f32,
-    /// The node whose lane `lane` this child is, for its box.
-    parent: u32,
-    lane: u32,
+    /// Where the child's box is: its parent node's index times four plus its lane (the box is
+    /// only looked for, never needed, so an index too large for this is simply not found).
+    parent_lane: u32,
 }
 
 impl Child {
@@ -23,8 +23,7 @@ impl Child {
         child: 0,
         count: 0,
         key: 0.0,
-        parent: 0,
-        lane: 0,
+        parent_lane: u32::MAX,
     };
 }
 
@@ -35,8 +34,12 @@ const STACK: usize = 3 * MAX_DEPTH as usize;
 /// A node of four lanes as the traversal reads it: a [`WideNode`], or a [`CompactNode`]
 /// whose boxes are decoded on the way.
 pub(super) trait LaneNode {
+    /// The four child boxes: borrowed where stored, decoded where quantized.
+    type Boxes<'a>: core::ops::Deref<Target = Aabb4>
+    where
+        Self: 'a;
     /// The four child boxes.
-    fn boxes(&self) -> Aabb4;
+    fn boxes(&self) -> Self::Boxes<'_>;
     /// Lane `lane`'s node index or first order slot (0 when unused).
     fn child(&self, lane: usize) -> u32;
     /// Lane `lane`'s triangle count (0 for an inner or unused lane).
@@ -44,9 +47,10 @@ pub(super) trait LaneNode {
 }
 
 impl LaneNode for WideNode {
+    type Boxes<'a> = &'a Aabb4;
     #[inline(always)]
-    fn boxes(&self) -> Aabb4 {
-        self.bounds
+    fn boxes(&self) -> &Aabb4 {
+        &self.bounds
     }
     #[inline(always)]
     fn child(&self, lane: usize) -> u32 {
@@ -58,10 +62,22 @@ impl LaneNode for WideNode {
     }
 }
 
-impl LaneNode for CompactNode {
+/// Boxes decoded from a [`CompactNode`], owned for the visit.
+pub(super) struct Decoded(Aabb4);
+
+impl core::ops::Deref for Decoded {
+    type Target = Aabb4;
     #[inline(always)]
-    fn boxes(&self) -> Aabb4 {
-        CompactNode::boxes(self)
+    fn deref(&self) -> &Aabb4 {
+        &self.0
+    }
+}
+
+impl LaneNode for CompactNode {
+    type Boxes<'a> = Decoded;
+    #[inline(always)]
+    fn boxes(&self) -> Decoded {
+        Decoded(CompactNode::boxes(self))
     }
     #[inline(always)]
     fn child(&self, lane: usize) -> u32 {
@@ -106,9 +122,10 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
                 LeafTriangleIds::in_order(order, at.child as usize, at.count as usize)
             {
                 let boxed = visitor.wants_leaf_boxes();
-                let flow = match nodes.get(at.parent as usize) {
+                let (parent, lane) = (at.parent_lane >> 2, at.parent_lane & 3);
+                let flow = match nodes.get(parent as usize) {
                     Some(parent) if boxed => {
-                        visitor.leaf_in(&parent.boxes().lane(at.lane as usize), tris)
+                        visitor.leaf_in(&parent.boxes().lane(lane as usize), tris)
                     }
                     _ => visitor.leaf(tris),
                 };
@@ -121,15 +138,14 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
             let (mask, keys) = visitor.enter_lanes(&boxes);
             let mask = mask & boxes.used_mask() & 0xF;
             if mask != 0 {
-                let parent = at.child;
+                let parent = at.child.checked_mul(4).unwrap_or(u32::MAX - 3);
                 let lane_of = |lane: u32| -> Child {
                     let at = lane as usize;
                     Child {
                         child: node.child(at),
                         count: node.count(at),
                         key: keys.get(at).copied().unwrap_or(f32::INFINITY),
-                        parent,
-                        lane,
+                        parent_lane: parent | lane,
                     }
                 };
                 if mask & (mask - 1) == 0 {
