@@ -153,7 +153,10 @@ fn query_here(
     results: &mut Vec<RayHit>,
 ) -> Result<()> {
     let options = RayOptions::default();
-    scratch.keys.resize(rays.len(), 0);
+    let batch = rays.len().min(BATCH);
+    scratch.keys.resize(batch, 0);
+    scratch.answers.resize(batch, None);
+    scratch.flags.resize(batch, false);
     if args.hits.is_some() {
         for r in rays {
             let found = scene.raycast_all(r, &options, nearest);
@@ -163,21 +166,28 @@ fn query_here(
         }
     } else if args.any && args.per_ray {
         results.extend(rays.iter().map(|r| any_record(scene.raycast_any(r))));
-    } else if args.any {
-        scratch.flags.clear();
-        scratch.flags.resize(rays.len(), false);
-        scene.raycast_any_batch(rays, &options, &mut scratch.keys, &mut scratch.flags)?;
-        results.extend(scratch.flags.iter().map(|&f| any_record(f)));
     } else if args.per_ray {
         results.extend(rays.iter().map(|r| scene.raycast(r).unwrap_or(MISS)));
     } else {
-        scratch.answers.clear();
-        scratch.answers.resize(rays.len(), None);
-        scene.raycast_batch(rays, &options, &mut scratch.keys, &mut scratch.answers)?;
-        results.extend(scratch.answers.iter().map(|a| a.unwrap_or(MISS)));
+        // Batches of BATCH rays: their scratch stays small and in cache.
+        for batch in rays.chunks(BATCH) {
+            let keys = &mut scratch.keys[..batch.len()];
+            if args.any {
+                let flags = &mut scratch.flags[..batch.len()];
+                scene.raycast_any_batch(batch, &options, keys, flags)?;
+                results.extend(flags.iter().map(|&f| any_record(f)));
+            } else {
+                let answers = &mut scratch.answers[..batch.len()];
+                scene.raycast_batch(batch, &options, keys, answers)?;
+                results.extend(answers.iter().map(|a| a.unwrap_or(MISS)));
+            }
+        }
     }
     Ok(())
 }
+
+/// Rays per batch call on one thread.
+const BATCH: usize = 1 << 14;
 
 /// Answers `rays` on the current rayon pool (`meshq::parallel` batches, or one every-hit
 /// query per ray), appending the same records as [`query_here`].

@@ -781,7 +781,8 @@ fn batched_camera_rays_give_the_records_of_one_ray_per_call() {
     let mesh = loaded.valid();
     let brute = BruteForce::new(&mesh);
     let obj = asset("spot.obj");
-    let rays = workload::camera_rays(&loaded.positions, 101, 67);
+    // More rays than one batch call takes (16,384), the last batch short.
+    let rays = workload::camera_rays(&loaded.positions, 160, 121);
     let ray_file = dir.path().join("camera.bin");
     write_f32s(&ray_file, ray_floats(&rays));
     let options = RayOptions::default();

@@ -43,13 +43,20 @@ const ALL: u32 = (1 << PACKET) - 1;
 
 impl<'m, S: ?Sized, K: Kernel, G: Goal> Packet<'m, S, K, G> {
     /// The packet of `rays`, or `None` when they do not share an origin and direction signs.
-    pub(super) fn new(source: &'m S, rays: [RayVisitor<'m, S, K, G>; PACKET]) -> Option<Self> {
-        let slabs: [SlabRay; PACKET] = rays.each_ref().map(|r| r.slab);
+    /// The packet of `rays`, each made a visitor by `visitor`, or `None` when they do not
+    /// share an origin and direction signs. Built in place: a packet is a few kilobytes.
+    #[inline(always)]
+    pub(super) fn new(
+        source: &'m S,
+        rays: &[Ray; PACKET],
+        visitor: impl FnMut(&Ray) -> RayVisitor<'m, S, K, G>,
+    ) -> Option<Self> {
+        let slabs: [SlabRay; PACKET] = rays.each_ref().map(SlabRay::new);
         let mut packet = Self {
             source,
             lanes: PacketLanes::new(&slabs)?,
             each: PacketRays::new(&slabs),
-            rays,
+            rays: rays.each_ref().map(visitor),
             done: 0,
             t_max: f32::NEG_INFINITY,
         };
@@ -171,7 +178,7 @@ pub(super) fn answer_in_packets<A, S, G, T>(
     order: &[u64],
     out: &mut [T],
     goal: impl Fn() -> G,
-    answer: impl Fn(G) -> T,
+    answer: impl Fn(&G) -> T,
 ) where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
@@ -188,25 +195,20 @@ pub(super) fn answer_in_packets<A, S, G, T>(
             });
         let last = keys.len().saturating_sub(1);
         // A short run is padded with its last ray, whose extra answers are dropped.
-        let packet = together
-            .then(|| {
-                let gathered: [Ray; PACKET] = core::array::from_fn(|k| {
-                    ray_of(k.min(last))
-                        .copied()
-                        .unwrap_or(Ray::new(Vec3::ZERO, Vec3::X))
-                });
-                let walked = walk_packet(tree, source, &gathered, options, &goal);
-                packets = walked.is_some();
-                walked
-            })
-            .flatten();
-        if let Some(goals) = packet {
-            for (g, &key) in goals.into_iter().zip(keys) {
-                if let Some(slot) = out.get_mut(query_index(key)) {
+        if together {
+            let gathered: [Ray; PACKET] = core::array::from_fn(|k| {
+                ray_of(k.min(last))
+                    .copied()
+                    .unwrap_or(Ray::new(Vec3::ZERO, Vec3::X))
+            });
+            packets = walk_packet(tree, source, &gathered, options, &goal, |k, g| {
+                if let Some(slot) = keys.get(k).and_then(|&key| out.get_mut(query_index(key))) {
                     *slot = answer(g);
                 }
+            });
+            if packets {
+                continue;
             }
-            continue;
         }
         for &key in keys {
             let i = query_index(key);
@@ -216,7 +218,7 @@ pub(super) fn answer_in_packets<A, S, G, T>(
                 } else {
                     goal()
                 };
-                *slot = answer(g);
+                *slot = answer(&g);
             }
         }
     }
@@ -231,27 +233,37 @@ fn alike(a: &Ray, b: &Ray) -> bool {
     bits(a.origin) == bits(b.origin) && signs(a.dir) == signs(b.dir)
 }
 
-/// The goals of `rays` walked as one packet with the kernel `options` names, or `None` when
-/// they cannot form one.
+/// Walks `rays` as one packet with the kernel `options` names and hands each ray's goal to
+/// `take` with its place in the packet; `false` (nothing handed) when they cannot form one or
+/// the structure declines packets.
 fn walk_packet<A, S, G>(
     tree: &A,
     source: &S,
     rays: &[Ray; PACKET],
     options: &RayOptions,
     goal: &impl Fn() -> G,
-) -> Option<[G; PACKET]>
+    take: impl FnMut(usize, &G),
+) -> bool
 where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
     G: Goal,
 {
     match options.test {
-        TriangleTest::Watertight => walk_packet_with(tree, source, rays, |r| {
-            RayVisitor::new(source, r, watertight(r, options), goal())
-        }),
-        TriangleTest::MollerTrumbore => walk_packet_with(tree, source, rays, |r| {
-            RayVisitor::new(source, r, moller_trumbore_kernel(r, options), goal())
-        }),
+        TriangleTest::Watertight => walk_packet_with(
+            tree,
+            source,
+            rays,
+            |r| RayVisitor::new(source, r, watertight(r, options), goal()),
+            take,
+        ),
+        TriangleTest::MollerTrumbore => walk_packet_with(
+            tree,
+            source,
+            rays,
+            |r| RayVisitor::new(source, r, moller_trumbore_kernel(r, options), goal()),
+            take,
+        ),
     }
 }
 
@@ -260,14 +272,22 @@ fn walk_packet_with<'m, A, S, K, G>(
     source: &'m S,
     rays: &[Ray; PACKET],
     visitor: impl FnMut(&Ray) -> RayVisitor<'m, S, K, G>,
-) -> Option<[G; PACKET]>
+    mut take: impl FnMut(usize, &G),
+) -> bool
 where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized + 'm,
     K: Kernel,
     G: Goal,
 {
-    let mut packet = Packet::new(source, rays.each_ref().map(visitor))?;
-    tree.traverse_packet(&mut packet)
-        .then(|| packet.rays.map(|v| v.goal))
+    let Some(mut packet) = Packet::new(source, rays, visitor) else {
+        return false;
+    };
+    if !tree.traverse_packet(&mut packet) {
+        return false;
+    }
+    for (k, ray) in packet.rays.iter().enumerate() {
+        take(k, &ray.goal);
+    }
+    true
 }
