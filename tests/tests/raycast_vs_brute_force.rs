@@ -13,24 +13,53 @@ use meshq::query::{PackedTriangles, RayOptions, TriangleTest};
 use meshq::wide::{WideBvh, WideNode};
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
-use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
+use meshq_tests::{LoadedMesh, MESHES, checked_bvh, load_mesh, workload};
 
 /// Random rays per mesh with the default (watertight) test, as the issue asks.
 const WATERTIGHT_RAYS: usize = 100_000;
 /// Random rays per mesh with Möller–Trumbore (the brute-force scan dominates the run time).
 const MOLLER_TRUMBORE_RAYS: usize = 25_000;
 
-#[allow(clippy::too_many_arguments)]
-fn assert_same(
-    bvh: &Bvh<'_>,
-    wide: &WideBvh<'_>,
-    mesh: &ValidMesh<'_>,
-    packed: &PackedTriangles<'_>,
-    brute: &BruteForce,
-    rays: &[Ray],
-    options: &RayOptions,
-    what: &str,
-) -> usize {
+/// A mesh's binary tree, its packed triangles and the four-wide tree collapsed from it, with
+/// the brute-force scan they must agree with.
+struct Trees<'a> {
+    bvh: Bvh<'a>,
+    wide: WideBvh<'a>,
+    mesh: ValidMesh<'a>,
+    packed: PackedTriangles<'a>,
+    brute: BruteForce,
+}
+
+/// Builds the trees of bundled mesh `name` and runs `check` with the mesh as loaded, the owned
+/// structure and the trees.
+fn with_trees(name: &str, check: impl FnOnce(&LoadedMesh, &MeshBvh, &Trees<'_>)) {
+    let loaded = load_mesh(name);
+    let mesh = loaded.valid();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
+    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
+    let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
+    let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+    let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
+    let brute = BruteForce::new(&mesh);
+    let trees = Trees {
+        bvh,
+        wide,
+        mesh,
+        packed,
+        brute,
+    };
+    check(&loaded, &owned, &trees);
+}
+
+fn assert_same(trees: &Trees<'_>, rays: &[Ray], options: &RayOptions, what: &str) -> usize {
+    let Trees {
+        bvh,
+        wide,
+        mesh,
+        packed,
+        brute,
+    } = trees;
     let mut hits = 0;
     let bits = |h: Option<meshq::math::RayHit>| {
         h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
@@ -102,30 +131,23 @@ fn assert_same(
 }
 
 fn run(name: &str, test: TriangleTest) {
-    let loaded = load_mesh(name);
-    let mesh = loaded.valid();
-    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bvh = checked_bvh(&owned, &mesh).unwrap();
-    let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
-    let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-    let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-    let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
-    let options = RayOptions {
-        test,
-        cull: CullMode::None,
-    };
-    let count = match test {
-        TriangleTest::Watertight => WATERTIGHT_RAYS,
-        TriangleTest::MollerTrumbore => MOLLER_TRUMBORE_RAYS,
-    };
-    let brute = BruteForce::new(&mesh);
-    let rays = workload::random_rays(&loaded.positions, count, 0x5EED_0001);
-    let hits = assert_same(&bvh, &wide, &mesh, &packed, &brute, &rays, &options, name);
-    // The workload aims every ray at the bounding box: a good share must hit, or the test
-    // would prove little.
-    assert!(hits > count / 5, "{name}: only {hits} hits");
-    let camera = workload::camera_rays(&loaded.positions, 64, 64);
-    assert_same(&bvh, &wide, &mesh, &packed, &brute, &camera, &options, name);
+    with_trees(name, |loaded, _, trees| {
+        let options = RayOptions {
+            test,
+            cull: CullMode::None,
+        };
+        let count = match test {
+            TriangleTest::Watertight => WATERTIGHT_RAYS,
+            TriangleTest::MollerTrumbore => MOLLER_TRUMBORE_RAYS,
+        };
+        let rays = workload::random_rays(&loaded.positions, count, 0x5EED_0001);
+        let hits = assert_same(trees, &rays, &options, name);
+        // The workload aims every ray at the bounding box: a good share must hit, or the test
+        // would prove little.
+        assert!(hits > count / 5, "{name}: only {hits} hits");
+        let camera = workload::camera_rays(&loaded.positions, 64, 64);
+        assert_same(trees, &camera, &options, name);
+    });
 }
 
 #[test]
@@ -155,40 +177,24 @@ fn moller_trumbore_small_meshes() {
 #[test]
 fn culling_and_ray_ranges_match_brute_force() {
     for name in ["spot", "teapot"] {
-        let loaded = load_mesh(name);
-        let mesh = loaded.valid();
-        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = checked_bvh(&owned, &mesh).unwrap();
-        let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
-        let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-        let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-        let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
-        let brute = BruteForce::new(&mesh);
-        let (_, r, _) = workload::centre_radius(&loaded.positions);
-        let rays: Vec<Ray> = workload::random_rays(&loaded.positions, 3_000, 7)
-            .into_iter()
-            .enumerate()
-            .map(|(i, ray)| match i % 3 {
-                0 => ray,
-                // Start inside the sphere and stop early: hits must respect both ends.
-                1 => ray.with_range(0.8 * r, 1.6 * r),
-                _ => ray.with_range(f32::NEG_INFINITY, 1.2 * r),
-            })
-            .collect();
-        for test in [TriangleTest::Watertight, TriangleTest::MollerTrumbore] {
-            for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
-                assert_same(
-                    &bvh,
-                    &wide,
-                    &mesh,
-                    &packed,
-                    &brute,
-                    &rays,
-                    &RayOptions { test, cull },
-                    name,
-                );
+        with_trees(name, |loaded, _, trees| {
+            let (_, r, _) = workload::centre_radius(&loaded.positions);
+            let rays: Vec<Ray> = workload::random_rays(&loaded.positions, 3_000, 7)
+                .into_iter()
+                .enumerate()
+                .map(|(i, ray)| match i % 3 {
+                    0 => ray,
+                    // Start inside the sphere and stop early: hits must respect both ends.
+                    1 => ray.with_range(0.8 * r, 1.6 * r),
+                    _ => ray.with_range(f32::NEG_INFINITY, 1.2 * r),
+                })
+                .collect();
+            for test in [TriangleTest::Watertight, TriangleTest::MollerTrumbore] {
+                for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
+                    assert_same(trees, &rays, &RayOptions { test, cull }, name);
+                }
             }
-        }
+        });
     }
 }
 
@@ -199,60 +205,52 @@ fn culling_and_ray_ranges_match_brute_force() {
 #[test]
 fn rays_from_one_origin_match_brute_force() {
     for name in ["spot", "teapot"] {
-        let loaded = load_mesh(name);
-        let mesh = loaded.valid();
-        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
-        let bvh = checked_bvh(&owned, &mesh).unwrap();
-        let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
-        let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-        let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-        let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
-        let brute = BruteForce::new(&mesh);
-        let (centre, r, _) = workload::centre_radius(&loaded.positions);
-        let jitter = workload::random_rays(&loaded.positions, 2_003, 11);
-        let eye = centre + meshq::math::Vec3::new(1.2, 1.0, 2.5) * r;
-        let cone = jitter.iter().enumerate().map(|(i, j)| {
-            let ray = Ray::new(eye, (centre - eye) + j.dir.normalize() * (0.35 * r));
-            match i % 5 {
-                1 => ray.with_range(2.2 * r, 2.6 * r),
-                2 => ray.with_range(f32::NEG_INFINITY, 2.4 * r),
-                // Invalid: never hits, alone or in a packet.
-                3 if i % 7 == 0 => Ray::new(eye, meshq::math::Vec3::ZERO),
-                _ => ray,
-            }
-        });
-        let inside = jitter.iter().map(|j| Ray::new(centre, j.dir));
-        for (rays, what) in [
-            (cone.collect::<Vec<_>>(), "cone"),
-            (inside.collect::<Vec<_>>(), "inside"),
-        ] {
-            assert_eq!(rays.len() % 8, 3, "a short last packet");
-            for test in [TriangleTest::Watertight, TriangleTest::MollerTrumbore] {
-                for cull in [CullMode::None, CullMode::Back] {
-                    let options = RayOptions { test, cull };
-                    let what = format!("{name} {what} {test:?} {cull:?}");
-                    let hits =
-                        assert_same(&bvh, &wide, &mesh, &packed, &brute, &rays, &options, &what);
-                    // From inside a closed mesh every ray sees back faces: with those culled
-                    // few hit, rightly.
-                    if cull == CullMode::None {
-                        assert!(hits > rays.len() / 4, "{what}: only {hits} hits");
-                    }
-                    // The owned structure walks its packets too.
-                    let mut keys = vec![0u64; rays.len()];
-                    let mut out = vec![None; rays.len()];
-                    owned
-                        .raycast_batch(&rays, &options, &mut keys, &mut out)
-                        .unwrap();
-                    for (ray, got) in rays.iter().zip(&out) {
-                        let want = brute.raycast(ray, &options);
-                        assert_eq!(
-                            got.map(|h| (h.t.to_bits(), h.tri)),
-                            want.map(|h| (h.t.to_bits(), h.tri))
-                        );
+        with_trees(name, |loaded, owned, trees| {
+            let (centre, r, _) = workload::centre_radius(&loaded.positions);
+            let jitter = workload::random_rays(&loaded.positions, 2_003, 11);
+            let eye = centre + meshq::math::Vec3::new(1.2, 1.0, 2.5) * r;
+            let cone = jitter.iter().enumerate().map(|(i, j)| {
+                let ray = Ray::new(eye, (centre - eye) + j.dir.normalize() * (0.35 * r));
+                match i % 5 {
+                    1 => ray.with_range(2.2 * r, 2.6 * r),
+                    2 => ray.with_range(f32::NEG_INFINITY, 2.4 * r),
+                    // Invalid: never hits, alone or in a packet.
+                    3 if i % 7 == 0 => Ray::new(eye, meshq::math::Vec3::ZERO),
+                    _ => ray,
+                }
+            });
+            let inside = jitter.iter().map(|j| Ray::new(centre, j.dir));
+            for (rays, what) in [
+                (cone.collect::<Vec<_>>(), "cone"),
+                (inside.collect::<Vec<_>>(), "inside"),
+            ] {
+                assert_eq!(rays.len() % 8, 3, "a short last packet");
+                for test in [TriangleTest::Watertight, TriangleTest::MollerTrumbore] {
+                    for cull in [CullMode::None, CullMode::Back] {
+                        let options = RayOptions { test, cull };
+                        let what = format!("{name} {what} {test:?} {cull:?}");
+                        let hits = assert_same(trees, &rays, &options, &what);
+                        // From inside a closed mesh every ray sees back faces: with those
+                        // culled few hit, rightly.
+                        if cull == CullMode::None {
+                            assert!(hits > rays.len() / 4, "{what}: only {hits} hits");
+                        }
+                        // The owned structure walks its packets too.
+                        let mut keys = vec![0u64; rays.len()];
+                        let mut out = vec![None; rays.len()];
+                        owned
+                            .raycast_batch(&rays, &options, &mut keys, &mut out)
+                            .unwrap();
+                        for (ray, got) in rays.iter().zip(&out) {
+                            let want = trees.brute.raycast(ray, &options);
+                            assert_eq!(
+                                got.map(|h| (h.t.to_bits(), h.tri)),
+                                want.map(|h| (h.t.to_bits(), h.tri))
+                            );
+                        }
                     }
                 }
             }
-        }
+        });
     }
 }

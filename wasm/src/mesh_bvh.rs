@@ -186,8 +186,8 @@ impl MeshBvh {
     }
 
     /// Quantizes the BVH's four-wide nodes to 8-bit child boxes: half the node memory
-    /// (`queryNodeBytes`), the same answers from every query, a little slower. Once is enough
-    /// (again does nothing). Throws a `TypeError` for a k-d tree, octree or grid.
+    /// (`queryNodeBytes`), the same answers from every query. Once is enough (again does
+    /// nothing). Throws a `TypeError` for a k-d tree, octree or grid.
     #[wasm_bindgen(js_name = compactNodes)]
     pub fn compact_nodes(&mut self) -> Result<(), JsValue> {
         match &mut self.storage.scene {

@@ -43,27 +43,6 @@ const ALL: u32 = (1 << PACKET) - 1;
 
 impl<'m, S: ?Sized, K: Kernel, G: Goal> Packet<'m, S, K, G> {
     /// The packet of `rays`, or `None` when they do not share an origin and direction signs.
-    /// The packet of `rays`, each made a visitor by `visitor`, or `None` when they do not
-    /// share an origin and direction signs. Built in place: a packet is a few kilobytes.
-    #[inline(always)]
-    pub(super) fn new(
-        source: &'m S,
-        rays: &[Ray; PACKET],
-        visitor: impl FnMut(&Ray) -> RayVisitor<'m, S, K, G>,
-    ) -> Option<Self> {
-        let slabs: [SlabRay; PACKET] = rays.each_ref().map(SlabRay::new);
-        let mut packet = Self {
-            source,
-            lanes: PacketLanes::new(&slabs)?,
-            each: PacketRays::new(&slabs),
-            rays: rays.each_ref().map(visitor),
-            done: 0,
-            t_max: f32::NEG_INFINITY,
-        };
-        packet.update_t_max();
-        Some(packet)
-    }
-
     /// Recomputes [`Self::t_max`] (after a leaf, where rays find hits).
     #[inline(always)]
     fn update_t_max(&mut self) {
@@ -280,9 +259,21 @@ where
     K: Kernel,
     G: Goal,
 {
-    let Some(mut packet) = Packet::new(source, rays, visitor) else {
+    // Built here, in place: a packet is a few kilobytes, and moving it cost more than the
+    // walk of a small mesh.
+    let slabs: [SlabRay; PACKET] = rays.each_ref().map(SlabRay::new);
+    let Some(lanes) = PacketLanes::new(&slabs) else {
         return false;
     };
+    let mut packet = Packet {
+        source,
+        lanes,
+        each: PacketRays::new(&slabs),
+        rays: rays.each_ref().map(visitor),
+        done: 0,
+        t_max: f32::NEG_INFINITY,
+    };
+    packet.update_t_max();
     if !tree.traverse_packet(&mut packet) {
         return false;
     }
