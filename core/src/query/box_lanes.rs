@@ -63,9 +63,19 @@ impl LaneRay {
             .min((fy - oy) * iy)
             .min((fz - oz) * iz)
             .min(Vec4::splat(t_max));
-        let lo = entry - entry.abs() * margin;
-        let hi = exit + exit.abs() * margin;
-        (lo.cmple(hi).bitmask() & node.used_mask(), lo.to_array())
+        // For `t_min ≥ 0` the entry is never negative, and a negative exit leaves the interval
+        // empty whichever way it is widened, so `x ∓ |x|·margin` is `x·(1 ∓ margin)`: one
+        // product, the same real number. Rounded once instead of twice, it can differ by an ulp
+        // where `x·margin` is subnormal (|x| below about 1e-33), still widening by the margin
+        // to within that ulp, far more than the slab arithmetic's own rounding.
+        let (lo, hi) = if t_min >= 0.0 {
+            (entry * (1.0 - margin), exit * (1.0 + margin))
+        } else {
+            (entry - entry.abs() * margin, exit + exit.abs() * margin)
+        };
+        // Unused lanes need no mask here: their empty boxes give an empty interval (or NaN),
+        // and the structure ignores their verdict anyway.
+        (lo.cmple(hi).bitmask(), lo.to_array())
     }
 }
 

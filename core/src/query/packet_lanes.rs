@@ -89,9 +89,14 @@ impl PacketLanes {
             .min(most(fy - oy, ly, hy))
             .min(most(fz - oz, lz, hz))
             .min(Vec4::splat(t_max));
-        let lo = entry - entry.abs() * margin;
-        let hi = exit + exit.abs() * margin;
-        (lo.cmple(hi).bitmask() & node.used_mask(), lo.to_array())
+        // Widened as a single ray's test is (`LaneRay::enter`, one product for `t_min ≥ 0`);
+        // unused lanes are the structure's to ignore.
+        let (lo, hi) = if self.t_min >= 0.0 {
+            (entry * (1.0 - margin), exit * (1.0 + margin))
+        } else {
+            (entry - entry.abs() * margin, exit + exit.abs() * margin)
+        };
+        (lo.cmple(hi).bitmask(), lo.to_array())
     }
 }
 
