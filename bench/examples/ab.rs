@@ -72,6 +72,13 @@ fn main() {
         per_triangle(compact.node_bytes()),
     );
 
+    let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; wide.nodes().len()];
+    let wide8 = meshq::wide::WideBvh8::build(&bvh, &mut nodes8).expect("wide8");
+    println!(
+        "eight-wide: {} nodes, {:.1} bytes per triangle",
+        wide8.nodes().len(),
+        per_triangle(size_of_val(wide8.nodes()))
+    );
     type Run<'a> = Box<dyn Fn() -> usize + 'a>;
     let variants: Vec<(&str, usize, Run<'_>)> = vec![
         (
@@ -103,6 +110,54 @@ fn main() {
                     .raycast_batch(&rays, &options, &mut keys, &mut out)
                     .expect("batch");
                 out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
+            "rays wide8 packed",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| wide8.with(&packed).raycast(r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "camera wide8 packed",
+            camera.len(),
+            Box::new(|| {
+                camera
+                    .iter()
+                    .filter(|r| wide8.with(&packed).raycast(r).is_some())
+                    .count()
+            }),
+        ),
+        (
+            "camera wide8 batch",
+            camera.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; camera.len()];
+                let mut out = vec![None; camera.len()];
+                let options = meshq::query::RayOptions::default();
+                wide8
+                    .with(&packed)
+                    .raycast_batch(&camera, &options, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
+            "closest wide8 packed",
+            points.len(),
+            Box::new(|| {
+                points
+                    .iter()
+                    .filter(|&&p| {
+                        wide8
+                            .with(&packed)
+                            .closest_point(p, f32::INFINITY)
+                            .is_some()
+                    })
+                    .count()
             }),
         ),
         (

@@ -26,7 +26,7 @@ The 1.1M-triangle case is the bunny subdivided twice (each triangle into four, m
 shared), written to target/peers/ as a binary PLY at run time; it is never committed.
 
 Set up once: scripts/peers-setup.sh (a virtual environment in target/peers-venv).
-Run: target/peers-venv/bin/python bench/peers/embree.py [--meshq BIN] [--rays N]
+Run: target/peers-venv/bin/python bench/peers/embree.py [--meshq BIN] [--rays N] [--eight-wide]
      [--repeat K] [--json] [MESH ...]   (names of bundled meshes, paths, or `bunny-x16`)
 """
 import argparse
@@ -81,9 +81,13 @@ def mesh_path(name, scratch):
     return ROOT / "assets" / f"{name}.obj"
 
 
+MESHQ_FLAGS = []  # flags every meshq raycast gets (`--eight-wide`)
+
+
 def meshq(binary, mesh, rays, out, *flags):
     result = subprocess.run(
-        [binary, "raycast", str(mesh), "--rays", str(rays), "--out", str(out), "--json", *flags],
+        [binary, "raycast", str(mesh), "--rays", str(rays), "--out", str(out), "--json", *flags,
+         *MESHQ_FLAGS],
         check=True, capture_output=True, text=True)
     return json.loads(result.stdout)
 
@@ -120,7 +124,11 @@ def main():
     parser.add_argument("--rays", type=int, default=1_000_000)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--eight-wide", action="store_true",
+                        help="meshq walks its eight-wide tree (`meshq raycast --eight-wide`)")
     args = parser.parse_args()
+    if args.eight_wide:
+        MESHQ_FLAGS.append("--eight-wide")
     os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
     say = (lambda *a: None) if args.json else print
     rows = []

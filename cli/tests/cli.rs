@@ -817,11 +817,11 @@ fn batched_camera_rays_give_the_records_of_one_ray_per_call() {
     }
 }
 
-/// `--compact-nodes` quantizes the BVH's wide nodes: the records of ray and closest-point
-/// queries are byte for byte those of the full nodes, from a mesh file and from a blob; other
-/// structures refuse it.
+/// `--compact-nodes` quantizes the BVH's wide nodes and `--eight-wide` collapses it eight-wide:
+/// the records of ray and closest-point queries are byte for byte those of the default nodes,
+/// from a mesh file and from a blob; other structures refuse both, and they exclude each other.
 #[test]
-fn compact_nodes_give_the_same_records() {
+fn compact_and_eight_wide_nodes_give_the_same_records() {
     let dir = tempfile::tempdir().unwrap();
     let loaded = load_mesh("spot");
     let obj = asset("spot.obj");
@@ -834,52 +834,73 @@ fn compact_nodes_give_the_same_records() {
     write_f32s(&point_file, points.iter().flat_map(|p| p.to_array()));
     let blob = dir.path().join("spot.meshq");
     ok(&[&"bake", &obj, &"-o", &blob]);
+    let layouts = [None, Some("--compact-nodes"), Some("--eight-wide")];
     for input in [&obj, &blob] {
         for any in [false, true] {
             let mut outputs = Vec::new();
-            for compact in [false, true] {
-                let out = dir.path().join(format!("hits-{compact}.bin"));
+            for (i, layout) in layouts.iter().enumerate() {
+                let out = dir.path().join(format!("hits-{i}.bin"));
                 let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> =
                     vec![&"raycast", input, &"--rays", &ray_file, &"--out", &out];
                 if any {
                     args.push(&"--any");
                 }
-                if compact {
-                    args.push(&"--compact-nodes");
+                if let Some(flag) = layout {
+                    args.push(flag);
                 }
                 ok(&args);
                 outputs.push(std::fs::read(&out).unwrap());
             }
-            assert_eq!(outputs[0], outputs[1], "{input:?} any: {any}");
+            for (layout, output) in layouts.iter().zip(&outputs) {
+                assert_eq!(&outputs[0], output, "{input:?} any: {any} {layout:?}");
+            }
         }
         let mut outputs = Vec::new();
-        for compact in [false, true] {
-            let out = dir.path().join(format!("closest-{compact}.bin"));
+        for (i, layout) in layouts.iter().enumerate() {
+            let out = dir.path().join(format!("closest-{i}.bin"));
             let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> =
                 vec![&"closest", input, &"--points", &point_file, &"--out", &out];
-            if compact {
-                args.push(&"--compact-nodes");
+            if let Some(flag) = layout {
+                args.push(flag);
             }
             ok(&args);
             outputs.push(std::fs::read(&out).unwrap());
         }
-        assert_eq!(outputs[0], outputs[1], "{input:?} closest");
+        for (layout, output) in layouts.iter().zip(&outputs) {
+            assert_eq!(&outputs[0], output, "{input:?} closest {layout:?}");
+        }
     }
     let out = dir.path().join("kd.bin");
+    for flag in ["--compact-nodes", "--eight-wide"] {
+        fails(
+            &[
+                &"raycast",
+                &obj,
+                &"--structure",
+                &"kdtree",
+                &flag,
+                &"--rays",
+                &ray_file,
+                &"--out",
+                &out,
+            ],
+            1,
+            &format!("{flag} applies to a BVH"),
+        );
+    }
     fails(
         &[
             &"raycast",
             &obj,
-            &"--structure",
-            &"kdtree",
             &"--compact-nodes",
+            &"--eight-wide",
             &"--rays",
             &ray_file,
             &"--out",
             &out,
         ],
-        1,
-        "--compact-nodes applies to a BVH",
+        2,
+        "cannot be used with",
     );
 }
 

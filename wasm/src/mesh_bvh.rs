@@ -198,8 +198,23 @@ impl MeshBvh {
         }
     }
 
-    /// Bytes of the tree nodes queries walk (the BVH's four-wide nodes, 128 each, or 64 each
-    /// after `compactNodes`); 0 for a k-d tree, octree or grid.
+    /// Collapses the BVH eight-wide for queries to walk instead of its four-wide (or compact)
+    /// nodes: fewer node visits per ray, the same answers from every query (closest-point
+    /// queries are quicker on the default nodes). Once is enough (again does nothing).
+    /// Throws a `TypeError` for a k-d tree, octree or grid.
+    #[wasm_bindgen(js_name = eightWideNodes)]
+    pub fn eight_wide_nodes(&mut self) -> Result<(), JsValue> {
+        match &mut self.storage.scene {
+            MeshIndex::Bvh(bvh) => bvh
+                .eight_wide_nodes()
+                .map_err(|e| JsError::new(&e.to_string()).into()),
+            _ => Err(type_error("eightWideNodes applies to a BVH")),
+        }
+    }
+
+    /// Bytes of the tree nodes queries walk (the BVH's four-wide nodes, 128 each; 64 each
+    /// after `compactNodes`; 256 each after `eightWideNodes`); 0 for a k-d tree, octree or
+    /// grid.
     #[wasm_bindgen(getter, js_name = queryNodeBytes)]
     pub fn query_node_bytes(&self) -> f64 {
         match &self.storage.scene {

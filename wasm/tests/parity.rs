@@ -153,6 +153,21 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         );
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&compact));
         assert_eq!(report, golden.report, "{name}: compact nodes");
+
+        // Eight-wide nodes: the golden answers.
+        let mut eight = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
+        eight.eight_wide_nodes().unwrap();
+        assert!(
+            eight.query_node_bytes() > 0.0,
+            "{name}: eight-wide node bytes"
+        );
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&eight));
+        assert_eq!(report, golden.report, "{name}: eight-wide nodes");
+        assert_eq!(
+            eight.to_blob(None).unwrap(),
+            blob,
+            "{name}: eight-wide blob"
+        );
         assert_eq!(loaded.to_blob(None).unwrap(), blob);
 
         // A packed blob (corners in leaf order, no indexed mesh) answers the same.

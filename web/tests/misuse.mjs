@@ -107,6 +107,18 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   assert.equal(compact.queryNodeBytes * 2, fullBytes, 'compact nodes are half the bytes');
   assert.deepEqual(compact.toBlob('packed'), bvh.toBlob('packed'));
   assert.deepEqual(compact.raycast([0.1, 0.2, 5], [0, 0, -1]), bvh.raycast([0.1, 0.2, 5], [0, 0, -1]));
+  // Eight-wide nodes: 256 bytes each, the same blob and answers; twice is once; then compact.
+  const eight = MeshBvh.fromBlob(bvh.toBlob());
+  eight.eightWideNodes();
+  eight.eightWideNodes();
+  assert.equal(eight.queryNodeBytes % 256, 0, 'eight-wide nodes are 256 bytes');
+  assert.deepEqual(eight.toBlob(), bvh.toBlob());
+  for (const [o, d] of [[[0.1, 0.2, 5], [0, 0, -1]], [[0.3, -2, 0.2], [0, 1, 0]]]) {
+    assert.deepEqual(eight.raycast(o, d), bvh.raycast(o, d));
+  }
+  eight.compactNodes();
+  assert.equal(eight.queryNodeBytes, compact.queryNodeBytes, 'eight-wide then compact');
+  eight.free();
   compact.free();
   other.free();
 }
@@ -191,6 +203,7 @@ const cases = [
   [() => remesh(positions, indices, { steps: 3 }), RangeError, /unknown option "steps"/],
   [() => remesh(positions, indices, 10), TypeError, /options must be an object/],
   [() => MeshBvh.build(positions, indices, { structure: 'kdtree' }).compactNodes(), TypeError, /compactNodes applies to a BVH/],
+  [() => MeshBvh.build(positions, indices, { structure: 'grid' }).eightWideNodes(), TypeError, /eightWideNodes applies to a BVH/],
 ];
 
 // Bad batch outputs: wrong type, wrong length; the arrays stay as they were.

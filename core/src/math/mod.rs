@@ -6,6 +6,7 @@
 
 mod aabb;
 mod aabb4;
+mod aabb8;
 mod hit;
 mod morton;
 mod obb;
@@ -17,6 +18,7 @@ mod triangle;
 
 pub use aabb::Aabb;
 pub use aabb4::Aabb4;
+pub use aabb8::Aabb8;
 pub use hit::{ClosestPoint, RayHit, TriangleFeature};
 pub use morton::morton_code;
 pub use obb::Obb;

@@ -8,7 +8,9 @@ use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::query::{LeafTriangles, PackedTriangles, Traverse, Visitor};
-use crate::wide::{CompactNode, CompactWideBvh, WideBvh, WideNode, wide_node_capacity};
+use crate::wide::{
+    CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode, WideNode8, wide_node_capacity,
+};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
 /// (nodes and order), the triangles packed in leaf order, and the tree collapsed four-wide —
@@ -19,9 +21,11 @@ use crate::wide::{CompactNode, CompactWideBvh, WideBvh, WideNode, wide_node_capa
 /// custom visitors ([`Traverse`]). Queries walk the wide tree over the packed triangles; every
 /// answer is exactly what the binary tree over the mesh gives, bit for bit, on every target.
 /// [`MeshBvh::with_compact_nodes`] trades the wide nodes for quantized ones
-/// ([`CompactWideBvh`]), half the bytes, with the same answers. [`MeshBvh::bvh`],
-/// [`MeshBvh::wide`], [`MeshBvh::compact`], [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the
-/// views for code that wants a particular one.
+/// ([`CompactWideBvh`]), half the bytes, and [`MeshBvh::with_eight_wide_nodes`] for an
+/// eight-wide tree ([`WideBvh8`]), fewer steps per ray, both with the same answers.
+/// [`MeshBvh::bvh`], [`MeshBvh::wide`], [`MeshBvh::compact`], [`MeshBvh::eight_wide`],
+/// [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the views for code that wants a particular
+/// one.
 #[derive(Clone, Debug)]
 pub struct MeshBvh {
     pub(super) positions: Vec<[f32; 3]>,
@@ -34,11 +38,12 @@ pub struct MeshBvh {
     pub(super) config: BuildConfig,
 }
 
-/// The nodes queries walk: the four-wide tree, or the same quantized.
+/// The nodes queries walk: the four-wide tree, the same quantized, or the eight-wide tree.
 #[derive(Clone, Debug)]
 pub(super) enum WideNodes {
     Full(Vec<WideNode>),
     Compact(Vec<CompactNode>),
+    Eight(Vec<WideNode8>),
 }
 
 impl MeshBvh {
@@ -149,11 +154,52 @@ impl MeshBvh {
     /// # Errors
     /// As [`MeshBvh::with_compact_nodes`].
     pub fn compact_nodes(&mut self) -> Result<(), BuildError> {
-        if let WideNodes::Full(nodes) = &self.wide {
-            let mut compact = vec![CompactNode::EMPTY; nodes.len()];
-            CompactWideBvh::build(&WideBvh::from_validated(nodes, &self.order), &mut compact)?;
-            self.wide = WideNodes::Compact(compact);
+        let compact = match &self.wide {
+            WideNodes::Compact(_) => return Ok(()),
+            WideNodes::Full(nodes) => {
+                let mut compact = vec![CompactNode::EMPTY; nodes.len()];
+                CompactWideBvh::build(&WideBvh::from_validated(nodes, &self.order), &mut compact)?;
+                compact
+            }
+            WideNodes::Eight(_) => {
+                let bvh = self.bvh();
+                let mut nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
+                let wide = WideBvh::build(&bvh, &mut nodes)?;
+                let mut compact = vec![CompactNode::EMPTY; wide.nodes().len()];
+                CompactWideBvh::build(&wide, &mut compact)?;
+                compact
+            }
+        };
+        self.wide = WideNodes::Compact(compact);
+        Ok(())
+    }
+
+    /// This structure with its tree collapsed eight-wide ([`WideBvh8`]) for queries to walk
+    /// instead of the four-wide (or compact) nodes: the same answers, bit for bit, with about
+    /// a third fewer node visits per query, each testing eight boxes. The choice for rays;
+    /// closest-point queries, which enter more of a node's lanes, do better four-wide.
+    /// Deterministic. Already eight-wide: unchanged.
+    ///
+    /// # Errors
+    /// Never for a structure built or loaded by this crate (see [`WideBvh8::build`]).
+    pub fn with_eight_wide_nodes(mut self) -> Result<Self, BuildError> {
+        self.eight_wide_nodes()?;
+        Ok(self)
+    }
+
+    /// [`MeshBvh::with_eight_wide_nodes`] in place. On error nothing changes.
+    ///
+    /// # Errors
+    /// As [`MeshBvh::with_eight_wide_nodes`].
+    pub fn eight_wide_nodes(&mut self) -> Result<(), BuildError> {
+        if matches!(self.wide, WideNodes::Eight(_)) {
+            return Ok(());
         }
+        let bvh = self.bvh();
+        let mut nodes = vec![WideNode8::EMPTY; WideBvh8::count_nodes(&bvh)];
+        let count = WideBvh8::build(&bvh, &mut nodes)?.nodes().len();
+        nodes.truncate(count);
+        self.wide = WideNodes::Eight(nodes);
         Ok(())
     }
 
@@ -170,12 +216,23 @@ impl MeshBvh {
         Bvh::from_validated(&self.nodes, &self.order, self.depth)
     }
 
-    /// The same tree four-wide, which queries walk; `None` once the nodes are compact.
+    /// The same tree four-wide, which queries walk; `None` once the nodes are compact or
+    /// eight-wide.
     #[must_use]
     pub fn wide(&self) -> Option<WideBvh<'_>> {
         match &self.wide {
             WideNodes::Full(nodes) => Some(WideBvh::from_validated(nodes, &self.order)),
-            WideNodes::Compact(_) => None,
+            WideNodes::Compact(_) | WideNodes::Eight(_) => None,
+        }
+    }
+
+    /// The same tree eight-wide, which queries walk after
+    /// [`MeshBvh::with_eight_wide_nodes`]; `None` before.
+    #[must_use]
+    pub fn eight_wide(&self) -> Option<WideBvh8<'_>> {
+        match &self.wide {
+            WideNodes::Eight(nodes) => Some(WideBvh8::from_validated(nodes, &self.order)),
+            WideNodes::Full(_) | WideNodes::Compact(_) => None,
         }
     }
 
@@ -184,17 +241,18 @@ impl MeshBvh {
     #[must_use]
     pub fn compact(&self) -> Option<CompactWideBvh<'_>> {
         match &self.wide {
-            WideNodes::Full(_) => None,
+            WideNodes::Full(_) | WideNodes::Eight(_) => None,
             WideNodes::Compact(nodes) => Some(CompactWideBvh::from_validated(nodes, &self.order)),
         }
     }
 
-    /// Bytes of the nodes queries walk (wide or compact).
+    /// Bytes of the nodes queries walk (four-wide, compact or eight-wide).
     #[must_use]
     pub fn query_node_bytes(&self) -> usize {
         match &self.wide {
             WideNodes::Full(nodes) => core::mem::size_of_val(nodes.as_slice()),
             WideNodes::Compact(nodes) => core::mem::size_of_val(nodes.as_slice()),
+            WideNodes::Eight(nodes) => core::mem::size_of_val(nodes.as_slice()),
         }
     }
 
@@ -224,13 +282,16 @@ impl MeshBvh {
 }
 
 impl Traverse for MeshBvh {
-    /// Walks the wide tree (or its compact form).
+    /// Walks the wide tree (four-wide, compact or eight-wide).
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         match &self.wide {
             WideNodes::Full(nodes) => WideBvh::from_validated(nodes, &self.order).traverse(visitor),
             WideNodes::Compact(nodes) => {
                 CompactWideBvh::from_validated(nodes, &self.order).traverse(visitor);
+            }
+            WideNodes::Eight(nodes) => {
+                WideBvh8::from_validated(nodes, &self.order).traverse(visitor);
             }
         }
     }

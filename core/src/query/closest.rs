@@ -38,6 +38,11 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
     }
 
     #[inline(always)]
+    fn enter_lanes8(&mut self, boxes: &crate::math::Aabb8) -> (u32, [f32; 8]) {
+        super::box_lanes::enter_point8(boxes, self.point, self.limit, MARGIN)
+    }
+
+    #[inline(always)]
     fn skips_repeats(&self) -> bool {
         true
     }

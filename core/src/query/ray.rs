@@ -196,6 +196,11 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
     }
 
     #[inline(always)]
+    fn enter_lanes8(&mut self, boxes: &crate::math::Aabb8) -> (u32, [f32; 8]) {
+        super::box_lanes::enter8(&self.slab, boxes, self.slab.t_min, self.slab.t_max, MARGIN)
+    }
+
+    #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
         self.lanes
             .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)

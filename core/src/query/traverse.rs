@@ -51,6 +51,18 @@ pub trait Visitor {
         (mask, keys)
     }
 
+    /// [`enter_lanes`](Self::enter_lanes) for eight boxes (an eight-wide node): bit `i` of the
+    /// mask for lane `i`, its key in `keys[i]`. The default asks `enter_lanes` for each half;
+    /// built-in visitors test all eight at once.
+    fn enter_lanes8(&mut self, boxes: &crate::math::Aabb8) -> (u32, [f32; 8]) {
+        let (m0, k0) = self.enter_lanes(&boxes.half(0));
+        let (m1, k1) = self.enter_lanes(&boxes.half(1));
+        (
+            (m0 & 0xF) | ((m1 & 0xF) << 4),
+            [k0[0], k0[1], k0[2], k0[3], k1[0], k1[1], k1[2], k1[3]],
+        )
+    }
+
     /// Whether a box entered earlier with `key` and deferred is still worth visiting now (for
     /// example, not when a closer hit has been found since). Structures that walk in key order
     /// stop at the first `false`. The default visits everything.

@@ -1,30 +1,54 @@
-//! Collapsing a binary BVH into a four-wide one.
+//! Collapsing a binary BVH into a four- or eight-wide one.
 
 use super::WideNode;
 use crate::bvh::{Bvh, BvhNode, MAX_DEPTH, TreeArrays};
 use crate::error::BuildError;
+use crate::math::Aabb;
 
 /// Inner binary nodes waiting to become wide nodes. A wide node is no deeper than the binary
-/// node it starts from, and each one leaves at most three siblings pending per level, so a
-/// valid tree never fills this.
-const PENDING: usize = 3 * MAX_DEPTH as usize + 1;
+/// node it starts from, and each one leaves at most seven siblings pending per level (eight
+/// lanes at most), so a valid tree never fills this.
+const PENDING: usize = 7 * MAX_DEPTH as usize + 1;
 
 /// Collapses `tree` into wide nodes, handing each to `sink` with its index (in any order), and
 /// returns how many there are. The same tree always gives the same nodes.
 ///
 /// Each wide node starts from an inner binary node's two children and repeatedly opens the
 /// inner child with the largest surface area (the one a ray is most likely to enter; the
-/// earlier lane on ties) until it has four children or only leaves. Children of one node get
+/// earlier lane on ties) until it has four (or eight) children or only leaves. Children of one node get
 /// consecutive indices.
 pub(super) fn collapse(
     tree: &Bvh<'_>,
-    mut sink: impl FnMut(usize, WideNode),
+    sink: impl FnMut(usize, WideNode),
+) -> Result<usize, BuildError> {
+    collapse_to::<WideNode, 4>(tree, sink)
+}
+
+/// A node a collapse fills lane by lane.
+pub(super) trait CollapsedNode: Sized {
+    /// A node with every lane unused.
+    const EMPTY: Self;
+    /// Writes lane `lane`'s box, child and triangle count (ignored past the last lane).
+    fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32);
+}
+
+impl CollapsedNode for WideNode {
+    const EMPTY: Self = WideNode::EMPTY;
+    fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32) {
+        WideNode::set_lane(self, lane, aabb, child, count);
+    }
+}
+
+/// [`collapse`] into nodes of `W` lanes (`2..=8`).
+pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
+    tree: &Bvh<'_>,
+    mut sink: impl FnMut(usize, N),
 ) -> Result<usize, BuildError> {
     let Some(root) = tree.node(0) else {
         return Ok(0);
     };
     if root.is_leaf() {
-        let mut node = WideNode::EMPTY;
+        let mut node = N::EMPTY;
         node.set_lane(0, &root.aabb(), root.first, root.count);
         sink(0, node);
         return Ok(1);
@@ -44,8 +68,8 @@ pub(super) fn collapse(
         let Some(inner) = tree.node(binary as usize) else {
             return Err(too_deep);
         };
-        let (children, lanes) = open(tree, &inner);
-        let mut node = WideNode::EMPTY;
+        let (children, lanes) = open::<W>(tree, &inner);
+        let mut node = N::EMPTY;
         for (lane, &(index, child)) in children.iter().enumerate().take(lanes) {
             if child.is_leaf() {
                 node.set_lane(lane, &child.aabb(), child.first, child.count);
@@ -62,19 +86,19 @@ pub(super) fn collapse(
     Ok(next as usize)
 }
 
-/// The up to four binary descendants of `inner` that become one wide node's children, as
+/// The up to `W` binary descendants of `inner` that become one wide node's children, as
 /// `(binary index, node)`, and how many there are. An opened child's left half takes its
 /// lane and its right half goes last (lane order carries no meaning: queries sort lanes by
 /// distance).
-fn open(tree: &Bvh<'_>, inner: &BvhNode) -> ([(u32, BvhNode); 4], usize) {
-    let mut lanes = [(0u32, BvhNode::EMPTY); 4];
+fn open<const W: usize>(tree: &Bvh<'_>, inner: &BvhNode) -> ([(u32, BvhNode); W], usize) {
+    let mut lanes = [(0u32, BvhNode::EMPTY); W];
     let Some([left, right]) = tree.node_pair(inner.first as usize) else {
         return (lanes, 0);
     };
     lanes[0] = (inner.first, left);
     lanes[1] = (inner.first.wrapping_add(1), right);
     let mut len = 2usize;
-    while len < 4 {
+    while len < W {
         let Some((lane, first)) = widest_inner(lanes.get(..len).unwrap_or_default()) else {
             break;
         };

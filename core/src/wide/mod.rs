@@ -1,5 +1,5 @@
-//! A four-wide BVH collapsed from a binary one, whose queries take fewer, fuller steps: the one
-//! structure built from another (a [`Bvh`](crate::bvh::Bvh)).
+//! Four- and eight-wide BVHs collapsed from a binary one, whose queries take fewer, fuller
+//! steps: the structures built from another (a [`Bvh`](crate::bvh::Bvh)).
 //!
 //! ```
 //! use meshq::prelude::*;
@@ -19,12 +19,17 @@ mod collapse;
 mod compact_node;
 mod compact_tree;
 mod node;
+mod node8;
 mod sizing;
 mod traverse;
+mod traverse8;
 mod tree;
+mod tree8;
 
 pub use compact_node::CompactNode;
 pub use compact_tree::CompactWideBvh;
 pub use node::WideNode;
+pub use node8::WideNode8;
 pub use sizing::wide_node_capacity;
 pub use tree::WideBvh;
+pub use tree8::WideBvh8;

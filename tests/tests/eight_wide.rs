@@ -1,0 +1,272 @@
+//! The eight-wide BVH (`WideBvh8`, `MeshBvh::with_eight_wide_nodes`): the collapse keeps the
+//! binary tree's leaves under boxes that hold them, and every query answers as a brute-force
+//! scan does — one ray per call, batches (packets for rays from one origin), any hit, closest
+//! points and overlaps.
+
+use std::collections::BTreeSet;
+use std::ops::ControlFlow;
+
+use meshq::MeshBvh;
+use meshq::bvh::BuildConfig;
+use meshq::geom::CullMode;
+use meshq::math::{Aabb, Ray, RayHit, Vec3};
+use meshq::query::{MeshQuery, RayOptions, Traverse, TriangleTest};
+use meshq::wide::{WideBvh, WideBvh8, WideNode8, wide_node_capacity};
+use meshq_tests::oracle::BruteForce;
+use meshq_tests::{MESHES, load_mesh, workload};
+
+fn bits(h: Option<RayHit>) -> Option<(u32, u32, u32, u32)> {
+    h.map(|h| (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
+}
+
+/// Whether a vertex is a corner of some triangle (unused vertices need no box).
+fn used(loaded: &meshq_tests::LoadedMesh, p: &[f32; 3]) -> bool {
+    loaded
+        .triangles
+        .iter()
+        .any(|t| t.iter().any(|&i| loaded.positions[i as usize] == *p))
+}
+
+#[test]
+fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = owned.bvh();
+        let mut storage = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
+        let eight = WideBvh8::build(&bvh, &mut storage).unwrap();
+        assert_eq!(eight.nodes().len(), WideBvh8::count_nodes(&bvh), "{name}");
+        let four = owned.wide().unwrap();
+        assert!(
+            eight.nodes().len() < four.nodes().len(),
+            "{name}: {} eight-wide nodes, {} four-wide",
+            eight.nodes().len(),
+            four.nodes().len()
+        );
+
+        // The binary tree's leaves, as (first slot, count).
+        let binary: BTreeSet<(u32, u32)> = bvh
+            .nodes()
+            .iter()
+            .filter(|n| n.is_leaf())
+            .map(|n| (n.first, n.count))
+            .collect();
+        let mut leaves = BTreeSet::new();
+        let mut inner_seen = vec![false; eight.nodes().len()];
+        for (i, node) in eight.nodes().iter().enumerate() {
+            let used = node.lanes();
+            assert!((1..=8).contains(&used), "{name} node {i}: {used} lanes");
+            for lane in 0..8 {
+                let aabb = node.bounds.lane(lane);
+                if lane >= used {
+                    assert!(
+                        aabb.min.x > aabb.max.x,
+                        "{name} node {i} lane {lane} unused"
+                    );
+                    assert_eq!((node.child[lane], node.count[lane]), (0, 0));
+                    continue;
+                }
+                let (child, count) = (node.child[lane], node.count[lane]);
+                if count > 0 {
+                    assert!(leaves.insert((child, count)), "{name}: leaf twice");
+                    for slot in child..child + count {
+                        let tri = bvh.order()[slot as usize];
+                        let corners = mesh.triangle(tri).unwrap();
+                        for p in [corners.a, corners.b, corners.c] {
+                            assert!(aabb.contains_point(p), "{name} node {i} lane {lane}");
+                        }
+                    }
+                } else {
+                    let c = child as usize;
+                    assert!(c > 0 && c < eight.nodes().len(), "{name} node {i}");
+                    assert!(!inner_seen[c], "{name}: node {c} has two parents");
+                    inner_seen[c] = true;
+                    let below = &eight.nodes()[c];
+                    for l in 0..below.lanes() {
+                        assert!(
+                            aabb.contains_aabb(&below.bounds.lane(l)),
+                            "{name} node {i} lane {lane} misses a box below"
+                        );
+                    }
+                }
+            }
+        }
+        assert_eq!(leaves, binary, "{name}: the same leaves as the binary tree");
+        assert!(
+            inner_seen.iter().skip(1).all(|&s| s),
+            "{name}: orphan nodes"
+        );
+        // Opened deeper, the root's lanes are tighter than the four-wide root's.
+        assert!(four.bounds().contains_aabb(&eight.bounds()), "{name}: root");
+        for p in &loaded.positions {
+            assert!(eight.bounds().contains_point(Vec3::from_array(*p)) || !used(&loaded, p));
+        }
+
+        // The owned form walks the same nodes.
+        let owned8 = owned.clone().with_eight_wide_nodes().unwrap();
+        assert!(owned8.wide().is_none() && owned8.compact().is_none());
+        assert_eq!(owned8.eight_wide().unwrap().nodes(), eight.nodes());
+        assert_eq!(
+            owned8.query_node_bytes(),
+            std::mem::size_of_val(eight.nodes())
+        );
+        // Compact from eight-wide: the four-wide tree's compact nodes.
+        let compact_a = owned8.clone().with_compact_nodes().unwrap();
+        let compact_b = owned.clone().with_compact_nodes().unwrap();
+        assert_eq!(
+            compact_a.compact().unwrap().nodes(),
+            compact_b.compact().unwrap().nodes(),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn a_lone_leaf_and_a_too_small_buffer() {
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mesh = meshq::mesh::MeshRef::new(&positions, &[[0, 1, 2]])
+        .validate()
+        .unwrap();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default())
+        .unwrap()
+        .with_eight_wide_nodes()
+        .unwrap();
+    let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
+    assert_eq!(owned.raycast(&ray).map(|h| h.tri), Some(0));
+    assert_eq!(owned.eight_wide().unwrap().nodes().len(), 1);
+
+    let loaded = load_mesh("spot");
+    let big = MeshBvh::build(&loaded.valid(), &BuildConfig::default()).unwrap();
+    let needed = WideBvh8::count_nodes(&big.bvh());
+    let mut short = vec![WideNode8::EMPTY; needed - 1];
+    assert!(WideBvh8::build(&big.bvh(), &mut short).is_err());
+    let mut exact = vec![WideNode8::EMPTY; needed];
+    assert_eq!(
+        WideBvh8::build(&big.bvh(), &mut exact)
+            .unwrap()
+            .nodes()
+            .len(),
+        needed
+    );
+}
+
+#[test]
+fn eight_wide_queries_match_brute_force() {
+    for name in ["spot", "fandisk", "stanford-bunny"] {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let brute = BruteForce::new(&mesh);
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default())
+            .unwrap()
+            .with_eight_wide_nodes()
+            .unwrap();
+        let view = owned.eight_wide().unwrap();
+        let packed = owned.packed();
+        let mut rays = workload::random_rays(&loaded.positions, 20_000, 43);
+        let camera = workload::camera_rays(&loaded.positions, 64, 48);
+        rays.extend(&camera);
+        for options in [
+            RayOptions::default(),
+            RayOptions {
+                test: TriangleTest::MollerTrumbore,
+                cull: CullMode::Back,
+            },
+            RayOptions {
+                test: TriangleTest::Watertight,
+                cull: CullMode::Front,
+            },
+        ] {
+            for (i, ray) in rays.iter().enumerate() {
+                let want = brute.raycast(ray, &options);
+                assert_eq!(
+                    bits(owned.raycast_with(ray, &options)),
+                    bits(want),
+                    "{name} ray {i} {options:?}"
+                );
+                assert_eq!(
+                    bits(view.with(&packed).raycast_with(ray, &options)),
+                    bits(want),
+                    "{name} ray {i}"
+                );
+                assert_eq!(
+                    owned.raycast_any_with(ray, &options),
+                    want.is_some(),
+                    "{name} any {i}"
+                );
+            }
+            // Batches: the camera's rays share an origin and walk in packets.
+            let mut keys = vec![0u64; rays.len()];
+            let mut out = vec![None; rays.len()];
+            owned
+                .raycast_batch(&rays, &options, &mut keys, &mut out)
+                .unwrap();
+            let mut any = vec![false; rays.len()];
+            owned
+                .raycast_any_batch(&rays, &options, &mut keys, &mut any)
+                .unwrap();
+            for (i, ray) in rays.iter().enumerate() {
+                let want = brute.raycast(ray, &options);
+                assert_eq!(bits(out[i]), bits(want), "{name} batch {i} {options:?}");
+                assert_eq!(any[i], want.is_some(), "{name} any batch {i}");
+            }
+        }
+        // Every hit along a few rays.
+        for ray in rays.iter().step_by(997) {
+            let blank = RayHit {
+                t: 0.0,
+                tri: 0,
+                u: 0.0,
+                v: 0.0,
+            };
+            let mut hits = [blank; 64];
+            let n = owned
+                .raycast_all(ray, &RayOptions::default(), &mut hits)
+                .written;
+            let want = brute.raycast_all(ray, &RayOptions::default());
+            let got: Vec<_> = hits[..n].iter().map(|h| bits(Some(*h))).collect();
+            let want: Vec<_> = want.iter().take(64).map(|h| bits(Some(*h))).collect();
+            assert_eq!(got, want, "{name} every hit");
+        }
+        for (i, p) in workload::closest_points(&loaded.positions, 3_000, 44)
+            .into_iter()
+            .enumerate()
+        {
+            let want = brute.closest_point(p, f32::INFINITY);
+            let got = owned.closest_point(p, f32::INFINITY);
+            assert_eq!(
+                got.map(|c| (c.distance_squared.to_bits(), c.tri)),
+                want.map(|c| (c.distance_squared.to_bits(), c.tri)),
+                "{name} point {i}"
+            );
+        }
+        let (c, r, _) = workload::centre_radius(&loaded.positions);
+        for (lo, hi) in [(0.3, 0.2), (0.05, 0.6), (1.5, 1.5)] {
+            let query = Aabb::new(c - Vec3::splat(lo * r), c + Vec3::splat(hi * r));
+            let mut found = Vec::new();
+            owned.overlap_aabb(&query, |t| {
+                found.push(t);
+                ControlFlow::Continue(())
+            });
+            found.sort_unstable();
+            assert_eq!(found, brute.overlap_aabb(&query), "{name} box overlap");
+            let mut in_sphere = Vec::new();
+            owned.overlap_sphere(c, lo * r, |t| {
+                in_sphere.push(t);
+                ControlFlow::Continue(())
+            });
+            in_sphere.sort_unstable();
+            assert_eq!(in_sphere, brute.overlap_sphere(c, lo * r), "{name} sphere");
+        }
+        // The four-wide tree over the same leaves agrees on every ray too (a cross-check that
+        // needs no oracle of its own).
+        let four = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let four_view: WideBvh<'_> = four.wide().unwrap();
+        for ray in rays.iter().step_by(7) {
+            assert_eq!(
+                bits(four_view.with(&four.packed()).raycast(ray)),
+                bits(view.with(&packed).raycast(ray))
+            );
+        }
+    }
+}
