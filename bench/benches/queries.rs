@@ -311,6 +311,11 @@ fn raycast(c: &mut Criterion) {
         ..RayOptions::default()
     };
     let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
+    let eight_owned = owned
+        .clone()
+        .with_eight_wide_nodes()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let eight = eight_owned.eight_wide().expect("eight-wide nodes");
     let obvhs_medium = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
     let obvhs_fast = obvhs_peer::peer(&s.mesh, obvhs::BvhBuildParams::fast_build());
     let obvhs_cwbvh = obvhs_cwbvh_peer::peer(&s.mesh, obvhs::BvhBuildParams::medium_build());
@@ -389,6 +394,13 @@ fn raycast(c: &mut Criterion) {
             b.iter(|| {
                 rays.iter()
                     .filter(|r| wide.with(&packed).raycast(r).is_some())
+                    .count()
+            })
+        });
+        group.bench_function("meshq_eight_wide_packed_watertight", |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|r| eight.with(&packed).raycast(r).is_some())
                     .count()
             })
         });

@@ -133,6 +133,28 @@ report('random rays, batched vs raycastFirst', time(batch(random), 3),
 }
 report('camera rays 1024², batched vs raycastFirst', time(batch(camera), 3),
   time(() => peerFirstHits(camera, camera.length / 6), 3), camera.length / 6, 'rays');
+{
+  // The eight-wide tree (`eightWideNodes()`): the same answers, checked here.
+  const eight = meshq.MeshBvh.fromBlob(blob);
+  eight.eightWideNodes();
+  for (const [name, rays] of [['random rays', random], ['camera rays 1024²', camera]]) {
+    const n = rays.length / 6;
+    const distances = new Float32Array(n);
+    const triangles = new Uint32Array(n);
+    const wantT = new Float32Array(n);
+    const wantTri = new Uint32Array(n);
+    bvh.raycastBatch(rays, 0, Infinity, wantT, wantTri);
+    report(`${name}, batched on the eight-wide tree vs raycastFirst`,
+      time(() => eight.raycastBatch(rays, 0, Infinity, distances, triangles), 3),
+      time(() => peerFirstHits(rays, n), 3), n, 'rays');
+    for (let k = 0; k < n; k++) {
+      if (triangles[k] !== wantTri[k] || !Object.is(distances[k], wantT[k])) {
+        throw new Error(`eight-wide tree: ray ${k} differs`);
+      }
+    }
+  }
+  eight.free();
+}
 
 const singleXyz = () => {
   let hits = 0;
@@ -210,6 +232,18 @@ report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
   log(`pool scaling: ${cores} workers ${(one / all).toFixed(2)}× one worker (${one.toFixed(0)} vs ${all.toFixed(0)} ms)`);
   results.push({ workload: 'pool scaling', workers: cores, one_worker_ms: one, all_workers_ms: all, ratio: one / all });
   for (const pool of pools) pool.terminate();
+  // The same pool walking the eight-wide tree.
+  const eight = await MeshqPool.fromBlob(blob, { workers: cores, eightWide: true });
+  const got = await eight.raycastBatch(random);
+  if (!got.triangles.every((x, i) => x === want[i])) throw new Error('eight-wide pool: other answers');
+  let best = Infinity;
+  for (let round = 0; round < 3; round++) {
+    const t0 = performance.now();
+    await eight.raycastBatch(random);
+    best = Math.min(best, performance.now() - t0);
+  }
+  report(`random rays, pool of ${cores} eight-wide workers vs raycastFirst`, best, peer, nRandom, 'rays');
+  eight.terminate();
 }
 
 if (json) console.log(JSON.stringify({ triangles: index.length / 3, results }, null, 2));

@@ -6,6 +6,8 @@ export interface MeshqPoolOptions {
   workers?: number;
   /** `false` copies blobs, queries and answers between threads even where memory could be shared. */
   shared?: boolean;
+  /** `true`: every worker walks the eight-wide tree (`MeshBvh.eightWideNodes()`), the same answers. */
+  eightWide?: boolean;
 }
 
 /** Batches answered by a pool of workers; every answer is the single-thread answer, bit for bit. */

@@ -115,19 +115,21 @@ export class MeshqPool {
   /**
    * Starts `workers` workers (default: one per core, at most 16) that each load `bytes` (a
    * `Uint8Array` holding a blob baked by `meshq bake` or `toBlob`). `shared: false` copies
-   * instead of sharing memory even where it could be shared. Rejects with the blob's error
-   * if it does not load.
+   * instead of sharing memory even where it could be shared. `eightWide: true` has every
+   * worker walk the eight-wide tree (`MeshBvh.eightWideNodes()`: faster rays, the same
+   * answers). Rejects with the blob's error if it does not load.
    */
-  static async fromBlob(bytes, { workers, shared } = {}) {
+  static async fromBlob(bytes, { workers, shared, eightWide } = {}) {
     if (!(bytes instanceof Uint8Array)) throw new TypeError('a blob must be a Uint8Array (a Buffer is one)');
     const size = workers ?? defaultSize();
     if (!Number.isInteger(size) || size < 1 || size > 256) throw new RangeError(`workers must be a whole number in 1..256, got ${size}`);
+    if (eightWide !== undefined && typeof eightWide !== 'boolean') throw new TypeError(`eightWide must be a boolean, got ${typeof eightWide}`);
     const share = shared !== false && canShare();
     const blob = shareable(bytes, share);
     const threads = [];
     try {
       for (let i = 0; i < size; i++) threads.push(new Thread(await startWorker()));
-      await Promise.all(threads.map((t) => t.call({ kind: 'load', blob })));
+      await Promise.all(threads.map((t) => t.call({ kind: 'load', blob, eightWide: eightWide === true })));
     } catch (error) {
       for (const t of threads) t.stop();
       throw error;

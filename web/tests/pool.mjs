@@ -74,6 +74,22 @@ for (const shared of [true, false]) {
   }
 }
 
+// Eight-wide workers: the same answers.
+{
+  const pool = await MeshqPool.fromBlob(blob, { workers: 2, eightWide: true });
+  const r = await pool.raycastBatch(rays);
+  assert.equal(r.hits, hits, 'eight-wide workers');
+  assert.deepEqual(bits(r.t), bits(t), 'eight-wide workers: t bits');
+  assert.deepEqual(r.triangles, triangles, 'eight-wide workers: triangles');
+  const a = await pool.raycastAnyBatch(rays, 0, Infinity);
+  assert.deepEqual(a.hits, any, 'eight-wide workers: any hit');
+  const c = await pool.closestPointBatch(points, 0.05);
+  assert.deepEqual(bits(c.distances), bits(distances), 'eight-wide workers: closest points');
+  assert.deepEqual(c.triangles, closestTriangles, 'eight-wide workers: closest triangles');
+  pool.terminate();
+}
+await assert.rejects(MeshqPool.fromBlob(blob, { workers: 1, eightWide: 'yes' }), TypeError);
+
 const damaged = Uint8Array.from(blob);
 damaged[damaged.length - 5] ^= 1;
 await assert.rejects(MeshqPool.fromBlob(damaged, { workers: 2 }), /checksum|blob/);

@@ -4,9 +4,10 @@
 //! slack, so lane-wise rounding (or a target without SIMD) never changes an answer.
 
 use glam::{Vec3, Vec4};
+use wide::f32x8;
 
 use crate::geom::SlabRay;
-use crate::math::Aabb4;
+use crate::math::{Aabb4, Aabb8};
 
 /// Relative slack on box distances (ray entry and exit `t`, squared point distances): a box is
 /// entered when it might hold an answer within a few thousand ulps of the current best, so
@@ -111,55 +112,88 @@ pub(crate) fn enter_point(node: &Aabb4, point: Vec3, limit: f32, margin: f32) ->
     )
 }
 
-/// [`LaneRay::enter`] for eight boxes: the lanes `ray` enters within `[t_min, t_max]`,
-/// widened by `margin` (relative), and each lane's entry distance less that margin. The same
-/// arithmetic lane for lane, in eight-lane vectors (one AVX instruction where the target has
-/// it, two four-lane ones elsewhere).
+/// A ray's origin and padded inverse direction spread over eight lanes, computed once per ray
+/// ([`LaneRay`] for eight boxes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LaneRay8 {
+    origin: [f32x8; 3],
+    inv_dir: [f32x8; 3],
+    /// Per axis, whether the inverse direction is negative (the near plane is `max`).
+    negative: [bool; 3],
+}
+
+impl LaneRay8 {
+    #[inline(always)]
+    pub(crate) fn new(ray: &SlabRay) -> Self {
+        let (o, inv) = (ray.origin, ray.inv_dir);
+        Self {
+            origin: [f32x8::splat(o.x), f32x8::splat(o.y), f32x8::splat(o.z)],
+            inv_dir: [
+                f32x8::splat(inv.x),
+                f32x8::splat(inv.y),
+                f32x8::splat(inv.z),
+            ],
+            negative: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+        }
+    }
+
+    /// [`LaneRay::enter`] for eight boxes: the lanes this ray enters within `[t_min, t_max]`,
+    /// widened by `margin` (relative), and each lane's entry distance less that margin. The
+    /// same arithmetic lane for lane, in eight-lane vectors (one AVX instruction where the
+    /// target has it, two four-lane ones elsewhere).
+    #[inline(always)]
+    pub(crate) fn enter(
+        &self,
+        node: &Aabb8,
+        t_min: f32,
+        t_max: f32,
+        margin: f32,
+    ) -> (u32, [f32; 8]) {
+        let [ox, oy, oz] = self.origin;
+        let [ix, iy, iz] = self.inv_dir;
+        let [neg_x, neg_y, neg_z] = self.negative;
+        let (nx, fx) = near_far8(neg_x, &node.min_x, &node.max_x);
+        let (ny, fy) = near_far8(neg_y, &node.min_y, &node.max_y);
+        let (nz, fz) = near_far8(neg_z, &node.min_z, &node.max_z);
+        let entry = ((nx - ox) * ix)
+            .fast_max((ny - oy) * iy)
+            .fast_max((nz - oz) * iz)
+            .fast_max(f32x8::splat(t_min));
+        let exit = ((fx - ox) * ix)
+            .fast_min((fy - oy) * iy)
+            .fast_min((fz - oz) * iz)
+            .fast_min(f32x8::splat(t_max));
+        // As in `LaneRay::enter`: one product widens when `t_min ≥ 0`.
+        let (lo, hi) = if t_min >= 0.0 {
+            (
+                entry * f32x8::splat(1.0 - margin),
+                exit * f32x8::splat(1.0 + margin),
+            )
+        } else {
+            (
+                entry - entry.abs() * f32x8::splat(margin),
+                exit + exit.abs() * f32x8::splat(margin),
+            )
+        };
+        (lo.simd_le(hi).to_bitmask(), lo.to_array())
+    }
+}
+
+/// One axis's (near, far) planes of eight boxes for a ray whose inverse direction is
+/// `negative` or not.
 #[inline(always)]
-pub(crate) fn enter8(
-    ray: &SlabRay,
-    node: &crate::math::Aabb8,
-    t_min: f32,
-    t_max: f32,
-    margin: f32,
-) -> (u32, [f32; 8]) {
-    use wide::f32x8;
-    let (o, inv) = (ray.origin, ray.inv_dir);
-    // Near plane first, as in `near_far`: `max` for a negative inverse direction.
-    let axis = |neg: bool, min: &[f32; 8], max: &[f32; 8], o: f32, i: f32| {
-        let (n, f) = if neg { (max, min) } else { (min, max) };
-        let (o, i) = (f32x8::splat(o), f32x8::splat(i));
-        ((f32x8::new(*n) - o) * i, (f32x8::new(*f) - o) * i)
-    };
-    let (nx, fx) = axis(inv.x < 0.0, &node.min_x, &node.max_x, o.x, inv.x);
-    let (ny, fy) = axis(inv.y < 0.0, &node.min_y, &node.max_y, o.y, inv.y);
-    let (nz, fz) = axis(inv.z < 0.0, &node.min_z, &node.max_z, o.z, inv.z);
-    let entry = nx.fast_max(ny).fast_max(nz).fast_max(f32x8::splat(t_min));
-    let exit = fx.fast_min(fy).fast_min(fz).fast_min(f32x8::splat(t_max));
-    let (lo, hi) = if t_min >= 0.0 {
-        (
-            entry * f32x8::splat(1.0 - margin),
-            exit * f32x8::splat(1.0 + margin),
-        )
+fn near_far8(negative: bool, min: &[f32; 8], max: &[f32; 8]) -> (f32x8, f32x8) {
+    if negative {
+        (f32x8::new(*max), f32x8::new(*min))
     } else {
-        (
-            entry - entry.abs() * f32x8::splat(margin),
-            exit + exit.abs() * f32x8::splat(margin),
-        )
-    };
-    (lo.simd_le(hi).to_bitmask(), lo.to_array())
+        (f32x8::new(*min), f32x8::new(*max))
+    }
 }
 
 /// [`enter_point`] for eight boxes: the lanes within squared distance `limit` of `point`
 /// after shrinking each squared distance by `margin` (relative), and those distances.
 #[inline(always)]
-pub(crate) fn enter_point8(
-    node: &crate::math::Aabb8,
-    point: Vec3,
-    limit: f32,
-    margin: f32,
-) -> (u32, [f32; 8]) {
-    use wide::f32x8;
+pub(crate) fn enter_point8(node: &Aabb8, point: Vec3, limit: f32, margin: f32) -> (u32, [f32; 8]) {
     let axis = |p: f32, min: &[f32; 8], max: &[f32; 8]| {
         let p = f32x8::splat(p);
         let d = (f32x8::new(*min) - p)

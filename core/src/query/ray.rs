@@ -4,11 +4,11 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::box_lanes::{LaneRay, MARGIN};
+use super::box_lanes::{LaneRay, LaneRay8, MARGIN};
 use super::leaf_batches::{Batch, LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::{CullMode, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore};
-use crate::math::{Aabb, Aabb4, Ray, RayHit, Triangle};
+use crate::math::{Aabb, Aabb4, Aabb8, Ray, RayHit, Triangle};
 
 /// Which ray–triangle test a query uses. Both give bit-identical answers on every target; they
 /// differ only at edges shared by two triangles.
@@ -180,6 +180,8 @@ pub(super) struct RayVisitor<'m, S: ?Sized, K, G> {
     pub(super) slab: SlabRay,
     /// The same ray for four boxes at once (optimised away when no structure asks).
     lanes: LaneRay,
+    /// The same for eight boxes at once (likewise).
+    lanes8: LaneRay8,
     kernel: K,
     pub(super) goal: G,
 }
@@ -196,8 +198,9 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
     }
 
     #[inline(always)]
-    fn enter_lanes8(&mut self, boxes: &crate::math::Aabb8) -> (u32, [f32; 8]) {
-        super::box_lanes::enter8(&self.slab, boxes, self.slab.t_min, self.slab.t_max, MARGIN)
+    fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
+        self.lanes8
+            .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)
     }
 
     #[inline(always)]
@@ -343,6 +346,7 @@ impl<'m, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, S, K, G> {
             ray: *ray,
             slab,
             lanes: LaneRay::new(&slab),
+            lanes8: LaneRay8::new(&slab),
             kernel,
             goal,
         }

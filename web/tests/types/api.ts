@@ -69,7 +69,7 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const tree = bvh.treeArrays();
   soup.free();
 
-  const pool = await MeshqPool.fromBlob(blob, { workers: 2 });
+  const pool = await MeshqPool.fromBlob(blob, { workers: 2, eightWide: true });
   const pooled: { t: Float32Array; triangles: Uint32Array; hits: number } = await pool.raycastBatch(rays, 0, 1);
   const flags: Uint8Array = (await pool.raycastAnyBatch(rays)).hits;
   const nearest: Float32Array = (await pool.closestPointBatch(points, 0.5)).distances;
