@@ -113,7 +113,7 @@ fn main() {
             }),
         ),
         (
-            "rays wide8 packed",
+            "rays eight-wide packed",
             rays.len(),
             Box::new(|| {
                 rays.iter()
@@ -122,7 +122,7 @@ fn main() {
             }),
         ),
         (
-            "camera wide8 packed",
+            "camera eight-wide packed",
             camera.len(),
             Box::new(|| {
                 camera
@@ -132,7 +132,7 @@ fn main() {
             }),
         ),
         (
-            "camera wide8 batch",
+            "camera eight-wide batch",
             camera.len(),
             Box::new(|| {
                 let mut keys = vec![0u64; camera.len()];
@@ -146,7 +146,7 @@ fn main() {
             }),
         ),
         (
-            "closest wide8 packed",
+            "closest eight-wide packed",
             points.len(),
             Box::new(|| {
                 points

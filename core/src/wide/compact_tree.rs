@@ -1,6 +1,6 @@
 //! [`CompactWideBvh`]: a four-wide BVH whose child boxes are quantized to 8 bits.
 
-use super::traverse::traverse_wide;
+use super::traverse::{STACK4, traverse_wide};
 use super::{CompactNode, WideBvh};
 use crate::error::{BufferKind, BuildError};
 use crate::math::Aabb;
@@ -97,7 +97,7 @@ impl Traverse for CompactWideBvh<'_> {
     /// Depth first as [`WideBvh`]'s walk, each node's boxes decoded as it is entered.
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        traverse_wide(self.nodes, self.order, visitor);
+        traverse_wide::<_, _, STACK4>(self.nodes, self.order, visitor);
     }
 
     /// Yes: boxes are judged four at a time.

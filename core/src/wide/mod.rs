@@ -22,7 +22,6 @@ mod node;
 mod node8;
 mod sizing;
 mod traverse;
-mod traverse8;
 mod tree;
 mod tree8;
 

@@ -1,9 +1,9 @@
-//! Depth-first traversal of a four-wide BVH, nearest child first: the structure's half of
-//! every query (see [`Traverse`]).
+//! Depth-first traversal of a four- or eight-wide BVH, nearest child first: the structure's
+//! half of every query (see [`Traverse`]).
 
-use super::{CompactNode, WideBvh, WideNode};
+use super::{CompactNode, WideBvh, WideBvh8, WideNode, WideNode8};
 use crate::bvh::MAX_DEPTH;
-use crate::math::Aabb4;
+use crate::math::{Aabb, Aabb4};
 use crate::query::{LeafTriangleIds, Traverse, Visitor};
 
 /// A child to visit: an inner node (`count == 0`, `child` its index) or a leaf.
@@ -12,8 +12,9 @@ struct Child {
     child: u32,
     count: u32,
     key: f32,
-    /// Where the child's box is: its parent node's index times four plus its lane (the box is
-    /// only looked for, never needed, so an index too large for this is simply not found).
+    /// Where the child's box is: its parent node's index times the lane count plus its lane
+    /// (the box is only looked for, never needed, so an index too large for this is simply
+    /// not found).
     parent_lane: u32,
 }
 
@@ -27,30 +28,60 @@ impl Child {
     };
 }
 
-/// Deferred children. Each level defers at most three, and a wide tree is no deeper than
-/// the binary tree it came from ([`MAX_DEPTH`]), so the stack never fills.
-const STACK: usize = 3 * MAX_DEPTH as usize;
+/// Deferred children of a four-wide walk. Each level defers at most three, and a wide tree is
+/// no deeper than the binary tree it came from ([`MAX_DEPTH`]), so the stack never fills.
+pub(super) const STACK4: usize = 3 * MAX_DEPTH as usize;
 
-/// A node of four lanes as the traversal reads it: a [`WideNode`], or a [`CompactNode`]
-/// whose boxes are decoded on the way.
+/// The same for an eight-wide walk: at most seven per level.
+const STACK8: usize = 7 * MAX_DEPTH as usize;
+
+/// A node as the traversal reads it: four lanes ([`WideNode`], or a [`CompactNode`] whose
+/// boxes are decoded on the way) or eight ([`WideNode8`]).
 pub(super) trait LaneNode {
-    /// The four child boxes: borrowed where stored, decoded where quantized.
-    type Boxes<'a>: core::ops::Deref<Target = Aabb4>
-    where
-        Self: 'a;
-    /// The four child boxes.
-    fn boxes(&self) -> Self::Boxes<'_>;
+    /// Lanes per node: 4 or 8.
+    const LANES: u32;
+    /// Each entered lane's key, by lane.
+    type Keys: Copy;
+    /// The lanes `visitor` enters (bit `i` for lane `i`, unused lanes cleared) and their keys.
+    fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, Self::Keys);
+    /// Lane `lane`'s key in `keys` (+∞ past the last lane).
+    fn key(keys: &Self::Keys, lane: u32) -> f32;
+    /// The entered lanes in `mask` sorted by key, ascending (the lower lane first on equal
+    /// keys), and how many there are.
+    fn by_key(mask: u32, keys: &Self::Keys) -> ([u32; 8], usize);
+    /// Lane `lane`'s box.
+    fn lane_box(&self, lane: usize) -> Aabb;
     /// Lane `lane`'s node index or first order slot (0 when unused).
     fn child(&self, lane: usize) -> u32;
     /// Lane `lane`'s triangle count (0 for an inner or unused lane).
     fn count(&self, lane: usize) -> u32;
 }
 
+/// [`LaneNode::judge`] of a four-lane node with boxes `boxes`.
+#[inline(always)]
+fn judge4<V: Visitor + ?Sized>(boxes: &Aabb4, visitor: &mut V) -> (u32, [f32; 4]) {
+    let (mask, keys) = visitor.enter_lanes(boxes);
+    (mask & boxes.used_mask() & 0xF, keys)
+}
+
 impl LaneNode for WideNode {
-    type Boxes<'a> = &'a Aabb4;
+    const LANES: u32 = 4;
+    type Keys = [f32; 4];
     #[inline(always)]
-    fn boxes(&self) -> &Aabb4 {
-        &self.bounds
+    fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 4]) {
+        judge4(&self.bounds, visitor)
+    }
+    #[inline(always)]
+    fn key(keys: &[f32; 4], lane: u32) -> f32 {
+        keys.get(lane as usize).copied().unwrap_or(f32::INFINITY)
+    }
+    #[inline(always)]
+    fn by_key(mask: u32, keys: &[f32; 4]) -> ([u32; 8], usize) {
+        by_key4(mask, *keys)
+    }
+    #[inline(always)]
+    fn lane_box(&self, lane: usize) -> Aabb {
+        self.bounds.lane(lane)
     }
     #[inline(always)]
     fn child(&self, lane: usize) -> u32 {
@@ -62,22 +93,24 @@ impl LaneNode for WideNode {
     }
 }
 
-/// Boxes decoded from a [`CompactNode`], owned for the visit.
-pub(super) struct Decoded(Aabb4);
-
-impl core::ops::Deref for Decoded {
-    type Target = Aabb4;
-    #[inline(always)]
-    fn deref(&self) -> &Aabb4 {
-        &self.0
-    }
-}
-
 impl LaneNode for CompactNode {
-    type Boxes<'a> = Decoded;
+    const LANES: u32 = 4;
+    type Keys = [f32; 4];
     #[inline(always)]
-    fn boxes(&self) -> Decoded {
-        Decoded(CompactNode::boxes(self))
+    fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 4]) {
+        judge4(&CompactNode::boxes(self), visitor)
+    }
+    #[inline(always)]
+    fn key(keys: &[f32; 4], lane: u32) -> f32 {
+        keys.get(lane as usize).copied().unwrap_or(f32::INFINITY)
+    }
+    #[inline(always)]
+    fn by_key(mask: u32, keys: &[f32; 4]) -> ([u32; 8], usize) {
+        by_key4(mask, *keys)
+    }
+    #[inline(always)]
+    fn lane_box(&self, lane: usize) -> Aabb {
+        CompactNode::boxes(self).lane(lane)
     }
     #[inline(always)]
     fn child(&self, lane: usize) -> u32 {
@@ -95,7 +128,7 @@ impl Traverse for WideBvh<'_> {
     /// equal keys), with a fixed stack and no allocation.
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        traverse_wide(self.nodes, self.order, visitor);
+        traverse_wide::<_, _, STACK4>(self.nodes, self.order, visitor);
     }
 
     /// Yes: boxes are judged four at a time.
@@ -106,15 +139,35 @@ impl Traverse for WideBvh<'_> {
     }
 }
 
-/// The walk of [`Traverse`] over four-lane nodes (root first) and their leaves' order.
+impl Traverse for WideBvh8<'_> {
+    /// Depth first, each node's eight child boxes judged at once
+    /// ([`Visitor::enter_lanes8`]) and visited in ascending key order (the lower lane first on
+    /// equal keys), with a fixed stack and no allocation.
+    #[inline(always)]
+    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+        traverse_wide::<_, _, STACK8>(self.nodes, self.order, visitor);
+    }
+
+    /// Yes: boxes are judged eight at a time.
+    #[inline(always)]
+    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
+        self.traverse(visitor);
+        true
+    }
+}
+
+/// The walk of [`Traverse`] over wide nodes (root first) and their leaves' order, with a
+/// stack of `STACK` deferred children (enough for the node's lane count).
 #[inline(always)]
-pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
+pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize>(
     nodes: &[N],
     order: &[u32],
     visitor: &mut V,
 ) {
     // Uninitialised until pushed: zeroing kilobytes per query would cost more than a node.
     let mut stack = heapless::Vec::<Child, STACK>::new();
+    // Lanes per node are a power of two: lane = parent_lane mod lanes.
+    let (shift, lane_bits) = (N::LANES.trailing_zeros(), N::LANES - 1);
     let mut at = Child::ROOT;
     loop {
         if at.count > 0 {
@@ -122,11 +175,9 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
                 LeafTriangleIds::in_order(order, at.child as usize, at.count as usize)
             {
                 let boxed = visitor.wants_leaf_boxes();
-                let (parent, lane) = (at.parent_lane >> 2, at.parent_lane & 3);
+                let (parent, lane) = (at.parent_lane >> shift, at.parent_lane & lane_bits);
                 let flow = match nodes.get(parent as usize) {
-                    Some(parent) if boxed => {
-                        visitor.leaf_in(&parent.boxes().lane(lane as usize), tris)
-                    }
+                    Some(parent) if boxed => visitor.leaf_in(&parent.lane_box(lane as usize), tris),
                     _ => visitor.leaf(tris),
                 };
                 if flow.is_break() {
@@ -134,17 +185,18 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
                 }
             }
         } else if let Some(node) = nodes.get(at.child as usize) {
-            let boxes = node.boxes();
-            let (mask, keys) = visitor.enter_lanes(&boxes);
-            let mask = mask & boxes.used_mask() & 0xF;
+            let (mask, keys) = node.judge(visitor);
             if mask != 0 {
-                let parent = at.child.checked_mul(4).unwrap_or(u32::MAX - 3);
+                let parent = at
+                    .child
+                    .checked_mul(N::LANES)
+                    .unwrap_or(u32::MAX - lane_bits);
                 let lane_of = |lane: u32| -> Child {
                     let at = lane as usize;
                     Child {
                         child: node.child(at),
                         count: node.count(at),
-                        key: keys.get(at).copied().unwrap_or(f32::INFINITY),
+                        key: N::key(&keys, lane),
                         parent_lane: parent | lane,
                     }
                 };
@@ -152,7 +204,7 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
                     at = lane_of(mask.trailing_zeros());
                     continue;
                 }
-                let (order, n) = by_key(mask, keys);
+                let (order, n) = N::by_key(mask, &keys);
                 // Farthest deferred first, so the nearer ones come off the stack first.
                 for &lane in order.iter().take(n).skip(1).rev() {
                     let _ = stack.push(lane_of(lane));
@@ -173,15 +225,15 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized>(
     }
 }
 
-/// The lanes of `mask`, sorted by key, ascending (lower lane first on equal keys), and how
-/// many there are.
+/// The lanes of `mask` (four lanes), sorted by key, ascending (lower lane first on equal
+/// keys), and how many there are.
 ///
 /// Branch free: each key becomes an integer with the same order (the usual sign-flip of the
 /// float's bits), widened with its lane number below it so that equal keys order by lane, and
 /// a five-exchange sorting network sorts the four. The order of the traversal is a coin toss
 /// per node, so branches here would mispredict about half the time.
 #[inline(always)]
-fn by_key(mask: u32, keys: [f32; 4]) -> ([u32; 4], usize) {
+fn by_key4(mask: u32, keys: [f32; 4]) -> ([u32; 8], usize) {
     let sortable = |lane: u32| -> u64 {
         // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
         let key = keys.get(lane as usize).copied().unwrap_or(f32::INFINITY) + 0.0;
@@ -208,7 +260,77 @@ fn by_key(mask: u32, keys: [f32; 4]) -> ([u32; 4], usize) {
     exchange(&mut b, &mut c);
     let lane = |v: u64| (v & 3) as u32;
     (
-        [lane(a), lane(b), lane(c), lane(d)],
+        [lane(a), lane(b), lane(c), lane(d), 0, 0, 0, 0],
         (mask & 0xF).count_ones() as usize,
+    )
+}
+
+impl LaneNode for WideNode8 {
+    const LANES: u32 = 8;
+    type Keys = [f32; 8];
+    #[inline(always)]
+    fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 8]) {
+        let (mask, keys) = visitor.enter_lanes8(&self.bounds);
+        (mask & self.bounds.used_mask() & 0xFF, keys)
+    }
+    #[inline(always)]
+    fn key(keys: &[f32; 8], lane: u32) -> f32 {
+        keys.get(lane as usize).copied().unwrap_or(f32::INFINITY)
+    }
+    #[inline(always)]
+    fn by_key(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
+        by_key8(mask, keys)
+    }
+    #[inline(always)]
+    fn lane_box(&self, lane: usize) -> Aabb {
+        self.bounds.lane(lane)
+    }
+    #[inline(always)]
+    fn child(&self, lane: usize) -> u32 {
+        self.child.get(lane).copied().unwrap_or(0)
+    }
+    #[inline(always)]
+    fn count(&self, lane: usize) -> u32 {
+        self.count.get(lane).copied().unwrap_or(0)
+    }
+}
+
+/// The lanes of `mask` sorted by key, ascending (the lower lane first on equal keys), and how
+/// many there are.
+///
+/// Each key becomes an integer with the same order (the sign-flip of the float's bits) with
+/// its lane below it, and an insertion sort places them: a ray enters one to three of a
+/// node's lanes, so the few branches beat a branch-free network of 19 exchanges over all
+/// eight.
+#[inline(always)]
+fn by_key8(mut mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
+    let mut sorted = [u64::MAX; 8];
+    let mut n = 0usize;
+    while mask != 0 {
+        let lane = mask.trailing_zeros();
+        mask &= mask - 1;
+        // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
+        let key = keys.get(lane as usize).copied().unwrap_or(f32::INFINITY) + 0.0;
+        let bits = key.to_bits();
+        let ordered = bits ^ ((((bits as i32) >> 31) as u32) | 0x8000_0000);
+        let entry = (u64::from(ordered) << 3) | u64::from(lane);
+        let mut at = n;
+        while let Some(&before) = at.checked_sub(1).and_then(|i| sorted.get(i)) {
+            if before <= entry {
+                break;
+            }
+            if let Some(slot) = sorted.get_mut(at) {
+                *slot = before;
+            }
+            at -= 1;
+        }
+        if let Some(slot) = sorted.get_mut(at) {
+            *slot = entry;
+        }
+        n += 1;
+    }
+    (
+        core::array::from_fn(|i| sorted.get(i).map_or(0, |&v| (v & 7) as u32)),
+        n,
     )
 }
