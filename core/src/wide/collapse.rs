@@ -2,7 +2,7 @@
 
 use super::WideNode;
 use crate::bvh::{Bvh, BvhNode, MAX_DEPTH, TreeArrays};
-use crate::error::BuildError;
+use crate::error::{BufferKind, BuildError};
 use crate::math::Aabb;
 
 /// Inner binary nodes waiting to become wide nodes. A wide node is no deeper than the binary
@@ -37,6 +37,40 @@ impl CollapsedNode for WideNode {
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32) {
         WideNode::set_lane(self, lane, aabb, child, count);
     }
+}
+
+/// Collapses `tree` into `out` with nodes of `W` lanes and returns how many it wrote. When
+/// `out` is shorter than [`wide_node_capacity`](super::wide_node_capacity) of the triangle
+/// count, a counting pass first makes sure the nodes fit.
+///
+/// # Errors
+/// [`BuildError::BufferTooSmall`] when `out` is too small (nothing is written then), or the
+/// collapse's own errors.
+pub(super) fn collapse_into<N: CollapsedNode, const W: usize>(
+    tree: &Bvh<'_>,
+    out: &mut [N],
+) -> Result<usize, BuildError> {
+    let too_small = |needed: usize, got: usize| BuildError::BufferTooSmall {
+        buffer: BufferKind::WideNodes,
+        needed,
+        got,
+    };
+    if out.len() < super::wide_node_capacity(tree.order().len()) {
+        let needed = collapse_to::<N, W>(tree, |_, _| {})?;
+        if out.len() < needed {
+            return Err(too_small(needed, out.len()));
+        }
+    }
+    let needed = collapse_to::<N, W>(tree, |index, node| {
+        if let Some(slot) = out.get_mut(index) {
+            *slot = node;
+        }
+    })?;
+    if needed > out.len() {
+        // Unreachable for a valid tree (the bound holds), but never hand out a short view.
+        return Err(too_small(needed, out.len()));
+    }
+    Ok(needed)
 }
 
 /// [`collapse`] into nodes of `W` lanes (`2..=8`).

@@ -41,11 +41,17 @@ pub(super) trait LaneNode {
     /// Lanes per node: 4 or 8.
     const LANES: u32;
     /// Each entered lane's key, by lane.
-    type Keys: Copy;
+    type Keys: Copy + AsRef<[f32]>;
     /// The lanes `visitor` enters (bit `i` for lane `i`, unused lanes cleared) and their keys.
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, Self::Keys);
     /// Lane `lane`'s key in `keys` (+∞ past the last lane).
-    fn key(keys: &Self::Keys, lane: u32) -> f32;
+    #[inline(always)]
+    fn key(keys: &Self::Keys, lane: u32) -> f32 {
+        keys.as_ref()
+            .get(lane as usize)
+            .copied()
+            .unwrap_or(f32::INFINITY)
+    }
     /// The entered lanes in `mask` sorted by key, ascending (the lower lane first on equal
     /// keys), and how many there are.
     fn by_key(mask: u32, keys: &Self::Keys) -> ([u32; 8], usize);
@@ -72,10 +78,6 @@ impl LaneNode for WideNode {
         judge4(&self.bounds, visitor)
     }
     #[inline(always)]
-    fn key(keys: &[f32; 4], lane: u32) -> f32 {
-        keys.get(lane as usize).copied().unwrap_or(f32::INFINITY)
-    }
-    #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 4]) -> ([u32; 8], usize) {
         by_key4(mask, *keys)
     }
@@ -99,10 +101,6 @@ impl LaneNode for CompactNode {
     #[inline(always)]
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 4]) {
         judge4(&CompactNode::boxes(self), visitor)
-    }
-    #[inline(always)]
-    fn key(keys: &[f32; 4], lane: u32) -> f32 {
-        keys.get(lane as usize).copied().unwrap_or(f32::INFINITY)
     }
     #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 4]) -> ([u32; 8], usize) {
@@ -272,10 +270,6 @@ impl LaneNode for WideNode8 {
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 8]) {
         let (mask, keys) = visitor.enter_lanes8(&self.bounds);
         (mask & self.bounds.used_mask() & 0xFF, keys)
-    }
-    #[inline(always)]
-    fn key(keys: &[f32; 8], lane: u32) -> f32 {
-        keys.get(lane as usize).copied().unwrap_or(f32::INFINITY)
     }
     #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {

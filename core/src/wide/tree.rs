@@ -1,7 +1,7 @@
-use super::collapse::collapse;
-use super::{WideNode, wide_node_capacity};
+use super::WideNode;
+use super::collapse::{collapse, collapse_into};
 use crate::bvh::Bvh;
-use crate::error::{BufferKind, BuildError, StructureError};
+use crate::error::{BuildError, StructureError};
 use crate::math::Aabb;
 
 /// A four-wide BVH: the same leaves as the [`Bvh`] it was collapsed from, under nodes of up to
@@ -37,29 +37,7 @@ impl<'a> WideBvh<'a> {
     /// # Errors
     /// [`BuildError::BufferTooSmall`] when `out` is too small; nothing is written then.
     pub fn build(bvh: &Bvh<'a>, out: &'a mut [WideNode]) -> Result<Self, BuildError> {
-        if out.len() < wide_node_capacity(bvh.order().len()) {
-            let needed = collapse(bvh, |_, _| {})?;
-            if out.len() < needed {
-                return Err(BuildError::BufferTooSmall {
-                    buffer: BufferKind::WideNodes,
-                    needed,
-                    got: out.len(),
-                });
-            }
-        }
-        let needed = collapse(bvh, |index, node| {
-            if let Some(slot) = out.get_mut(index) {
-                *slot = node;
-            }
-        })?;
-        if needed > out.len() {
-            // Unreachable for a valid tree (the bound holds), but never hand out a short view.
-            return Err(BuildError::BufferTooSmall {
-                buffer: BufferKind::WideNodes,
-                needed,
-                got: out.len(),
-            });
-        }
+        let needed = collapse_into::<WideNode, 4>(bvh, out)?;
         let nodes: &'a [WideNode] = out;
         Ok(WideBvh {
             nodes: nodes.get(..needed).unwrap_or_default(),

@@ -1,7 +1,7 @@
 use super::WideNode8;
-use super::collapse::collapse_to;
+use super::collapse::{collapse_into, collapse_to};
 use crate::bvh::Bvh;
-use crate::error::{BufferKind, BuildError};
+use crate::error::BuildError;
 use crate::math::Aabb;
 
 /// An eight-wide BVH: the same leaves as the [`Bvh`] it was collapsed from, under nodes of up
@@ -38,29 +38,7 @@ impl<'a> WideBvh8<'a> {
     /// # Errors
     /// [`BuildError::BufferTooSmall`] when `out` is too small; nothing is written then.
     pub fn build(bvh: &Bvh<'a>, out: &'a mut [WideNode8]) -> Result<Self, BuildError> {
-        if out.len() < super::wide_node_capacity(bvh.order().len()) {
-            let needed = collapse_to::<WideNode8, 8>(bvh, |_, _| {})?;
-            if out.len() < needed {
-                return Err(BuildError::BufferTooSmall {
-                    buffer: BufferKind::WideNodes,
-                    needed,
-                    got: out.len(),
-                });
-            }
-        }
-        let needed = collapse_to::<WideNode8, 8>(bvh, |index, node| {
-            if let Some(slot) = out.get_mut(index) {
-                *slot = node;
-            }
-        })?;
-        if needed > out.len() {
-            // Unreachable for a valid tree (the bound holds), but never hand out a short view.
-            return Err(BuildError::BufferTooSmall {
-                buffer: BufferKind::WideNodes,
-                needed,
-                got: out.len(),
-            });
-        }
+        let needed = collapse_into::<WideNode8, 8>(bvh, out)?;
         let nodes: &'a [WideNode8] = out;
         Ok(Self {
             nodes: nodes.get(..needed).unwrap_or_default(),
