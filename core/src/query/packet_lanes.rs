@@ -11,10 +11,11 @@
 //! changes an answer.
 
 use glam::Vec4;
+use wide::f32x8;
 
 use super::box_lanes::near_far;
 use crate::geom::SlabRay;
-use crate::math::{Aabb, Aabb4, max_f32, min_f32};
+use crate::math::{Aabb, Aabb4, Aabb8, max_f32, min_f32};
 
 /// A packet's shared origin and interval of padded inverse directions, spread over four lanes.
 #[derive(Clone, Copy, Debug)]
@@ -97,6 +98,49 @@ impl PacketLanes {
             (entry - entry.abs() * margin, exit + exit.abs() * margin)
         };
         (lo.cmple(hi).bitmask(), lo.to_array())
+    }
+}
+
+impl PacketLanes {
+    /// [`PacketLanes::enter`] for eight boxes, in eight-lane vectors: the same arithmetic lane
+    /// for lane.
+    #[inline(always)]
+    pub(super) fn enter8(&self, node: &Aabb8, t_max: f32, margin: f32) -> (u32, [f32; 8]) {
+        let splat = |v: &[Vec4; 3]| v.map(|x| f32x8::splat(x.x));
+        let [ox, oy, oz] = splat(&self.origin);
+        let [lx, ly, lz] = splat(&self.inv_lo);
+        let [hx, hy, hz] = splat(&self.inv_hi);
+        let [neg_x, neg_y, neg_z] = self.negative;
+        let planes = |negative: bool, min: &[f32; 8], max: &[f32; 8]| {
+            let (min, max) = (f32x8::new(*min), f32x8::new(*max));
+            if negative { (max, min) } else { (min, max) }
+        };
+        let (nx, fx) = planes(neg_x, &node.min_x, &node.max_x);
+        let (ny, fy) = planes(neg_y, &node.min_y, &node.max_y);
+        let (nz, fz) = planes(neg_z, &node.min_z, &node.max_z);
+        let zero = f32x8::ZERO;
+        let least = |d: f32x8, lo: f32x8, hi: f32x8| d.simd_ge(zero).select(d * lo, d * hi);
+        let most = |d: f32x8, lo: f32x8, hi: f32x8| d.simd_ge(zero).select(d * hi, d * lo);
+        let entry = least(nx - ox, lx, hx)
+            .fast_max(least(ny - oy, ly, hy))
+            .fast_max(least(nz - oz, lz, hz))
+            .fast_max(f32x8::splat(self.t_min));
+        let exit = most(fx - ox, lx, hx)
+            .fast_min(most(fy - oy, ly, hy))
+            .fast_min(most(fz - oz, lz, hz))
+            .fast_min(f32x8::splat(t_max));
+        let (lo, hi) = if self.t_min >= 0.0 {
+            (
+                entry * f32x8::splat(1.0 - margin),
+                exit * f32x8::splat(1.0 + margin),
+            )
+        } else {
+            (
+                entry - entry.abs() * f32x8::splat(margin),
+                exit + exit.abs() * f32x8::splat(margin),
+            )
+        };
+        (lo.simd_le(hi).to_bitmask(), lo.to_array())
     }
 }
 

@@ -20,7 +20,7 @@ use super::ray::{
 };
 use super::{LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor};
 use crate::geom::SlabRay;
-use crate::math::{Aabb, Aabb4, Ray, max_f32, min_f32};
+use crate::math::{Aabb, Aabb4, Aabb8, Ray, max_f32, min_f32};
 
 /// Rays per packet.
 pub(super) const PACKET: usize = PACKET_RAYS;
@@ -72,6 +72,11 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K,
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
         self.lanes.enter(boxes, self.t_max, MARGIN)
+    }
+
+    #[inline(always)]
+    fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
+        self.lanes.enter8(boxes, self.t_max, MARGIN)
     }
 
     /// Whether any ray still looking would revisit: the one with the largest `t_max` would.
