@@ -97,8 +97,8 @@ pub struct QueryInput {
     #[arg(long)]
     pub compact_nodes: bool,
     /// Collapse the BVH eight-wide before querying: fewer node visits per ray, the same
-    /// records (BVH only; counted in the preparation time). Closest-point queries are faster
-    /// on the default four-wide nodes.
+    /// records (BVH only; counted in the preparation time). Closest-point queries gain little
+    /// unless the command is built for AVX2.
     #[arg(long, conflicts_with = "compact_nodes")]
     pub eight_wide: bool,
 }

@@ -200,7 +200,7 @@ impl MeshBvh {
 
     /// Collapses the BVH eight-wide for queries to walk instead of its four-wide (or compact)
     /// nodes: fewer node visits per ray, the same answers from every query (closest-point
-    /// queries are quicker on the default nodes). Once is enough (again does nothing).
+    /// queries gain little from it). Once is enough (again does nothing).
     /// Throws a `TypeError` for a k-d tree, octree or grid.
     #[wasm_bindgen(js_name = eightWideNodes)]
     pub fn eight_wide_nodes(&mut self) -> Result<(), JsValue> {

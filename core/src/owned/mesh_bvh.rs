@@ -177,8 +177,9 @@ impl MeshBvh {
     /// This structure with its tree collapsed eight-wide ([`WideBvh8`]) for queries to walk
     /// instead of the four-wide (or compact) nodes: the same answers, bit for bit, with about
     /// a third fewer node visits per query, each testing eight boxes. The choice for rays;
-    /// closest-point queries, which enter more of a node's lanes, do better four-wide.
-    /// Deterministic. Already eight-wide: unchanged.
+    /// closest-point queries, which enter more of a node's lanes, gain only where the eight
+    /// lanes are one instruction (a build for AVX2). Deterministic. Already eight-wide:
+    /// unchanged.
     ///
     /// # Errors
     /// Never for a structure built or loaded by this crate (see [`WideBvh8::build`]).

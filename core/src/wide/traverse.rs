@@ -273,7 +273,13 @@ impl LaneNode for WideNode8 {
     }
     #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
-        by_key8(mask, keys)
+        // A ray enters one to three lanes (an insertion sort is cheapest); a closest-point
+        // query often more, where the insertion sort's mispredicted branches cost most.
+        if (mask & 0xFF).count_ones() > 3 {
+            by_rank8(mask, keys)
+        } else {
+            by_key8(mask, keys)
+        }
     }
     #[inline(always)]
     fn lane_box(&self, lane: usize) -> Aabb {
@@ -327,4 +333,27 @@ fn by_key8(mut mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
         core::array::from_fn(|i| sorted.get(i).map_or(0, |&v| (v & 7) as u32)),
         n,
     )
+}
+
+/// [`by_key8`] for many entered lanes, without branches on the keys: each entered lane's place
+/// is the number of entered lanes before it (a smaller key, or an equal key in a lower lane),
+/// counted with two eight-lane compares. Entered lanes' keys are never NaN, and `−0` and `+0`
+/// compare equal, as the tie rule wants.
+#[inline(always)]
+fn by_rank8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
+    let all = wide::f32x8::new(*keys);
+    let mut lanes = [0u32; 8];
+    let mut left = mask & 0xFF;
+    while left != 0 {
+        let lane = left.trailing_zeros();
+        left &= left - 1;
+        let key = wide::f32x8::splat(keys.get(lane as usize).copied().unwrap_or(f32::INFINITY));
+        let lower_lanes = (1u32 << lane) - 1;
+        let before =
+            (all.simd_lt(key).to_bitmask() | (all.simd_eq(key).to_bitmask() & lower_lanes)) & mask;
+        if let Some(slot) = lanes.get_mut(before.count_ones() as usize) {
+            *slot = lane;
+        }
+    }
+    (lanes, (mask & 0xFF).count_ones() as usize)
 }
