@@ -163,20 +163,32 @@ impl LaneRay8 {
             .fast_min((fy - oy) * iy)
             .fast_min((fz - oz) * iz)
             .fast_min(f32x8::splat(t_max));
-        // As in `LaneRay::enter`: one product widens when `t_min ≥ 0`.
-        let (lo, hi) = if t_min >= 0.0 {
-            (
-                entry * f32x8::splat(1.0 - margin),
-                exit * f32x8::splat(1.0 + margin),
-            )
-        } else {
-            (
-                entry - entry.abs() * f32x8::splat(margin),
-                exit + exit.abs() * f32x8::splat(margin),
-            )
-        };
-        (lo.simd_le(hi).to_bitmask(), lo.to_array())
+        widened_verdict8(entry, exit, t_min, margin)
     }
+}
+
+/// The lanes whose interval `[entry, exit]`, widened by `margin` (relative), is not empty, and
+/// each lane's widened entry: the end of every eight-lane ray test. As in `LaneRay::enter`, one
+/// product widens when `t_min ≥ 0` (no entry is negative then).
+#[inline(always)]
+pub(super) fn widened_verdict8(
+    entry: f32x8,
+    exit: f32x8,
+    t_min: f32,
+    margin: f32,
+) -> (u32, [f32; 8]) {
+    let (lo, hi) = if t_min >= 0.0 {
+        (
+            entry * f32x8::splat(1.0 - margin),
+            exit * f32x8::splat(1.0 + margin),
+        )
+    } else {
+        (
+            entry - entry.abs() * f32x8::splat(margin),
+            exit + exit.abs() * f32x8::splat(margin),
+        )
+    };
+    (lo.simd_le(hi).to_bitmask(), lo.to_array())
 }
 
 /// One axis's (near, far) planes of eight boxes for a ray whose inverse direction is

@@ -13,7 +13,7 @@
 use glam::Vec4;
 use wide::f32x8;
 
-use super::box_lanes::near_far;
+use super::box_lanes::{near_far, widened_verdict8};
 use crate::geom::SlabRay;
 use crate::math::{Aabb, Aabb4, Aabb8, max_f32, min_f32};
 
@@ -129,18 +129,7 @@ impl PacketLanes {
             .fast_min(most(fy - oy, ly, hy))
             .fast_min(most(fz - oz, lz, hz))
             .fast_min(f32x8::splat(t_max));
-        let (lo, hi) = if self.t_min >= 0.0 {
-            (
-                entry * f32x8::splat(1.0 - margin),
-                exit * f32x8::splat(1.0 + margin),
-            )
-        } else {
-            (
-                entry - entry.abs() * f32x8::splat(margin),
-                exit + exit.abs() * f32x8::splat(margin),
-            )
-        };
-        (lo.simd_le(hi).to_bitmask(), lo.to_array())
+        widened_verdict8(entry, exit, self.t_min, margin)
     }
 }
 
