@@ -135,6 +135,33 @@ fn a_lone_leaf_and_a_too_small_buffer() {
     let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
     assert_eq!(owned.raycast(&ray).map(|h| h.tri), Some(0));
     assert_eq!(owned.eight_wide().unwrap().nodes().len(), 1);
+    // Bad rays (NaN, zero direction) miss, as on the four-wide tree.
+    for bad in [
+        Ray::new(Vec3::new(f32::NAN, 0.2, 1.0), -Vec3::Z),
+        Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::ZERO),
+        Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::new(0.0, f32::NAN, -1.0)),
+    ] {
+        assert!(owned.raycast(&bad).is_none() && !owned.raycast_any(&bad));
+    }
+
+    // No triangles: no nodes, and every query answers nothing.
+    let empty = meshq::mesh::MeshRef::new(&[], &[]).validate().unwrap();
+    let none = MeshBvh::build(&empty, &BuildConfig::default())
+        .unwrap()
+        .with_eight_wide_nodes()
+        .unwrap();
+    assert_eq!(none.query_node_bytes(), 0);
+    assert!(none.eight_wide().unwrap().is_empty());
+    assert!(none.raycast(&ray).is_none());
+    assert!(none.closest_point(Vec3::ZERO, f32::INFINITY).is_none());
+    let mut no_nodes: [WideNode8; 0] = [];
+    assert_eq!(
+        WideBvh8::build(&none.bvh(), &mut no_nodes)
+            .unwrap()
+            .nodes()
+            .len(),
+        0
+    );
 
     let loaded = load_mesh("spot");
     let big = MeshBvh::build(&loaded.valid(), &BuildConfig::default()).unwrap();
