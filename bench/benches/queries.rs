@@ -310,7 +310,11 @@ fn raycast(c: &mut Criterion) {
         test: TriangleTest::MollerTrumbore,
         ..RayOptions::default()
     };
-    let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
+    let owned4 = owned
+        .clone()
+        .with_four_wide_nodes()
+        .expect("four-wide nodes");
+    let (packed, wide) = (owned.packed(), owned4.wide().expect("wide nodes"));
     let eight_owned = owned
         .clone()
         .with_eight_wide_nodes()
@@ -492,7 +496,11 @@ fn closest_point(c: &mut Criterion) {
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap_or_else(|e| panic!("{e}"));
     let bvh = checked_bvh(&owned, &mesh).unwrap_or_else(|e| panic!("{e}"));
     let parry = parry_peer::build(&s.mesh);
-    let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
+    let owned4 = owned
+        .clone()
+        .with_four_wide_nodes()
+        .expect("four-wide nodes");
+    let (packed, wide) = (owned.packed(), owned4.wide().expect("wide nodes"));
     let mut group = c.benchmark_group("closest_point");
     configure(&mut group, s.points.len());
     group.bench_function("meshq", |b| {

@@ -60,7 +60,11 @@ fn main() {
     let points = workload::closest_points(&loaded.positions, 100_000, 2);
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).expect("build");
     let bvh = checked_bvh(&owned, &mesh).expect("view");
-    let (packed, wide) = (owned.packed(), owned.wide().expect("wide nodes"));
+    let owned4 = owned
+        .clone()
+        .with_four_wide_nodes()
+        .expect("four-wide nodes");
+    let (packed, wide) = (owned.packed(), owned4.wide().expect("wide nodes"));
     let mut compact_nodes = vec![meshq::wide::CompactNode::EMPTY; wide.nodes().len()];
     let compact = meshq::wide::CompactWideBvh::build(&wide, &mut compact_nodes).expect("compact");
     let per_triangle = |bytes: usize| bytes as f64 / mesh.triangle_count() as f64;

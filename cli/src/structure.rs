@@ -97,10 +97,14 @@ pub struct QueryInput {
     #[arg(long)]
     pub compact_nodes: bool,
     /// Collapse the BVH eight-wide before querying: fewer node visits per ray, the same
-    /// records (BVH only; counted in the preparation time). Closest-point queries gain little
-    /// unless the command is built for AVX2.
-    #[arg(long, conflicts_with = "compact_nodes")]
+    /// records (BVH only; counted in the preparation time). The default in a build for AVX2.
+    #[arg(long, conflicts_with_all = ["compact_nodes", "four_wide"])]
     pub eight_wide: bool,
+    /// Collapse the BVH four-wide before querying: fewer node bytes than eight-wide, the same
+    /// records (BVH only; counted in the preparation time). The default unless the command is
+    /// built for AVX2.
+    #[arg(long, conflicts_with = "compact_nodes")]
+    pub four_wide: bool,
 }
 
 impl QueryInput {
@@ -118,12 +122,14 @@ pub fn with_structure<R>(
     args: &QueryInput,
     query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
-    let (compact, eight) = (args.compact_nodes, args.eight_wide);
+    let (compact, eight, four) = (args.compact_nodes, args.eight_wide, args.four_wide);
     let query = |prepared: Prepared| {
         query(if compact {
             relaid(prepared, "--compact-nodes", MeshBvh::with_compact_nodes)?
         } else if eight {
             relaid(prepared, "--eight-wide", MeshBvh::with_eight_wide_nodes)?
+        } else if four {
+            relaid(prepared, "--four-wide", MeshBvh::with_four_wide_nodes)?
         } else {
             prepared
         })

@@ -817,9 +817,10 @@ fn batched_camera_rays_give_the_records_of_one_ray_per_call() {
     }
 }
 
-/// `--compact-nodes` quantizes the BVH's wide nodes and `--eight-wide` collapses it eight-wide:
-/// the records of ray and closest-point queries are byte for byte those of the default nodes,
-/// from a mesh file and from a blob; other structures refuse both, and they exclude each other.
+/// `--compact-nodes` quantizes the BVH's wide nodes, `--eight-wide` and `--four-wide` collapse
+/// it eight- or four-wide: the records of ray and closest-point queries are byte for byte those
+/// of the default nodes, from a mesh file and from a blob; other structures refuse all three,
+/// and they exclude each other.
 #[test]
 fn compact_and_eight_wide_nodes_give_the_same_records() {
     let dir = tempfile::tempdir().unwrap();
@@ -834,7 +835,12 @@ fn compact_and_eight_wide_nodes_give_the_same_records() {
     write_f32s(&point_file, points.iter().flat_map(|p| p.to_array()));
     let blob = dir.path().join("spot.meshq");
     ok(&[&"bake", &obj, &"-o", &blob]);
-    let layouts = [None, Some("--compact-nodes"), Some("--eight-wide")];
+    let layouts = [
+        None,
+        Some("--compact-nodes"),
+        Some("--eight-wide"),
+        Some("--four-wide"),
+    ];
     for input in [&obj, &blob] {
         for any in [false, true] {
             let mut outputs = Vec::new();
@@ -871,7 +877,7 @@ fn compact_and_eight_wide_nodes_give_the_same_records() {
         }
     }
     let out = dir.path().join("kd.bin");
-    for flag in ["--compact-nodes", "--eight-wide"] {
+    for flag in ["--compact-nodes", "--eight-wide", "--four-wide"] {
         fails(
             &[
                 &"raycast",
@@ -888,20 +894,19 @@ fn compact_and_eight_wide_nodes_give_the_same_records() {
             &format!("{flag} applies to a BVH"),
         );
     }
-    fails(
-        &[
-            &"raycast",
-            &obj,
-            &"--compact-nodes",
-            &"--eight-wide",
-            &"--rays",
-            &ray_file,
-            &"--out",
-            &out,
-        ],
-        2,
-        "cannot be used with",
-    );
+    for (a, b) in [
+        ("--compact-nodes", "--eight-wide"),
+        ("--four-wide", "--eight-wide"),
+        ("--compact-nodes", "--four-wide"),
+    ] {
+        fails(
+            &[
+                &"raycast", &obj, &a, &b, &"--rays", &ray_file, &"--out", &out,
+            ],
+            2,
+            "cannot be used with",
+        );
+    }
 }
 
 #[test]

@@ -65,7 +65,10 @@ fn check_node(wide: &WideNode, compact: &CompactNode, what: &str) {
 fn every_node_holds_its_boxes_tightly_on_every_mesh() {
     for name in MESHES {
         let loaded = load_mesh(name);
-        let owned = MeshBvh::build(&loaded.valid(), &BuildConfig::default()).unwrap();
+        let owned = MeshBvh::build(&loaded.valid(), &BuildConfig::default())
+            .unwrap()
+            .with_four_wide_nodes()
+            .unwrap();
         let wide = owned.wide().unwrap();
         let mut storage = vec![CompactNode::EMPTY; wide.nodes().len()];
         let compact = CompactWideBvh::build(&wide, &mut storage).unwrap();

@@ -37,7 +37,8 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
         let mut storage = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
         let eight = WideBvh8::build(&bvh, &mut storage).unwrap();
         assert_eq!(eight.nodes().len(), WideBvh8::count_nodes(&bvh), "{name}");
-        let four = owned.wide().unwrap();
+        let owned4 = owned.clone().with_four_wide_nodes().unwrap();
+        let four = owned4.wide().unwrap();
         assert!(
             eight.nodes().len() < four.nodes().len(),
             "{name}: {} eight-wide nodes, {} four-wide",
@@ -287,13 +288,83 @@ fn eight_wide_queries_match_brute_force() {
         }
         // The four-wide tree over the same leaves agrees on every ray too (a cross-check that
         // needs no oracle of its own).
-        let four = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let four = MeshBvh::build(&mesh, &BuildConfig::default())
+            .unwrap()
+            .with_four_wide_nodes()
+            .unwrap();
         let four_view: WideBvh<'_> = four.wide().unwrap();
         for ray in rays.iter().step_by(7) {
             assert_eq!(
                 bits(four_view.with(&four.packed()).raycast(ray)),
                 bits(view.with(&packed).raycast(ray))
             );
+        }
+    }
+}
+
+/// The tree a built or loaded `MeshBvh` walks is the target's default (eight-wide where the
+/// target has AVX2 or is wasm32), each choice can be switched to and back, and every choice
+/// holds exactly the nodes its collapse gives and answers as brute force does.
+#[test]
+fn the_default_tree_is_the_targets_and_every_choice_answers_alike() {
+    let loaded = load_mesh("fandisk");
+    let mesh = loaded.valid();
+    let built = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let blob = built.to_blob(meshq::blob::MeshLayout::Indexed).unwrap();
+    let loaded_blob = MeshBvh::from_blob(&blob).unwrap();
+    let bvh = built.bvh();
+    let mut storage4 =
+        vec![meshq::wide::WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
+    let four = WideBvh::build(&bvh, &mut storage4).unwrap();
+    let mut storage8 = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
+    let eight = WideBvh8::build(&bvh, &mut storage8).unwrap();
+    let eight_by_default = cfg!(any(target_feature = "avx2", target_arch = "wasm32"));
+    assert_eq!(MeshBvh::EIGHT_WIDE_BY_DEFAULT, eight_by_default);
+    for (what, owned) in [("built", &built), ("loaded", &loaded_blob)] {
+        assert_eq!(owned.eight_wide().is_some(), eight_by_default, "{what}");
+        assert_eq!(owned.wide().is_some(), !eight_by_default, "{what}");
+        let default_bytes = if eight_by_default {
+            std::mem::size_of_val(eight.nodes())
+        } else {
+            std::mem::size_of_val(four.nodes())
+        };
+        assert_eq!(owned.query_node_bytes(), default_bytes, "{what}");
+        // Four-wide, eight-wide, four-wide again: each the nodes of its collapse.
+        let as_four = owned.clone().with_four_wide_nodes().unwrap();
+        assert_eq!(as_four.wide().unwrap().nodes(), four.nodes(), "{what}");
+        assert!(as_four.eight_wide().is_none() && as_four.compact().is_none());
+        let as_eight = as_four.clone().with_eight_wide_nodes().unwrap();
+        assert_eq!(
+            as_eight.eight_wide().unwrap().nodes(),
+            eight.nodes(),
+            "{what}"
+        );
+        let back = as_eight.clone().with_four_wide_nodes().unwrap();
+        assert_eq!(back.wide().unwrap().nodes(), four.nodes(), "{what}");
+        let compact = as_eight.clone().with_compact_nodes().unwrap();
+        assert_eq!(
+            compact
+                .clone()
+                .with_four_wide_nodes()
+                .unwrap()
+                .wide()
+                .unwrap()
+                .nodes(),
+            four.nodes(),
+            "{what}: four-wide from compact"
+        );
+        // Every choice answers as brute force does.
+        let brute = BruteForce::new(&mesh);
+        let rays = workload::random_rays(&loaded.positions, 2_000, 11);
+        let options = RayOptions::default();
+        for choice in [owned, &as_four, &as_eight, &compact] {
+            for ray in &rays {
+                assert_eq!(
+                    bits(choice.raycast(ray)),
+                    bits(brute.raycast(ray, &options)),
+                    "{what}"
+                );
+            }
         }
     }
 }

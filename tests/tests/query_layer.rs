@@ -86,7 +86,8 @@ fn every_structure_answers_every_query_as_brute_force() {
         let brute = BruteForce::new(&mesh);
         let scene = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
         let bvh = checked_bvh(&scene, &mesh).unwrap();
-        let (wide, packed) = (scene.wide().unwrap(), scene.packed());
+        let four = scene.clone().with_four_wide_nodes().unwrap();
+        let (wide, packed) = (four.wide().unwrap(), scene.packed());
         check_all(&scene, &brute, &loaded, &format!("{name} MeshBvh"));
         check_all(
             &bvh.with(&mesh),
@@ -200,7 +201,8 @@ fn custom_visitors_see_every_triangle_once() {
     runs.push(("blob view", v.0));
     let mut v = Everything(Vec::new());
     let dynamic: &mut dyn Visitor = &mut v;
-    scene.wide().unwrap().traverse(dynamic);
+    let four = scene.clone().with_four_wide_nodes().unwrap();
+    four.wide().unwrap().traverse(dynamic);
     runs.push(("wide, dyn visitor", v.0));
     for (what, mut seen) in runs {
         seen.sort_unstable();

@@ -23,7 +23,7 @@ function answer(message) {
     bvh?.free();
     bvh = null;
     bvh = MeshBvh.fromBlob(message.blob);
-    if (message.eightWide) bvh.eightWideNodes();
+    if (message.fourWide) bvh.fourWideNodes();
     return [true, []];
   }
   if (bvh === null) throw new Error('no blob loaded');

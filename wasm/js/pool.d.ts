@@ -6,7 +6,7 @@ export interface MeshqPoolOptions {
   workers?: number;
   /** `false` copies blobs, queries and answers between threads even where memory could be shared. */
   shared?: boolean;
-  /** `true`: every worker walks the eight-wide tree (`MeshBvh.eightWideNodes()`), the same answers. */
+  /** `false`: every worker walks the four-wide tree (`MeshBvh.fourWideNodes()`) instead of the eight-wide one a loaded BVH walks; the same answers. */
   eightWide?: boolean;
 }
 

@@ -115,9 +115,10 @@ export class MeshqPool {
   /**
    * Starts `workers` workers (default: one per core, at most 16) that each load `bytes` (a
    * `Uint8Array` holding a blob baked by `meshq bake` or `toBlob`). `shared: false` copies
-   * instead of sharing memory even where it could be shared. `eightWide: true` has every
-   * worker walk the eight-wide tree (`MeshBvh.eightWideNodes()`: faster rays, the same
-   * answers). Rejects with the blob's error if it does not load.
+   * instead of sharing memory even where it could be shared. Workers walk the eight-wide tree
+   * a loaded `MeshBvh` walks; `eightWide: false` has them walk the four-wide tree instead
+   * (`MeshBvh.fourWideNodes()`), with the same answers. Rejects with the blob's error if it
+   * does not load.
    */
   static async fromBlob(bytes, { workers, shared, eightWide } = {}) {
     if (!(bytes instanceof Uint8Array)) throw new TypeError('a blob must be a Uint8Array (a Buffer is one)');
@@ -129,7 +130,7 @@ export class MeshqPool {
     const threads = [];
     try {
       for (let i = 0; i < size; i++) threads.push(new Thread(await startWorker()));
-      await Promise.all(threads.map((t) => t.call({ kind: 'load', blob, eightWide: eightWide === true })));
+      await Promise.all(threads.map((t) => t.call({ kind: 'load', blob, fourWide: eightWide === false })));
     } catch (error) {
       for (const t of threads) t.stop();
       throw error;

@@ -185,9 +185,10 @@ impl MeshBvh {
             .map_err(|e| JsError::new(&e.to_string()).into())
     }
 
-    /// Quantizes the BVH's four-wide nodes to 8-bit child boxes: half the node memory
-    /// (`queryNodeBytes`), the same answers from every query. Once is enough (again does
-    /// nothing). Throws a `TypeError` for a k-d tree, octree or grid.
+    /// Quantizes the BVH's four-wide nodes to 8-bit child boxes for queries to walk instead of
+    /// the eight-wide (or four-wide) tree: half the node memory of four-wide nodes, a quarter
+    /// of eight-wide (`queryNodeBytes`), the same answers from every query. Once is enough
+    /// (again does nothing). Throws a `TypeError` for a k-d tree, octree or grid.
     #[wasm_bindgen(js_name = compactNodes)]
     pub fn compact_nodes(&mut self) -> Result<(), JsValue> {
         match &mut self.storage.scene {
@@ -198,10 +199,9 @@ impl MeshBvh {
         }
     }
 
-    /// Collapses the BVH eight-wide for queries to walk instead of its four-wide (or compact)
-    /// nodes: fewer node visits per ray, the same answers from every query (closest-point
-    /// queries gain little from it). Once is enough (again does nothing).
-    /// Throws a `TypeError` for a k-d tree, octree or grid.
+    /// Collapses the BVH eight-wide for queries to walk (the tree a BVH walks when built or
+    /// loaded) instead of four-wide or compact nodes: the same answers from every query. Once
+    /// is enough (again does nothing). Throws a `TypeError` for a k-d tree, octree or grid.
     #[wasm_bindgen(js_name = eightWideNodes)]
     pub fn eight_wide_nodes(&mut self) -> Result<(), JsValue> {
         match &mut self.storage.scene {
@@ -212,9 +212,23 @@ impl MeshBvh {
         }
     }
 
-    /// Bytes of the tree nodes queries walk (the BVH's four-wide nodes, 128 each; 64 each
-    /// after `compactNodes`; 256 each after `eightWideNodes`); 0 for a k-d tree, octree or
-    /// grid.
+    /// Collapses the BVH four-wide for queries to walk instead of its eight-wide (or compact)
+    /// nodes: fewer bytes than eight-wide nodes, more node visits per ray, the same answers from
+    /// every query. Once is enough (again does nothing). Throws a `TypeError` for a k-d tree,
+    /// octree or grid.
+    #[wasm_bindgen(js_name = fourWideNodes)]
+    pub fn four_wide_nodes(&mut self) -> Result<(), JsValue> {
+        match &mut self.storage.scene {
+            MeshIndex::Bvh(bvh) => bvh
+                .four_wide_nodes()
+                .map_err(|e| JsError::new(&e.to_string()).into()),
+            _ => Err(type_error("fourWideNodes applies to a BVH")),
+        }
+    }
+
+    /// Bytes of the tree nodes queries walk (the BVH's eight-wide nodes, 256 each, as built
+    /// or loaded; 128 each after `fourWideNodes`; 64 each after `compactNodes`); 0 for a k-d
+    /// tree, octree or grid.
     #[wasm_bindgen(getter, js_name = queryNodeBytes)]
     pub fn query_node_bytes(&self) -> f64 {
         match &self.storage.scene {

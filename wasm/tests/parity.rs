@@ -142,29 +142,50 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
 
-        // Quantized nodes: half the node bytes, the golden answers.
+        // Four-wide nodes (built and loaded BVHs walk eight-wide ones here): the golden answers.
+        let mut four = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
+        let eight_bytes = four.query_node_bytes();
+        assert_eq!(
+            eight_bytes,
+            built.query_node_bytes(),
+            "{name}: built and loaded"
+        );
+        assert_eq!(
+            eight_bytes % 256.0,
+            0.0,
+            "{name}: eight-wide nodes by default"
+        );
+        four.four_wide_nodes().unwrap();
+        let four_bytes = four.query_node_bytes();
+        assert!(
+            four_bytes % 128.0 == 0.0 && four_bytes < eight_bytes,
+            "{name}: four-wide node bytes"
+        );
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&four));
+        assert_eq!(report, golden.report, "{name}: four-wide nodes");
+
+        // Quantized nodes: half the bytes of four-wide nodes, the golden answers.
         let mut compact = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
-        let full_bytes = compact.query_node_bytes();
         compact.compact_nodes().unwrap();
         assert_eq!(
             compact.query_node_bytes() * 2.0,
-            full_bytes,
+            four_bytes,
             "{name}: node bytes"
         );
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&compact));
         assert_eq!(report, golden.report, "{name}: compact nodes");
 
-        // Eight-wide nodes: the golden answers.
-        let mut eight = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
-        eight.eight_wide_nodes().unwrap();
-        assert!(
-            eight.query_node_bytes() > 0.0,
-            "{name}: eight-wide node bytes"
+        // Eight-wide nodes again after compact ones: the golden answers, the same blob.
+        compact.eight_wide_nodes().unwrap();
+        assert_eq!(
+            compact.query_node_bytes(),
+            eight_bytes,
+            "{name}: eight-wide again"
         );
-        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&eight));
+        let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&compact));
         assert_eq!(report, golden.report, "{name}: eight-wide nodes");
         assert_eq!(
-            eight.to_blob(None).unwrap(),
+            compact.to_blob(None).unwrap(),
             blob,
             "{name}: eight-wide blob"
         );

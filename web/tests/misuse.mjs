@@ -99,19 +99,30 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   assert.deepEqual(MeshBvh.build(positions, indices, { quality: undefined, structure: null }).toBlob(), bvh.toBlob());
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
-  // Compact nodes: half the node bytes, the same blob and answers; twice is once.
+  // Built or loaded, a BVH walks eight-wide nodes (256 bytes each); four-wide ones are fewer
+  // bytes, compact ones half of those; each the same blob and answers; twice is once.
   const compact = MeshBvh.fromBlob(bvh.toBlob());
+  const eightBytes = compact.queryNodeBytes;
+  assert.equal(eightBytes % 256, 0, 'eight-wide nodes by default');
+  assert.equal(bvh.queryNodeBytes, eightBytes, 'built and loaded walk the same nodes');
+  compact.fourWideNodes();
+  compact.fourWideNodes();
   const fullBytes = compact.queryNodeBytes;
+  assert.equal(fullBytes % 128, 0, 'four-wide nodes are 128 bytes');
+  assert.ok(fullBytes < eightBytes, `four-wide ${fullBytes} vs eight-wide ${eightBytes} bytes`);
+  assert.deepEqual(compact.raycast([0.3, -2, 0.2], [0, 1, 0]), bvh.raycast([0.3, -2, 0.2], [0, 1, 0]));
   compact.compactNodes();
   compact.compactNodes();
   assert.equal(compact.queryNodeBytes * 2, fullBytes, 'compact nodes are half the bytes');
   assert.deepEqual(compact.toBlob('packed'), bvh.toBlob('packed'));
   assert.deepEqual(compact.raycast([0.1, 0.2, 5], [0, 0, -1]), bvh.raycast([0.1, 0.2, 5], [0, 0, -1]));
-  // Eight-wide nodes: 256 bytes each, the same blob and answers; twice is once; then compact.
+  // Eight-wide nodes again after four-wide: 256 bytes each, the same blob and answers; twice
+  // is once; then compact.
   const eight = MeshBvh.fromBlob(bvh.toBlob());
+  eight.fourWideNodes();
   eight.eightWideNodes();
   eight.eightWideNodes();
-  assert.equal(eight.queryNodeBytes % 256, 0, 'eight-wide nodes are 256 bytes');
+  assert.equal(eight.queryNodeBytes, eightBytes, 'eight-wide nodes are 256 bytes');
   assert.deepEqual(eight.toBlob(), bvh.toBlob());
   for (const [o, d] of [[[0.1, 0.2, 5], [0, 0, -1]], [[0.3, -2, 0.2], [0, 1, 0]]]) {
     assert.deepEqual(eight.raycast(o, d), bvh.raycast(o, d));
@@ -204,6 +215,7 @@ const cases = [
   [() => remesh(positions, indices, 10), TypeError, /options must be an object/],
   [() => MeshBvh.build(positions, indices, { structure: 'kdtree' }).compactNodes(), TypeError, /compactNodes applies to a BVH/],
   [() => MeshBvh.build(positions, indices, { structure: 'grid' }).eightWideNodes(), TypeError, /eightWideNodes applies to a BVH/],
+  [() => MeshBvh.build(positions, indices, { structure: 'octree' }).fourWideNodes(), TypeError, /fourWideNodes applies to a BVH/],
 ];
 
 // Bad batch outputs: wrong type, wrong length; the arrays stay as they were.

@@ -8,21 +8,22 @@ use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::query::{LeafTriangles, PackedTriangles, Traverse, Visitor};
-use crate::wide::{
-    CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode, WideNode8, wide_node_capacity,
-};
+use crate::wide::collapse::collapse_vec;
+use crate::wide::{CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode, WideNode8};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
-/// (nodes and order), the triangles packed in leaf order, and the tree collapsed four-wide —
-/// each sized by the crate's sizing functions and trimmed to what the build used.
+/// (nodes and order), the triangles packed in leaf order, and the tree collapsed for queries
+/// (eight-wide where [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] says so, four-wide elsewhere) — each
+/// sized by the crate's sizing functions and trimmed to what the build used.
 ///
 /// It is a structure and its triangles at once, so it answers every query of
 /// [`MeshQuery`](crate::query::MeshQuery) (`scene.raycast(&ray)`, batches, overlaps) and runs
 /// custom visitors ([`Traverse`]). Queries walk the wide tree over the packed triangles; every
-/// answer is exactly what the binary tree over the mesh gives, bit for bit, on every target.
-/// [`MeshBvh::with_compact_nodes`] trades the wide nodes for quantized ones
-/// ([`CompactWideBvh`]), half the bytes, and [`MeshBvh::with_eight_wide_nodes`] for an
-/// eight-wide tree ([`WideBvh8`]), fewer steps per ray, both with the same answers.
+/// answer is exactly what the binary tree over the mesh gives, bit for bit, on every target,
+/// whichever wide tree it is. [`MeshBvh::with_compact_nodes`] trades the wide nodes for
+/// quantized four-wide ones ([`CompactWideBvh`]), half the bytes of four-wide nodes;
+/// [`MeshBvh::with_eight_wide_nodes`] and [`MeshBvh::with_four_wide_nodes`] pick the
+/// eight-wide ([`WideBvh8`]) or four-wide ([`WideBvh`]) tree whatever the target.
 /// [`MeshBvh::bvh`], [`MeshBvh::wide`], [`MeshBvh::compact`], [`MeshBvh::eight_wide`],
 /// [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the views for code that wants a particular
 /// one.
@@ -47,6 +48,16 @@ pub(super) enum WideNodes {
 }
 
 impl MeshBvh {
+    /// Whether queries walk the eight-wide tree ([`WideBvh8`]) unless told otherwise (by
+    /// [`MeshBvh::with_four_wide_nodes`] or [`MeshBvh::with_compact_nodes`]): fixed when the
+    /// crate is compiled, true for targets with AVX2 (`-C target-cpu=x86-64-v3` or `native`
+    /// on a recent x86) and for wasm32, where eight lanes are one instruction or two cheap
+    /// ones, false elsewhere (the four-wide tree, [`WideBvh`]). Answers are the same either
+    /// way; only [`MeshBvh::wide`], [`MeshBvh::eight_wide`] and
+    /// [`MeshBvh::query_node_bytes`] tell the difference.
+    pub const EIGHT_WIDE_BY_DEFAULT: bool =
+        cfg!(any(target_feature = "avx2", target_arch = "wasm32"));
+
     /// Copies `mesh` and builds its BVH with `config` (see [`Bvh::build`]), then packs its
     /// triangles and widens it. Deterministic: the same mesh and config give the same buffers
     /// on every target.
@@ -117,16 +128,16 @@ impl MeshBvh {
         // One wide node per inner binary node at most: sized by the tree, not by the triangle
         // count (a quarter to a third of `wide_node_capacity(n)` with small leaves), so
         // loading and building zero far less memory.
-        let inner = nodes.len().saturating_sub(1) / 2;
-        let mut wide = vec![WideNode::EMPTY; inner.max(1).min(wide_node_capacity(n))];
-        let wide_count = {
+        let wide = {
             let mesh = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
             let bvh = Bvh::from_validated(&nodes, &order, depth);
             bvh.pack_triangles(&mesh, &mut packed)?;
-            WideBvh::build(&bvh, &mut wide)?.nodes().len()
+            if Self::EIGHT_WIDE_BY_DEFAULT {
+                WideNodes::Eight(eight_wide_of(&bvh)?)
+            } else {
+                WideNodes::Full(four_wide_of(&bvh)?)
+            }
         };
-        wide.truncate(wide_count);
-        wide.shrink_to_fit();
         Ok(Self {
             positions,
             triangles,
@@ -134,7 +145,7 @@ impl MeshBvh {
             order,
             depth,
             packed,
-            wide: WideNodes::Full(wide),
+            wide,
             config,
         })
     }
@@ -162,11 +173,9 @@ impl MeshBvh {
                 compact
             }
             WideNodes::Eight(_) => {
-                let bvh = self.bvh();
-                let mut nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-                let wide = WideBvh::build(&bvh, &mut nodes)?;
-                let mut compact = vec![CompactNode::EMPTY; wide.nodes().len()];
-                CompactWideBvh::build(&wide, &mut compact)?;
+                let nodes = four_wide_of(&self.bvh())?;
+                let mut compact = vec![CompactNode::EMPTY; nodes.len()];
+                CompactWideBvh::build(&WideBvh::from_validated(&nodes, &self.order), &mut compact)?;
                 compact
             }
         };
@@ -176,10 +185,11 @@ impl MeshBvh {
 
     /// This structure with its tree collapsed eight-wide ([`WideBvh8`]) for queries to walk
     /// instead of the four-wide (or compact) nodes: the same answers, bit for bit, with about
-    /// a third fewer node visits per query, each testing eight boxes. The choice for rays;
-    /// closest-point queries, which enter more of a node's lanes, gain only where the eight
-    /// lanes are one instruction (a build for AVX2). Deterministic. Already eight-wide:
-    /// unchanged.
+    /// a third fewer node visits per query, each testing eight boxes. The default where
+    /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is true; elsewhere (eight lanes as two four-lane
+    /// halves) it still takes fewer steps per ray, while closest-point queries, which enter
+    /// more of a node's lanes, may take longer than on the four-wide tree. Deterministic.
+    /// Already eight-wide: unchanged.
     ///
     /// # Errors
     /// Never for a structure built or loaded by this crate (see [`WideBvh8::build`]).
@@ -196,11 +206,31 @@ impl MeshBvh {
         if matches!(self.wide, WideNodes::Eight(_)) {
             return Ok(());
         }
-        let bvh = self.bvh();
-        let mut nodes = vec![WideNode8::EMPTY; WideBvh8::count_nodes(&bvh)];
-        let count = WideBvh8::build(&bvh, &mut nodes)?.nodes().len();
-        nodes.truncate(count);
-        self.wide = WideNodes::Eight(nodes);
+        self.wide = WideNodes::Eight(eight_wide_of(&self.bvh())?);
+        Ok(())
+    }
+
+    /// This structure with its tree collapsed four-wide ([`WideBvh`]) for queries to walk
+    /// instead of its eight-wide or compact nodes: the same answers, bit for bit. The default
+    /// where [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is false; elsewhere, for comparing the two
+    /// trees or for the smaller nodes. Deterministic. Already four-wide: unchanged.
+    ///
+    /// # Errors
+    /// Never for a structure built or loaded by this crate (see [`WideBvh::build`]).
+    pub fn with_four_wide_nodes(mut self) -> Result<Self, BuildError> {
+        self.four_wide_nodes()?;
+        Ok(self)
+    }
+
+    /// [`MeshBvh::with_four_wide_nodes`] in place. On error nothing changes.
+    ///
+    /// # Errors
+    /// As [`MeshBvh::with_four_wide_nodes`].
+    pub fn four_wide_nodes(&mut self) -> Result<(), BuildError> {
+        if matches!(self.wide, WideNodes::Full(_)) {
+            return Ok(());
+        }
+        self.wide = WideNodes::Full(four_wide_of(&self.bvh())?);
         Ok(())
     }
 
@@ -217,8 +247,9 @@ impl MeshBvh {
         Bvh::from_validated(&self.nodes, &self.order, self.depth)
     }
 
-    /// The same tree four-wide, which queries walk; `None` once the nodes are compact or
-    /// eight-wide.
+    /// The same tree four-wide, when queries walk it (by default where
+    /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is false, or after
+    /// [`MeshBvh::with_four_wide_nodes`]); `None` while the nodes are compact or eight-wide.
     #[must_use]
     pub fn wide(&self) -> Option<WideBvh<'_>> {
         match &self.wide {
@@ -227,8 +258,9 @@ impl MeshBvh {
         }
     }
 
-    /// The same tree eight-wide, which queries walk after
-    /// [`MeshBvh::with_eight_wide_nodes`]; `None` before.
+    /// The same tree eight-wide, when queries walk it (by default where
+    /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is true, or after [`MeshBvh::with_eight_wide_nodes`]);
+    /// `None` while the nodes are four-wide or compact.
     #[must_use]
     pub fn eight_wide(&self) -> Option<WideBvh8<'_>> {
         match &self.wide {
@@ -314,4 +346,14 @@ impl LeafTriangles for MeshBvh {
     fn run(&self, first: usize, count: usize) -> Option<&[PackedTriangle]> {
         self.packed.as_slice().run(first, count)
     }
+}
+
+/// `bvh` collapsed four-wide.
+fn four_wide_of(bvh: &Bvh<'_>) -> Result<Vec<WideNode>, BuildError> {
+    collapse_vec::<WideNode, 4>(bvh)
+}
+
+/// `bvh` collapsed eight-wide.
+fn eight_wide_of(bvh: &Bvh<'_>) -> Result<Vec<WideNode8>, BuildError> {
+    collapse_vec::<WideNode8, 8>(bvh)
 }

@@ -73,6 +73,27 @@ pub(super) fn collapse_into<N: CollapsedNode, const W: usize>(
     Ok(needed)
 }
 
+/// [`collapse_to`] into a vector grown as nodes come: one pass, no counting, and no more
+/// memory than the nodes need (the owned types' collapse).
+#[cfg(feature = "alloc")]
+pub(crate) fn collapse_vec<N: CollapsedNode + Clone, const W: usize>(
+    tree: &Bvh<'_>,
+) -> Result<alloc::vec::Vec<N>, BuildError> {
+    let mut nodes = alloc::vec::Vec::new();
+    let count = collapse_to::<N, W>(tree, |index, node| {
+        if index >= nodes.len() {
+            nodes.resize(index + 1, N::EMPTY);
+        }
+        if let Some(slot) = nodes.get_mut(index) {
+            *slot = node;
+        }
+    })?;
+    // Every index below the count is written once, so the vector is exactly the nodes.
+    nodes.truncate(count);
+    nodes.shrink_to_fit();
+    Ok(nodes)
+}
+
 /// [`collapse`] into nodes of `W` lanes (`2..=8`).
 pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
     tree: &Bvh<'_>,

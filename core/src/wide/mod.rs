@@ -15,7 +15,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod collapse;
+pub(crate) mod collapse;
 mod compact_node;
 mod compact_tree;
 mod node;

@@ -44,6 +44,7 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.raycastBatch(rays, 0, 5, ts, triangles, 0);
   bvh.raycastBatchBarycentric(rays, null, null, ts, triangles, new Float32Array(200));
   bvh.raycastAnyBatch(cameraRays(bvh.bounds(), 10, 10), 0, 1, new Uint8Array(100));
+  loaded.fourWideNodes();
   loaded.eightWideNodes();
   loaded.compactNodes();
   const nodeBytes: number = loaded.queryNodeBytes;
