@@ -172,18 +172,26 @@ impl Goal for Occluded {
     }
 }
 
+/// A ray's leaf half: its interval, its kernel and its goal — what testing triangles needs.
+/// A packet keeps one per ray and judges boxes for all of them at once, so it carries none of
+/// a single ray's box lanes (a packet of full visitors took longer to copy into place than a
+/// small mesh's walk).
+pub(super) struct RayTester<K, G> {
+    pub(super) slab: SlabRay,
+    kernel: K,
+    pub(super) goal: G,
+}
+
 /// The ray visitor: boxes by the slab test, leaves by the kernel, hits to the goal.
 pub(super) struct RayVisitor<'m, S: ?Sized, K, G> {
     source: &'m S,
     /// The ray as given, for structures that walk along it.
     ray: Ray,
-    pub(super) slab: SlabRay,
     /// The same ray for four boxes at once (optimised away when no structure asks).
     lanes: LaneRay,
     /// The same for eight boxes at once (likewise).
     lanes8: LaneRay8,
-    kernel: K,
-    pub(super) goal: G,
+    pub(super) tester: RayTester<K, G>,
 }
 
 impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S, K, G> {
@@ -194,19 +202,19 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
-        enter_box(&self.slab, aabb)
+        self.tester.enter(aabb)
     }
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
-        self.lanes8
-            .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)
+        let slab = &self.tester.slab;
+        self.lanes8.enter(boxes, slab.t_min, slab.t_max, MARGIN)
     }
 
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes
-            .enter(boxes, self.slab.t_min, self.slab.t_max, MARGIN)
+        let slab = &self.tester.slab;
+        self.lanes.enter(boxes, slab.t_min, slab.t_max, MARGIN)
     }
 
     #[inline(always)]
@@ -216,25 +224,51 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
-        !G::PRUNES || within_reach(key, self.slab.t_max)
+        !G::PRUNES || within_reach(key, self.tester.slab.t_max)
     }
 
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
+        self.tester.leaf(self.source, tris)
+    }
+}
+
+impl<K: Kernel, G: Goal> RayTester<K, G> {
+    /// The tester of `ray` with its kernel and goal.
+    #[inline(always)]
+    pub(super) fn new(ray: &Ray, kernel: K, goal: G) -> Self {
+        Self {
+            slab: SlabRay::new(ray),
+            kernel,
+            goal,
+        }
+    }
+
+    /// The entry of `aabb` for this ray (see [`Visitor::enter`]).
+    #[inline(always)]
+    pub(super) fn enter(&self, aabb: &Aabb) -> Option<f32> {
+        enter_box(&self.slab, aabb)
+    }
+
+    /// Tests the leaf's triangles (read from `source`), four at a time where the kernel
+    /// filters lanes.
+    #[inline(always)]
+    pub(super) fn leaf<S: LeafTriangles + ?Sized>(
+        &mut self,
+        source: &S,
+        tris: LeafTriangleIds<'_>,
+    ) -> ControlFlow<()> {
         if K::LANES {
-            let source = self.source;
             return for_each_batch(source, tris, |batch| self.offer_batch(batch));
         }
         for (slot, tri) in tris {
-            if let Some(corners) = self.source.corners(slot, tri) {
+            if let Some(corners) = source.corners(slot, tri) {
                 self.offer(tri, &corners)?;
             }
         }
         ControlFlow::Continue(())
     }
-}
 
-impl<S: ?Sized, K: Kernel, G: Goal> RayVisitor<'_, S, K, G> {
     /// Tests the triangles of `batch` the kernel's lane test lets through, one by one.
     #[inline(always)]
     pub(super) fn offer_batch(&mut self, batch: &Batch<'_>) -> ControlFlow<()> {
@@ -333,22 +367,20 @@ fn walk_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, K: Kernel, G: Goal
 ) -> G {
     let mut v = RayVisitor::new(source, ray, kernel, goal);
     tree.traverse(&mut v);
-    v.goal
+    v.tester.goal
 }
 
 impl<'m, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, S, K, G> {
     /// The visitor of `ray` over `source`, with its kernel and goal.
     #[inline(always)]
     pub(super) fn new(source: &'m S, ray: &Ray, kernel: K, goal: G) -> Self {
-        let slab = SlabRay::new(ray);
+        let tester = RayTester::new(ray, kernel, goal);
         Self {
             source,
             ray: *ray,
-            slab,
-            lanes: LaneRay::new(&slab),
-            lanes8: LaneRay8::new(&slab),
-            kernel,
-            goal,
+            lanes: LaneRay::new(&tester.slab),
+            lanes8: LaneRay8::new(&tester.slab),
+            tester,
         }
     }
 }

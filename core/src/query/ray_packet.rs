@@ -15,9 +15,7 @@ use super::batch_order::query_index;
 use super::box_lanes::MARGIN;
 use super::leaf_batches::for_each_batch;
 use super::packet_lanes::{PACKET_RAYS, PacketLanes, PacketRays};
-use super::ray::{
-    Goal, Kernel, RayVisitor, moller_trumbore_kernel, walk, watertight, within_reach,
-};
+use super::ray::{Goal, Kernel, RayTester, moller_trumbore_kernel, walk, watertight, within_reach};
 use super::{LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor};
 use crate::geom::SlabRay;
 use crate::math::{Aabb, Aabb4, Aabb8, Ray, max_f32, min_f32};
@@ -25,10 +23,10 @@ use crate::math::{Aabb, Aabb4, Aabb8, Ray, max_f32, min_f32};
 /// Rays per packet.
 pub(super) const PACKET: usize = PACKET_RAYS;
 
-/// `PACKET` ray visitors walking one structure together.
+/// `PACKET` rays walking one structure together.
 pub(super) struct Packet<'m, S: ?Sized, K, G> {
     source: &'m S,
-    pub(super) rays: [RayVisitor<'m, S, K, G>; PACKET],
+    pub(super) rays: [RayTester<K, G>; PACKET],
     lanes: PacketLanes,
     /// The same rays lane by lane, for their leaf boxes.
     each: PacketRays,
@@ -134,7 +132,7 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Packet<'_, S, K, G> {
             });
         } else {
             for (i, ray) in (0u32..).zip(&mut self.rays) {
-                if testing & (1 << i) != 0 && ray.leaf(tris.clone()).is_break() {
+                if testing & (1 << i) != 0 && ray.leaf(self.source, tris.clone()).is_break() {
                     self.done |= 1 << i;
                 }
             }
@@ -238,14 +236,14 @@ where
             tree,
             source,
             rays,
-            |r| RayVisitor::new(source, r, watertight(r, options), goal()),
+            |r| RayTester::new(r, watertight(r, options), goal()),
             take,
         ),
         TriangleTest::MollerTrumbore => walk_packet_with(
             tree,
             source,
             rays,
-            |r| RayVisitor::new(source, r, moller_trumbore_kernel(r, options), goal()),
+            |r| RayTester::new(r, moller_trumbore_kernel(r, options), goal()),
             take,
         ),
     }
@@ -255,7 +253,7 @@ fn walk_packet_with<'m, A, S, K, G>(
     tree: &A,
     source: &'m S,
     rays: &[Ray; PACKET],
-    visitor: impl FnMut(&Ray) -> RayVisitor<'m, S, K, G>,
+    tester: impl FnMut(&Ray) -> RayTester<K, G>,
     mut take: impl FnMut(usize, &G),
 ) -> bool
 where
@@ -274,7 +272,7 @@ where
         source,
         lanes,
         each: PacketRays::new(&slabs),
-        rays: rays.each_ref().map(visitor),
+        rays: rays.each_ref().map(tester),
         done: 0,
         t_max: f32::NEG_INFINITY,
     };
