@@ -198,8 +198,22 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
                         parent_lane: parent | lane,
                     }
                 };
-                if mask & (mask - 1) == 0 {
+                let rest = mask & (mask - 1);
+                if rest == 0 {
                     at = lane_of(mask.trailing_zeros());
+                    continue;
+                }
+                if rest & (rest - 1) == 0 {
+                    // Two lanes, the commonest fork: one comparison orders them (the lower
+                    // lane, `first`, goes first on equal keys, as `by_key` orders them).
+                    let (first, second) = (mask.trailing_zeros(), rest.trailing_zeros());
+                    let (near, far) = if N::key(&keys, second) < N::key(&keys, first) {
+                        (second, first)
+                    } else {
+                        (first, second)
+                    };
+                    let _ = stack.push(lane_of(far));
+                    at = lane_of(near);
                     continue;
                 }
                 let (order, n) = N::by_key(mask, &keys);
