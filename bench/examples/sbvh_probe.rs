@@ -7,7 +7,8 @@
 //!
 //! `cargo run --release -p meshq-bench --example sbvh_probe` (env `MESH`, `SUBDIVIDE`, `RAYS`,
 //! `ALPHA` the overlap threshold, `BUDGET` the reference budget as a multiple of the triangle
-//! count).
+//! count, `STICKS=n` a generated scene of `n` long thin boxes at random angles instead of a
+//! mesh: the long, crossing triangles spatial splits are for).
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -348,11 +349,55 @@ fn env<T: std::str::FromStr>(name: &str, default: T) -> T {
         .unwrap_or(default)
 }
 
+/// `count` boxes 1.2 long and 0.02 thick, centred in the cube `[-1, 1]³`, pointing anywhere
+/// (a fixed pseudo-random sequence), twelve triangles each.
+fn sticks(count: usize) -> meshq_tests::LoadedMesh {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+    };
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for _ in 0..count {
+        let centre = Vec3::new(next(), next(), next());
+        let along = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
+        let side = along.any_orthonormal_vector();
+        let up = along.cross(side);
+        let base = positions.len() as u32;
+        for corner in 0..8u32 {
+            let sign = |bit: u32| if corner & bit == 0 { -1.0 } else { 1.0 };
+            let p =
+                centre + along * (0.6 * sign(4)) + side * (0.01 * sign(2)) + up * (0.01 * sign(1));
+            positions.push(p.to_array());
+        }
+        // The six faces as corner quads (bit 4: along, 2: side, 1: up).
+        for [a, b, c, d] in [
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+        ] {
+            triangles.push([base + a, base + b, base + c]);
+            triangles.push([base + a, base + c, base + d]);
+        }
+    }
+    meshq_tests::LoadedMesh {
+        name: "sticks".into(),
+        positions,
+        triangles,
+    }
+}
+
 fn main() {
-    let mut loaded = std::env::var("MESH").map_or_else(
-        |_| load_mesh("stanford-bunny"),
-        |path| meshq_tests::load_obj(std::path::Path::new(&path)),
-    );
+    let mut loaded = match (std::env::var("STICKS").ok(), std::env::var("MESH")) {
+        (Some(n), _) => sticks(n.parse().expect("STICKS: a count")),
+        (None, Ok(path)) => meshq_tests::load_obj(std::path::Path::new(&path)),
+        (None, Err(_)) => load_mesh("stanford-bunny"),
+    };
     for _ in 0..env("SUBDIVIDE", 0) {
         loaded = meshq_tests::subdivided(&loaded);
     }

@@ -25,7 +25,7 @@ pub(super) fn collapse(
 }
 
 /// A node a collapse fills lane by lane.
-pub(super) trait CollapsedNode: Sized {
+pub(crate) trait CollapsedNode: Sized {
     /// A node with every lane unused.
     const EMPTY: Self;
     /// Writes lane `lane`'s box, child and triangle count (ignored past the last lane).
