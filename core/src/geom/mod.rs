@@ -44,4 +44,5 @@ pub(crate) use closest_point_triangle::closest_point_regions;
 pub(crate) use ray_aabb::SlabRay;
 pub(crate) use ray_triangle::moller_trumbore;
 pub(crate) use ray_triangle_watertight::WatertightRay;
+pub(crate) use ray_triangle_watertight_lanes::LaneHits;
 pub(crate) use triangle_lanes::TriangleLanes;

@@ -3,20 +3,37 @@
 //!
 //! A ray meets few of the triangles in the leaves it visits, and the scalar test's branches on
 //! the edge signs mispredict. Each lane here repeats the scalar test's arithmetic in its
-//! order, so the lanes it rejects are exactly those the scalar test rejects; the query runs
-//! the scalar test on the rest, which decides and supplies `t`, `u` and `v`. Lanes with an
-//! edge function of exactly zero, where the scalar test redoes its sums in `f64`, always pass.
+//! order (the same IEEE operations on the same values), so the lanes it rejects are exactly
+//! those the scalar test rejects, and the lanes it accepts carry exactly the scalar test's
+//! `t`, `u` and `v`. Lanes with an edge function of exactly zero, where the scalar test redoes
+//! its sums in `f64`, are left to the scalar test.
 
 use glam::Vec4;
 
 use super::triangle_lanes::{Lanes3, TriangleLanes};
 use super::{CullMode, WatertightRay};
 
+/// What [`WatertightRay::intersect`] answers for four triangles, as far as the lanes decide.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LaneHits {
+    /// Bit `i` set: the scalar test accepts lane `i`, with exactly `t[i]`, `u[i]` and `v[i]`.
+    pub(crate) sure: u32,
+    /// Bit `i` set: an edge function of lane `i` is exactly zero, where the scalar test redoes
+    /// its sums in `f64`; only the scalar test decides.
+    pub(crate) unsure: u32,
+    /// Ray parameter of each sure lane.
+    pub(crate) t: [f32; 4],
+    /// Weight of corner `b` of each sure lane.
+    pub(crate) u: [f32; 4],
+    /// Weight of corner `c` of each sure lane.
+    pub(crate) v: [f32; 4],
+}
+
 impl WatertightRay {
-    /// The lanes of `tris` that [`intersect`](WatertightRay::intersect) might accept with
-    /// `cull`, as a bit mask (bit `i` for lane `i`): never fewer than it accepts.
+    /// The scalar test's answers for the four lanes of `tris` with `cull`: those it accepts
+    /// (and their hits, bit for bit) and those only it can decide.
     #[inline(always)]
-    pub(crate) fn may_hit(&self, tris: &TriangleLanes, cull: CullMode) -> u32 {
+    pub(crate) fn hits(&self, tris: &TriangleLanes, cull: CullMode) -> LaneHits {
         let o = Lanes3::splat(self.origin);
         let (pa, pb, pc) = (tris.a.sub(o), tris.b.sub(o), tris.c.sub(o));
         let (sx, sy, sz) = (
@@ -49,9 +66,17 @@ impl WatertightRay {
         // `det == det` is false for NaN: the scalar test's `det.is_nan()`.
         let det_usable = det.cmpne(zero) & det.cmpeq(det);
         let t_scaled = u * (sz * az) + v * (sz * bz) + w * (sz * cz);
-        let t = t_scaled * (Vec4::ONE / det);
+        let inv_det = Vec4::ONE / det;
+        let t = t_scaled * inv_det;
         let in_range = t.cmpge(Vec4::splat(self.t_min)) & t.cmple(Vec4::splat(self.t_max));
-        (redone_in_f64 | (inside & det_usable & in_range)).bitmask()
+        let unsure = redone_in_f64.bitmask();
+        LaneHits {
+            sure: (inside & det_usable & in_range).bitmask() & !unsure,
+            unsure,
+            t: t.to_array(),
+            u: (v * inv_det).to_array(),
+            v: (w * inv_det).to_array(),
+        }
     }
 }
 
@@ -60,6 +85,7 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
+    use crate::geom::TriangleHit;
     use crate::math::{Ray, Triangle};
 
     struct Rng(u64);
@@ -77,10 +103,11 @@ mod tests {
         }
     }
 
-    /// Every lane the scalar test accepts passes the filter, and the filter passes few others:
-    /// on random rays through random small triangles, with every cull mode and ray direction.
+    /// Every lane the scalar test accepts is sure with exactly its hit, or unsure; a sure lane
+    /// is always one the scalar test accepts; and few lanes are unsure: on random rays through
+    /// random small triangles, with every cull mode and ray direction.
     #[test]
-    fn passes_every_scalar_hit_and_little_else() {
+    fn sure_lanes_are_the_scalar_hits_bit_for_bit() {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         let (mut hits, mut lanes) = (0, 0);
         // Passes beyond hits, outside the rounds aimed at a shared corner.
@@ -107,14 +134,29 @@ mod tests {
             ray.t_max = if round % 5 == 0 { 0.9 } else { f32::INFINITY };
             let wt = WatertightRay::new(&ray);
             let cull = [CullMode::None, CullMode::Back, CullMode::Front][round % 3];
-            let mask = wt.may_hit(&TriangleLanes::new(&tris), cull);
+            let lanes_say = wt.hits(&TriangleLanes::new(&tris), cull);
+            let mask = lanes_say.sure | lanes_say.unsure;
             for (i, t) in tris.iter().enumerate() {
-                let hit = wt.intersect(t.a, t.b, t.c, cull).is_some();
+                let scalar = wt.intersect(t.a, t.b, t.c, cull);
+                let hit = scalar.is_some();
                 let pass = mask & (1 << i) != 0;
                 assert!(
                     pass || !hit,
                     "lane {i} rejected a hit: {t:?} {ray:?} {cull:?}"
                 );
+                if lanes_say.sure & (1 << i) != 0 {
+                    let bits = |h: TriangleHit| [h.t, h.u, h.v].map(f32::to_bits);
+                    let lane = TriangleHit {
+                        t: lanes_say.t[i],
+                        u: lanes_say.u[i],
+                        v: lanes_say.v[i],
+                    };
+                    assert_eq!(
+                        scalar.map(bits),
+                        Some(bits(lane)),
+                        "lane {i} is sure of another hit: {t:?} {ray:?} {cull:?}"
+                    );
+                }
                 hits += usize::from(hit);
                 lanes += 1;
                 let aimed_at_corner = round % 12 == 0;

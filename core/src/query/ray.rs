@@ -7,7 +7,9 @@ use glam::Vec3;
 use super::box_lanes::{LaneRay, LaneRay8, MARGIN};
 use super::leaf_batches::{Batch, LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
-use crate::geom::{CullMode, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore};
+use crate::geom::{
+    CullMode, LaneHits, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore,
+};
 use crate::math::{Aabb, Aabb4, Aabb8, Ray, RayHit, Triangle};
 
 /// Which ray–triangle test a query uses. Both give bit-identical answers on every target; they
@@ -34,14 +36,21 @@ pub struct RayOptions {
 
 /// A ray–triangle test with an adjustable upper bound.
 pub(super) trait Kernel {
-    /// Whether leaves are first filtered four triangles at a time with [`Self::may_hit`].
+    /// Whether leaves are first judged four triangles at a time with [`Self::lane_hits`].
     const LANES: bool = false;
     fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit>;
     fn shrink(&mut self, t_max: f32);
-    /// The lanes [`Self::test`] might accept (a superset of those it does).
-    fn may_hit(&self, tris: &TriangleLanes) -> u32 {
+    /// What [`Self::test`] answers for four triangles, as far as lanes decide: by default
+    /// nothing is sure and every lane is left to [`Self::test`].
+    fn lane_hits(&self, tris: &TriangleLanes) -> LaneHits {
         let _ = tris;
-        0xF
+        LaneHits {
+            sure: 0,
+            unsure: 0xF,
+            t: [0.0; 4],
+            u: [0.0; 4],
+            v: [0.0; 4],
+        }
     }
 }
 
@@ -69,8 +78,8 @@ struct Wt {
 impl Kernel for Wt {
     const LANES: bool = LANES_PAY;
     #[inline(always)]
-    fn may_hit(&self, tris: &TriangleLanes) -> u32 {
-        self.ray.may_hit(tris, self.cull)
+    fn lane_hits(&self, tris: &TriangleLanes) -> LaneHits {
+        self.ray.hits(tris, self.cull)
     }
     #[inline(always)]
     fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit> {
@@ -269,15 +278,34 @@ impl<K: Kernel, G: Goal> RayTester<K, G> {
         ControlFlow::Continue(())
     }
 
-    /// Tests the triangles of `batch` the kernel's lane test lets through, one by one.
+    /// Hands the goal the hits of `batch` the kernel's lanes are sure of, and tests the lanes
+    /// only the scalar test can decide, in lane order.
+    ///
+    /// A sure lane's hit was judged against the ray's interval before this batch: a hit taken
+    /// from an earlier lane may since have shrunk it, so a later sure hit can lie beyond it.
+    /// The goals judge every hit against what they keep (the closest by the tie rule, the
+    /// nearest few), which is what the scalar test's rejection of it would have left.
     #[inline(always)]
     pub(super) fn offer_batch(&mut self, batch: &Batch<'_>) -> ControlFlow<()> {
-        let mut maybe = self.kernel.may_hit(&batch.lanes) & batch.used;
+        let hits = self.kernel.lane_hits(&batch.lanes);
+        let mut maybe = (hits.sure | hits.unsure) & batch.used;
         while maybe != 0 {
             let lane = maybe.trailing_zeros() as usize;
             maybe &= maybe - 1;
-            if let Some((tri, corners)) = batch.triangle(lane) {
-                self.offer(tri, &corners)?;
+            let Some((tri, corners)) = batch.triangle(lane) else {
+                continue;
+            };
+            let sure = match (hits.t.get(lane), hits.u.get(lane), hits.v.get(lane)) {
+                (Some(&t), Some(&u), Some(&v)) if hits.sure & (1 << lane) != 0 => {
+                    Some(TriangleHit { t, u, v })
+                }
+                _ => None,
+            };
+            match sure {
+                Some(h) => self
+                    .goal
+                    .take(tri, h, &corners, &mut self.kernel, &mut self.slab)?,
+                None => self.offer(tri, &corners)?,
             }
         }
         ControlFlow::Continue(())
