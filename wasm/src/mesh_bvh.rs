@@ -191,12 +191,7 @@ impl MeshBvh {
     /// (again does nothing). Throws a `TypeError` for a k-d tree, octree or grid.
     #[wasm_bindgen(js_name = compactNodes)]
     pub fn compact_nodes(&mut self) -> Result<(), JsValue> {
-        match &mut self.storage.scene {
-            MeshIndex::Bvh(bvh) => bvh
-                .compact_nodes()
-                .map_err(|e| JsError::new(&e.to_string()).into()),
-            _ => Err(type_error("compactNodes applies to a BVH")),
-        }
+        self.relay_nodes("compactNodes", meshq::MeshBvh::compact_nodes)
     }
 
     /// Collapses the BVH eight-wide for queries to walk (the tree a BVH walks when built or
@@ -204,12 +199,7 @@ impl MeshBvh {
     /// is enough (again does nothing). Throws a `TypeError` for a k-d tree, octree or grid.
     #[wasm_bindgen(js_name = eightWideNodes)]
     pub fn eight_wide_nodes(&mut self) -> Result<(), JsValue> {
-        match &mut self.storage.scene {
-            MeshIndex::Bvh(bvh) => bvh
-                .eight_wide_nodes()
-                .map_err(|e| JsError::new(&e.to_string()).into()),
-            _ => Err(type_error("eightWideNodes applies to a BVH")),
-        }
+        self.relay_nodes("eightWideNodes", meshq::MeshBvh::eight_wide_nodes)
     }
 
     /// Collapses the BVH four-wide for queries to walk instead of its eight-wide (or compact)
@@ -218,12 +208,7 @@ impl MeshBvh {
     /// octree or grid.
     #[wasm_bindgen(js_name = fourWideNodes)]
     pub fn four_wide_nodes(&mut self) -> Result<(), JsValue> {
-        match &mut self.storage.scene {
-            MeshIndex::Bvh(bvh) => bvh
-                .four_wide_nodes()
-                .map_err(|e| JsError::new(&e.to_string()).into()),
-            _ => Err(type_error("fourWideNodes applies to a BVH")),
-        }
+        self.relay_nodes("fourWideNodes", meshq::MeshBvh::four_wide_nodes)
     }
 
     /// Bytes of the tree nodes queries walk (the BVH's eight-wide nodes, 256 each, as built
@@ -405,6 +390,19 @@ impl MeshBvh {
 }
 
 impl MeshBvh {
+    /// Lays out the BVH's query nodes with `relay` (one of the owned type's node choices), or
+    /// a `TypeError` naming `call` for a k-d tree, octree or grid.
+    fn relay_nodes(
+        &mut self,
+        call: &str,
+        relay: fn(&mut meshq::MeshBvh) -> Result<(), meshq::error::BuildError>,
+    ) -> Result<(), JsValue> {
+        match &mut self.storage.scene {
+            MeshIndex::Bvh(bvh) => relay(bvh).map_err(|e| JsError::new(&e.to_string()).into()),
+            _ => Err(type_error(&format!("{call} applies to a BVH"))),
+        }
+    }
+
     /// The blob bytes: the loaded ones when `layout` is `None` and this came from a blob,
     /// else encoded afresh (a packed blob's mesh has three vertices of its own per triangle:
     /// the same triangles, the same answers).
