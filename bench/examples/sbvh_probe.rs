@@ -148,35 +148,50 @@ impl Builder<'_> {
                 boxes[b].grow(r.lo, r.hi);
                 counts[b] += 1;
             }
-            let mut right = [(Bx::EMPTY, 0usize); BINS];
-            let mut acc = (Bx::EMPTY, 0);
-            for b in (1..BINS).rev() {
-                acc = (Bx::union(acc.0, boxes[b]), acc.1 + counts[b]);
-                right[b] = acc;
+            if let Some((cost, b, overlap)) = self.sweep(&boxes, &counts, &counts, area)
+                && best.as_ref().is_none_or(|(c, _, _)| cost < *c)
+            {
+                let split = Split::Object {
+                    axis,
+                    bin: b,
+                    lo: centres.lo[axis],
+                    scale,
+                };
+                best = Some((cost, split, overlap));
             }
-            let mut left = (Bx::EMPTY, 0);
-            for b in 0..BINS - 1 {
-                left = (Bx::union(left.0, boxes[b]), left.1 + counts[b]);
-                let (rb, rn) = right[b + 1];
-                if left.1 == 0 || rn == 0 {
-                    continue;
-                }
-                let cost = self.config.traversal_cost
-                    + (left.0.area() * left.1 as f32 + rb.area() * rn as f32) / area
-                        * self.config.triangle_cost;
-                if best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
-                    let overlap = Bx::intersect(left.0, rb).area();
-                    best = Some((
-                        cost,
-                        Split::Object {
-                            axis,
-                            bin: b,
-                            lo: centres.lo[axis],
-                            scale,
-                        },
-                        overlap,
-                    ));
-                }
+        }
+        best
+    }
+
+    /// The cheapest plane between bins by the SAH, for bins with boxes `boxes`, `enter[b]`
+    /// references starting and `exit[b]` ending in bin `b`: its cost, the bin left of it and
+    /// the overlap area of its two sides.
+    fn sweep(
+        &self,
+        boxes: &[Bx; BINS],
+        enter: &[usize; BINS],
+        exit: &[usize; BINS],
+        area: f32,
+    ) -> Option<(f32, usize, f32)> {
+        let mut right = [(Bx::EMPTY, 0usize); BINS];
+        let mut acc = (Bx::EMPTY, 0);
+        for b in (1..BINS).rev() {
+            acc = (Bx::union(acc.0, boxes[b]), acc.1 + exit[b]);
+            right[b] = acc;
+        }
+        let mut best: Option<(f32, usize, f32)> = None;
+        let mut left = (Bx::EMPTY, 0);
+        for b in 0..BINS - 1 {
+            left = (Bx::union(left.0, boxes[b]), left.1 + enter[b]);
+            let (rb, rn) = right[b + 1];
+            if left.1 == 0 || rn == 0 {
+                continue;
+            }
+            let cost = self.config.traversal_cost
+                + (left.0.area() * left.1 as f32 + rb.area() * rn as f32) / area
+                    * self.config.triangle_cost;
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, b, Bx::intersect(left.0, rb).area()));
             }
         }
         best
@@ -214,31 +229,11 @@ impl Builder<'_> {
                     }
                 }
             }
-            let mut right = [(Bx::EMPTY, 0usize); BINS];
-            let mut acc = (Bx::EMPTY, 0);
-            for b in (1..BINS).rev() {
-                acc = (Bx::union(acc.0, boxes[b]), acc.1 + exit[b]);
-                right[b] = acc;
-            }
-            let mut left = (Bx::EMPTY, 0);
-            for b in 0..BINS - 1 {
-                left = (Bx::union(left.0, boxes[b]), left.1 + enter[b]);
-                let (rb, rn) = right[b + 1];
-                if left.1 == 0 || rn == 0 {
-                    continue;
-                }
-                let cost = self.config.traversal_cost
-                    + (left.0.area() * left.1 as f32 + rb.area() * rn as f32) / area
-                        * self.config.triangle_cost;
-                if best.as_ref().is_none_or(|(c, _)| cost < *c) {
-                    best = Some((
-                        cost,
-                        Split::Spatial {
-                            axis,
-                            plane: plane(b + 1),
-                        },
-                    ));
-                }
+            if let Some((cost, b, _)) = self.sweep(&boxes, &enter, &exit, area)
+                && best.as_ref().is_none_or(|(c, _)| cost < *c)
+            {
+                let plane = plane(b + 1);
+                best = Some((cost, Split::Spatial { axis, plane }));
             }
         }
         best
