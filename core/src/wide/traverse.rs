@@ -216,6 +216,30 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
                     at = lane_of(near);
                     continue;
                 }
+                let last = rest & (rest - 1);
+                if last & (last - 1) == 0 {
+                    // Three lanes: three compare-exchanges, lanes ascending so that the lower
+                    // lane stays first on equal keys (a stable sort, as `by_key` orders them).
+                    let mut l = [
+                        mask.trailing_zeros(),
+                        rest.trailing_zeros(),
+                        last.trailing_zeros(),
+                    ];
+                    let key = |lane: u32| N::key(&keys, lane);
+                    if key(l[1]) < key(l[0]) {
+                        l.swap(0, 1);
+                    }
+                    if key(l[2]) < key(l[1]) {
+                        l.swap(1, 2);
+                        if key(l[1]) < key(l[0]) {
+                            l.swap(0, 1);
+                        }
+                    }
+                    let _ = stack.push(lane_of(l[2]));
+                    let _ = stack.push(lane_of(l[1]));
+                    at = lane_of(l[0]);
+                    continue;
+                }
                 let (order, n) = N::by_key(mask, &keys);
                 // Farthest deferred first, so the nearer ones come off the stack first.
                 for &lane in order.iter().take(n).skip(1).rev() {
