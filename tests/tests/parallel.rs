@@ -11,7 +11,7 @@ use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
 use meshq::bvh::{Bvh, BvhNode, PrimRef, node_capacity};
 use meshq::error::{BatchBuffer, BatchError};
-use meshq::math::{ClosestPoint, RayHit};
+use meshq::math::{ClosestPoint, PackedTriangle, RayHit};
 use meshq::owned::{MeshIndex, StructureKind};
 use meshq::parallel::{self, RUN};
 use meshq::query::RayOptions;
@@ -134,6 +134,16 @@ fn parallel_batches_equal_brute_force_on_every_structure() {
     }
 }
 
+/// Every coordinate's bits, slot by slot.
+fn bits(packed: &[PackedTriangle]) -> Vec<u32> {
+    packed
+        .iter()
+        .flat_map(|t| [t.a, t.b, t.c])
+        .flatten()
+        .map(f32::to_bits)
+        .collect()
+}
+
 #[test]
 fn the_parallel_build_is_the_sequential_build() {
     let bunny = load_mesh("stanford-bunny");
@@ -175,17 +185,53 @@ fn the_parallel_build_is_the_sequential_build() {
                     got == want,
                     "mesh {m} ({n} triangles), {config:?}, {threads} threads: another tree"
                 );
+                // Packing on the pool copies the same corners into the same slots.
+                let mut one = vec![PackedTriangle::EMPTY; n];
+                let mut many = vec![PackedTriangle::EMPTY; n];
+                sequential.pack_triangles(&mesh, &mut one).expect("pack");
+                pool(threads)
+                    .install(|| parallel.pack_triangles_parallel(&mesh, &mut many))
+                    .expect("pack");
+                assert!(
+                    bits(&one) == bits(&many),
+                    "mesh {m}, {threads} threads: packing"
+                );
+                assert!(
+                    parallel
+                        .pack_triangles_parallel(&mesh, &mut many[1..])
+                        .is_err()
+                );
             }
         }
-        // The owned form, down to the blob bytes.
+        // The owned form, down to the blob bytes, the packed triangles and the wide nodes
+        // queries walk (packed and collapsed on the pool too).
         let config = BuildConfig::default();
         let a = MeshBvh::build(&mesh, &config).expect("build");
-        let b = pool(2).install(|| MeshBvh::build_parallel(&mesh, &config).expect("build"));
-        assert_eq!(
-            a.to_blob(MeshLayout::Indexed).expect("blob"),
-            b.to_blob(MeshLayout::Indexed).expect("blob"),
-            "mesh {m}: blob bytes"
-        );
+        for threads in [2, 3] {
+            let b =
+                pool(threads).install(|| MeshBvh::build_parallel(&mesh, &config).expect("build"));
+            assert_eq!(
+                a.to_blob(MeshLayout::Indexed).expect("blob"),
+                b.to_blob(MeshLayout::Indexed).expect("blob"),
+                "mesh {m}, {threads} threads: blob bytes"
+            );
+            assert!(
+                bits(a.packed().as_slice()) == bits(b.packed().as_slice()),
+                "mesh {m}, {threads} threads: packed triangles"
+            );
+            let same_wide = match (a.wide(), b.wide(), a.eight_wide(), b.eight_wide()) {
+                (Some(a), Some(b), None, None) => {
+                    a.nodes().len() == b.nodes().len()
+                        && a.nodes().iter().zip(b.nodes()).all(|(x, y)| x.same_bits(y))
+                }
+                (None, None, Some(a), Some(b)) => {
+                    a.nodes().len() == b.nodes().len()
+                        && a.nodes().iter().zip(b.nodes()).all(|(x, y)| x.same_bits(y))
+                }
+                _ => false,
+            };
+            assert!(same_wide, "mesh {m}, {threads} threads: wide nodes");
+        }
     }
     // Too short a buffer: refused before anything is written, as the sequential build does.
     let loaded = load_mesh("spot");

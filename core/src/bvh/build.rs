@@ -80,6 +80,51 @@ pub(super) fn prepare<'s>(
     order: &'s mut [u32],
     scratch: &'s mut [PrimRef],
 ) -> Result<Option<Prepared<'s>>, BuildError> {
+    prepare_with(
+        mesh,
+        config,
+        nodes_len,
+        order,
+        scratch,
+        &mut |prims, order| {
+            fill_prims(mesh, 0, prims, order);
+            bounds_of(prims)
+        },
+    )
+}
+
+/// How a build fills its [`PrimRef`]s and identity order and measures them (box and centroid
+/// bounds): on this thread ([`fill_prims`] then [`bounds_of`]) or on the pool.
+pub(super) type FillPrims<'f> = dyn FnMut(&mut [PrimRef], &mut [u32]) -> (BuildBox, BuildBox) + 'f;
+
+/// Writes triangle `first + i`'s box into `prims[i]` and its index into `order[i]`.
+pub(super) fn fill_prims(
+    mesh: &ValidMesh<'_>,
+    first: u32,
+    prims: &mut [PrimRef],
+    order: &mut [u32],
+) {
+    for ((tri, p), o) in (first..).zip(prims.iter_mut()).zip(order.iter_mut()) {
+        *p = mesh.triangle(tri).map_or(PrimRef::EMPTY, |t| {
+            let [a, b, c] = [t.a, t.b, t.c].map(Vec3A::from);
+            PrimRef {
+                min: min_lanes(c, min_lanes(b, a)),
+                max: max_lanes(c, max_lanes(b, a)),
+            }
+        });
+        *o = tri;
+    }
+}
+
+/// [`prepare`] with the triangle boxes filled and measured by `fill`.
+pub(super) fn prepare_with<'s>(
+    mesh: &ValidMesh<'_>,
+    config: &BuildConfig,
+    nodes_len: usize,
+    order: &'s mut [u32],
+    scratch: &'s mut [PrimRef],
+    fill: &mut FillPrims<'_>,
+) -> Result<Option<Prepared<'s>>, BuildError> {
     config.check()?;
     let n = mesh.triangle_count();
     check_len(BufferKind::Nodes, node_capacity(n), nodes_len)?;
@@ -97,17 +142,7 @@ pub(super) fn prepare<'s>(
     if n == 0 {
         return Ok(None);
     }
-    for ((tri, p), o) in (0u32..).zip(prims.iter_mut()).zip(order.iter_mut()) {
-        *p = mesh.triangle(tri).map_or(PrimRef::EMPTY, |t| {
-            let [a, b, c] = [t.a, t.b, t.c].map(Vec3A::from);
-            PrimRef {
-                min: min_lanes(c, min_lanes(b, a)),
-                max: max_lanes(c, max_lanes(b, a)),
-            }
-        });
-        *o = tri;
-    }
-    let (bounds, centroids) = bounds_of(prims);
+    let (bounds, centroids) = fill(prims, order);
     let root = Task {
         node: 0,
         begin: 0,

@@ -25,12 +25,48 @@ impl Bvh<'_> {
             });
         }
         let out = out.get_mut(..n).unwrap_or_default();
-        for (slot, &tri) in out.iter_mut().zip(self.order) {
-            if let Some(t) = mesh.triangle(tri) {
-                *slot = PackedTriangle::new(&t);
-            }
-        }
+        pack_run(mesh, self.order, out);
         let tris: &'p [PackedTriangle] = out;
         Ok(PackedTriangles::new(tris))
+    }
+
+    /// [`Bvh::pack_triangles`] on rayon's thread pool (feature `parallel`): the same triangles
+    /// in the same slots, copied by several threads at once.
+    ///
+    /// # Errors
+    /// As [`Bvh::pack_triangles`].
+    #[cfg(feature = "parallel")]
+    pub fn pack_triangles_parallel<'p>(
+        &self,
+        mesh: &ValidMesh<'_>,
+        out: &'p mut [PackedTriangle],
+    ) -> Result<PackedTriangles<'p>, BuildError> {
+        use rayon::prelude::*;
+        /// Slots per task: enough copying for a task's start-up to vanish.
+        const RUN: usize = 16 * 1024;
+        let n = self.order.len();
+        if out.len() < n {
+            return Err(BuildError::BufferTooSmall {
+                buffer: BufferKind::Packed,
+                needed: n,
+                got: out.len(),
+            });
+        }
+        let out = out.get_mut(..n).unwrap_or_default();
+        out.par_chunks_mut(RUN)
+            .zip(self.order.par_chunks(RUN))
+            .for_each(|(out, order)| pack_run(mesh, order, out));
+        let tris: &'p [PackedTriangle] = out;
+        Ok(PackedTriangles::new(tris))
+    }
+}
+
+/// Writes the corners of triangle `order[i]` into `out[i]` (triangles the mesh lacks, which a
+/// tree built from it never names, leave their slot alone).
+fn pack_run(mesh: &ValidMesh<'_>, order: &[u32], out: &mut [PackedTriangle]) {
+    for (slot, &tri) in out.iter_mut().zip(order) {
+        if let Some(t) = mesh.triangle(tri) {
+            *slot = PackedTriangle::new(&t);
+        }
     }
 }

@@ -15,10 +15,14 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::binning::Binning;
-use super::build::{Built, Task, build_subtree, prepare, split_node};
+use super::build::{Built, Task, build_subtree, fill_prims, prepare_with, split_node};
+use super::build_box::BuildBox;
+use super::partition::bounds_of;
 use super::{BuildConfig, BvhNode, PrimRef, node_capacity};
 use crate::error::BuildError;
 use crate::mesh::ValidMesh;
+
+use rayon::prelude::*;
 
 /// Nodes with more triangles than this are split with parallel binning and have their
 /// children built concurrently; smaller subtrees are built sequentially, one per task.
@@ -40,7 +44,15 @@ pub(super) fn build_parallel(
     order: &mut [u32],
     scratch: &mut [PrimRef],
 ) -> Result<Built, BuildError> {
-    let Some((prims, order, root)) = prepare(mesh, config, nodes.len(), order, scratch)? else {
+    let Some((prims, order, root)) = prepare_with(
+        mesh,
+        config,
+        nodes.len(),
+        order,
+        scratch,
+        &mut |prims, order| fill_prims_parallel(mesh, prims, order),
+    )?
+    else {
         return Ok(Built::NOTHING);
     };
     let (piece, depth) = build_piece(config, root, prims, order, 0)?;
@@ -50,6 +62,30 @@ pub(super) fn build_parallel(
         node_count: next,
         depth,
     })
+}
+
+/// [`fill_prims`] and [`bounds_of`] over runs of triangles on the pool: the same boxes, and
+/// the same bounds (a minimum and a maximum do not depend on the order they are taken in).
+fn fill_prims_parallel(
+    mesh: &ValidMesh<'_>,
+    prims: &mut [PrimRef],
+    order: &mut [u32],
+) -> (BuildBox, BuildBox) {
+    /// Triangles per task.
+    const RUN: usize = 16 * 1024;
+    prims
+        .par_chunks_mut(RUN)
+        .zip(order.par_chunks_mut(RUN))
+        .enumerate()
+        .map(|(run, (prims, order))| {
+            // A triangle index fits in u32 (the mesh was validated), so run · RUN does too.
+            fill_prims(mesh, (run * RUN) as u32, prims, order);
+            bounds_of(prims)
+        })
+        .reduce(
+            || (BuildBox::EMPTY, BuildBox::EMPTY),
+            |(b0, c0), (b1, c1)| (b0.union(b1), c0.union(c1)),
+        )
 }
 
 /// Builds the subtree of `task` over `prims` and `order` (all of them; `task.begin` is 0),

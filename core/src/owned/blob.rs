@@ -84,7 +84,7 @@ impl MeshBvh {
             view.decode_mesh(&mut positions, &mut triangles)?;
             (positions, triangles)
         };
-        Self::assemble(positions, triangles, nodes, order, depth, config).map_err(|_| {
+        Self::assemble(positions, triangles, nodes, order, depth, config, false).map_err(|_| {
             // Unreachable: the buffers are sized from the validated blob's own counts.
             BlobError::BufferTooSmall {
                 section: BlobSection::PackedTriangles,

@@ -9,6 +9,8 @@ use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::query::{LeafTriangles, PackedTriangles, Traverse, Visitor};
 use crate::wide::collapse::collapse_vec;
+#[cfg(feature = "parallel")]
+use crate::wide::parallel_collapse::collapse_vec_parallel;
 use crate::wide::{CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode, WideNode8};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
@@ -88,9 +90,9 @@ impl MeshBvh {
         let positions = mesh.positions().to_vec();
         let triangles = mesh.triangles().to_vec();
         let n = triangles.len();
-        let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+        let mut nodes = filled(BvhNode::EMPTY, node_capacity(n), parallel);
         let mut order = vec![0u32; n];
-        let mut scratch = vec![PrimRef::EMPTY; n];
+        let mut scratch = filled(PrimRef::EMPTY, n, parallel);
         let depth = {
             let copy = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
             #[cfg(feature = "parallel")]
@@ -110,7 +112,7 @@ impl MeshBvh {
             depth
         };
         drop(scratch);
-        Self::assemble(positions, triangles, nodes, order, depth, *config)
+        Self::assemble(positions, triangles, nodes, order, depth, *config, parallel)
     }
 
     /// Packs and widens a built (or decoded) tree and keeps it all, trimmed.
@@ -121,21 +123,32 @@ impl MeshBvh {
         order: Vec<u32>,
         depth: u32,
         config: BuildConfig,
+        parallel: bool,
     ) -> Result<Self, BuildError> {
         nodes.shrink_to_fit();
         let n = order.len();
-        let mut packed = vec![PackedTriangle::EMPTY; n];
+        let mut packed = filled(PackedTriangle::EMPTY, n, parallel);
         // One wide node per inner binary node at most: sized by the tree, not by the triangle
         // count (a quarter to a third of `wide_node_capacity(n)` with small leaves), so
         // loading and building zero far less memory.
         let wide = {
             let mesh = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
             let bvh = Bvh::from_validated(&nodes, &order, depth);
-            bvh.pack_triangles(&mesh, &mut packed)?;
-            if Self::EIGHT_WIDE_BY_DEFAULT {
-                WideNodes::Eight(eight_wide_of(&bvh)?)
+            #[cfg(feature = "parallel")]
+            if parallel {
+                bvh.pack_triangles_parallel(&mesh, &mut packed)?;
+                if Self::EIGHT_WIDE_BY_DEFAULT {
+                    WideNodes::Eight(collapse_vec_parallel::<WideNode8, 8>(&bvh)?)
+                } else {
+                    WideNodes::Full(collapse_vec_parallel::<WideNode, 4>(&bvh)?)
+                }
             } else {
-                WideNodes::Full(four_wide_of(&bvh)?)
+                sequential_wide(&bvh, &mesh, &mut packed)?
+            }
+            #[cfg(not(feature = "parallel"))]
+            {
+                let _ = parallel;
+                sequential_wide(&bvh, &mesh, &mut packed)?
             }
         };
         Ok(Self {
@@ -351,6 +364,33 @@ impl LeafTriangles for MeshBvh {
 /// `bvh` collapsed four-wide.
 fn four_wide_of(bvh: &Bvh<'_>) -> Result<Vec<WideNode>, BuildError> {
     collapse_vec::<WideNode, 4>(bvh)
+}
+
+/// `len` copies of `value`, written by the pool's threads when `parallel` (feature `parallel`):
+/// the first touch of a large new buffer's pages is otherwise a serial part of a parallel build.
+fn filled<T: Clone + Send + Sync>(value: T, len: usize, parallel: bool) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::iter::ParallelIterator;
+        return rayon::iter::repeat_n(value, len).collect();
+    }
+    let _ = parallel;
+    vec![value; len]
+}
+
+/// Packs `mesh` for `bvh` into `packed` and collapses `bvh` into the default wide nodes, on
+/// this thread.
+fn sequential_wide(
+    bvh: &Bvh<'_>,
+    mesh: &ValidMesh<'_>,
+    packed: &mut [PackedTriangle],
+) -> Result<WideNodes, BuildError> {
+    bvh.pack_triangles(mesh, packed)?;
+    Ok(if MeshBvh::EIGHT_WIDE_BY_DEFAULT {
+        WideNodes::Eight(eight_wide_of(bvh)?)
+    } else {
+        WideNodes::Full(four_wide_of(bvh)?)
+    })
 }
 
 /// `bvh` collapsed eight-wide.

@@ -30,12 +30,28 @@ pub(crate) trait CollapsedNode: Sized {
     const EMPTY: Self;
     /// Writes lane `lane`'s box, child and triangle count (ignored past the last lane).
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32);
+    /// Adds `by` (wrapping) to the node index of every inner child lane (used, count 0).
+    fn shift_inner(&mut self, by: u32);
 }
 
 impl CollapsedNode for WideNode {
     const EMPTY: Self = WideNode::EMPTY;
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32) {
         WideNode::set_lane(self, lane, aabb, child, count);
+    }
+    fn shift_inner(&mut self, by: u32) {
+        shift_inner_lanes(&mut self.child, &self.count, by);
+    }
+}
+
+/// [`CollapsedNode::shift_inner`] over a node's `child` and `count` lanes: inner children are
+/// the lanes with a count of 0 and a child other than 0 (no inner child is the root, 0, and
+/// unused lanes hold 0).
+pub(super) fn shift_inner_lanes(child: &mut [u32], count: &[u32], by: u32) {
+    for (c, &n) in child.iter_mut().zip(count) {
+        if n == 0 && *c != 0 {
+            *c = c.wrapping_add(by);
+        }
     }
 }
 
@@ -108,11 +124,23 @@ pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
         sink(0, node);
         return Ok(1);
     }
+    collapse_from::<N, W>(tree, 0, sink)
+}
+
+/// The collapse of the subtree under the inner binary node `root` alone: its wide node is
+/// index 0 and its descendants are numbered from 1, as the whole collapse numbers them from
+/// where it reaches that node (so the parallel collapse can lay a subtree collapsed on its
+/// own down in place). Returns how many nodes it made.
+pub(super) fn collapse_from<N: CollapsedNode, const W: usize>(
+    tree: &Bvh<'_>,
+    root: u32,
+    mut sink: impl FnMut(usize, N),
+) -> Result<usize, BuildError> {
     let too_deep = BuildError::TooDeep {
         max_depth: MAX_DEPTH,
         triangles: tree.slot_count(),
     };
-    let mut pending = [(0u32, 0u32); PENDING];
+    let mut pending = [(root, 0u32); PENDING];
     let mut len = 1usize;
     let mut next = 1u32;
     while let Some(at) = len.checked_sub(1) {
@@ -124,12 +152,9 @@ pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
             return Err(too_deep);
         };
         let (children, lanes) = open::<W>(tree, &inner);
-        let mut node = N::EMPTY;
-        for (lane, &(index, child)) in children.iter().enumerate().take(lanes) {
-            if child.is_leaf() {
-                node.set_lane(lane, &child.aabb(), child.first, child.count);
-            } else {
-                node.set_lane(lane, &child.aabb(), next, 0);
+        let node = wide_node::<N>(children.get(..lanes).unwrap_or_default(), next);
+        for &(index, child) in children.iter().take(lanes) {
+            if !child.is_leaf() {
                 let slot = pending.get_mut(len).ok_or(too_deep)?;
                 *slot = (index, next);
                 len += 1;
@@ -141,11 +166,30 @@ pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
     Ok(next as usize)
 }
 
+/// The wide node of `children` (an [`open`]ed node's lanes), its inner children numbered
+/// `first, first + 1, …` in lane order.
+pub(super) fn wide_node<N: CollapsedNode>(children: &[(u32, BvhNode)], first: u32) -> N {
+    let mut node = N::EMPTY;
+    let mut next = first;
+    for (lane, (_, child)) in children.iter().enumerate() {
+        if child.is_leaf() {
+            node.set_lane(lane, &child.aabb(), child.first, child.count);
+        } else {
+            node.set_lane(lane, &child.aabb(), next, 0);
+            next = next.wrapping_add(1);
+        }
+    }
+    node
+}
+
 /// The up to `W` binary descendants of `inner` that become one wide node's children, as
 /// `(binary index, node)`, and how many there are. An opened child's left half takes its
 /// lane and its right half goes last (lane order carries no meaning: queries sort lanes by
 /// distance).
-fn open<const W: usize>(tree: &Bvh<'_>, inner: &BvhNode) -> ([(u32, BvhNode); W], usize) {
+pub(super) fn open<const W: usize>(
+    tree: &Bvh<'_>,
+    inner: &BvhNode,
+) -> ([(u32, BvhNode); W], usize) {
     let mut lanes = [(0u32, BvhNode::EMPTY); W];
     let Some([left, right]) = tree.node_pair(inner.first as usize) else {
         return (lanes, 0);

@@ -20,6 +20,8 @@ mod compact_node;
 mod compact_tree;
 mod node;
 mod node8;
+#[cfg(feature = "parallel")]
+pub(crate) mod parallel_collapse;
 mod sizing;
 mod traverse;
 mod tree;

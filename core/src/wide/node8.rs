@@ -58,6 +58,9 @@ impl CollapsedNode for WideNode8 {
             *n = count;
         }
     }
+    fn shift_inner(&mut self, by: u32) {
+        super::collapse::shift_inner_lanes(&mut self.child, &self.count, by);
+    }
 }
 
 const _: () = assert!(core::mem::size_of::<WideNode8>() == 256);
