@@ -58,7 +58,14 @@ fn main() {
         None => camera,
     };
     let points = workload::closest_points(&loaded.positions, 100_000, 2);
-    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).expect("build");
+    let mut config = BuildConfig::default();
+    if let Some(t) = std::env::var("TRAV").ok().and_then(|t| t.parse().ok()) {
+        config.traversal_cost = t;
+    }
+    if let Some(l) = std::env::var("LEAF").ok().and_then(|l| l.parse().ok()) {
+        config.max_leaf_size = l;
+    }
+    let owned = MeshBvh::build(&mesh, &config).expect("build");
     let bvh = checked_bvh(&owned, &mesh).expect("view");
     let owned4 = owned
         .clone()
@@ -147,6 +154,25 @@ fn main() {
                     .raycast_batch(&camera, &options, &mut keys, &mut out)
                     .expect("batch");
                 out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
+            "any eight-wide packed",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| wide8.with(&packed).raycast_any(r))
+                    .count()
+            }),
+        ),
+        (
+            "camera any eight-wide packed",
+            camera.len(),
+            Box::new(|| {
+                camera
+                    .iter()
+                    .filter(|r| wide8.with(&packed).raycast_any(r))
+                    .count()
             }),
         ),
         (

@@ -109,6 +109,16 @@ impl AxisBins {
     }
 }
 
+/// Triangles a query tests at once in a leaf (the lanes of its triangle test).
+pub(super) const LEAF_BATCH: usize = 4;
+
+/// The SAH's cost unit for `n` triangles: the batches of up to [`LEAF_BATCH`] a query tests
+/// them in, `⌈n/4⌉`.
+#[inline(always)]
+pub(super) const fn batches(n: usize) -> usize {
+    n.div_ceil(LEAF_BATCH)
+}
+
 /// The cheapest split found, with the exact bounds of both sides (their centroid bounds come
 /// from [`partition`]).
 #[derive(Clone, Copy, Debug)]
@@ -117,7 +127,7 @@ pub(super) struct Split {
     axis: usize,
     /// Triangles whose bin is below this go left.
     bin: u32,
-    /// `A_L·N_L + A_R·N_R` (half areas).
+    /// `A_L·B(N_L) + A_R·B(N_R)` (half areas, and [`batches`] of triangles).
     pub cost: f32,
     pub left_count: usize,
     pub left: BuildBox,
@@ -133,7 +143,8 @@ pub(super) struct Binning {
     odd: [AxisBins; 3],
     /// Half area of bins `[i, wanted)`, one lane per axis.
     right_area: [Vec3A; MAX_BINS],
-    /// Triangle count of bins `[i, wanted)` (as `f32`, like the SAH cost), one lane per axis.
+    /// Batches of triangles in bins `[i, wanted)` ([`batches`], as `f32` like the SAH cost),
+    /// one lane per axis.
     right_count: [Vec3A; MAX_BINS],
 }
 
@@ -275,7 +286,10 @@ impl Binning {
 
     /// The cheapest split over the filled bins (see [`Binning::find_split`]).
     fn sweep(&mut self, wanted: usize, binner: Binner) -> Option<Split> {
-        let as_f32 = |c: [u32; 3]| Vec3A::new(c[0] as f32, c[1] as f32, c[2] as f32);
+        let as_f32 = |c: [u32; 3]| {
+            let [x, y, z] = c.map(|n| batches(n as usize) as f32);
+            Vec3A::new(x, y, z)
+        };
         // Right to left: what lies at or above each bin.
         let mut run = [BuildBox::EMPTY; 3];
         let mut count = [0u32; 3];

@@ -3,7 +3,7 @@
 
 use glam::Vec3A;
 
-use super::binning::{Binning, Split, partition};
+use super::binning::{Binning, Split, batches, partition};
 use super::build_box::BuildBox;
 use super::centre::{Side, centre_split};
 use super::lanes::{max_lanes, min_lanes};
@@ -270,7 +270,7 @@ pub(super) fn split_node(
     {
         {
             let split_cost = config.traversal_cost + config.triangle_cost * (split.cost / area);
-            let leaf_cost = config.triangle_cost * count as f32;
+            let leaf_cost = config.triangle_cost * batches(count) as f32;
             if may_be_leaf && split_cost >= leaf_cost {
                 return None;
             }

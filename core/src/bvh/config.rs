@@ -12,8 +12,10 @@ use crate::error::BuildError;
 pub enum SplitStrategy {
     /// Binned surface area heuristic: at each node, triangle centroids are sorted into `bins`
     /// equal slices along each axis and the split with the lowest cost
-    /// `C = traversal_cost + (A_L·N_L + A_R·N_R)/A · triangle_cost` is taken, or a leaf is made
-    /// when `N·triangle_cost` is not more than that (and `N ≤ max_leaf_size`). The best trees.
+    /// `C = traversal_cost + (A_L·B(N_L) + A_R·B(N_R))/A · triangle_cost` is taken, or a leaf
+    /// is made when `B(N)·triangle_cost` is not more than that (and `N ≤ max_leaf_size`).
+    /// `B(n) = ⌈n/4⌉` counts batches of up to four triangles: queries test a leaf's triangles
+    /// four at a time, so a leaf of four costs what a leaf of one does. The best trees.
     #[default]
     Sah,
     /// The middle of the centroid bounds on their longest axis (the lowest axis on a tie):
@@ -55,9 +57,12 @@ pub struct BuildConfig {
     /// fails with [`BuildError::TooDeep`]; near the limit the builder switches to median splits
     /// so any mesh that can fit does fit. Lower it to bound traversal stacks further.
     pub max_depth: u32,
-    /// Relative cost of visiting a node, finite and `≥ 0` (SAH only).
+    /// Relative cost of visiting a node, finite and `≥ 0` (SAH only). At `1` or more (the
+    /// presets), every node of at most `max_leaf_size ≤ 4` triangles is a leaf: splitting it
+    /// costs a visit, and testing it one batch.
     pub traversal_cost: f32,
-    /// Relative cost of one ray–triangle test, finite and `> 0` (SAH only).
+    /// Relative cost of testing one batch of up to four triangles against a query, finite and
+    /// `> 0` (SAH only; see [`SplitStrategy::Sah`]).
     pub triangle_cost: f32,
 }
 
@@ -87,9 +92,8 @@ impl BuildConfig {
         }
     }
 
-    /// The default: binned SAH with 32 bins, leaves of up to 4 triangles, a node visit
-    /// costed at three triangle tests (a visit costs more than one triangle test, so this
-    /// gives fewer nodes than a cost of one, and queries at least as fast).
+    /// The default: binned SAH with 32 bins, leaves of up to 4 triangles (one batch), a node
+    /// visit costed at three batch tests.
     #[must_use]
     pub const fn balanced() -> Self {
         Self {
@@ -102,9 +106,9 @@ impl BuildConfig {
         }
     }
 
-    /// Best trees by the SAH: binned SAH with 64 bins, leaves of up to 4 triangles, splitting
-    /// a little more eagerly than [`BuildConfig::balanced`] (a node visit costed at two
-    /// triangle tests).
+    /// Best trees by the SAH: binned SAH with 64 bins (finer split positions than
+    /// [`BuildConfig::balanced`]), leaves of up to 4 triangles, a node visit costed at two
+    /// batch tests.
     #[must_use]
     pub const fn high_quality() -> Self {
         Self {

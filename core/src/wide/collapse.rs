@@ -31,6 +31,7 @@ pub(crate) trait CollapsedNode: Sized {
     /// Writes lane `lane`'s box, child and triangle count (ignored past the last lane).
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32);
     /// Adds `by` (wrapping) to the node index of every inner child lane (used, count 0).
+    #[cfg(feature = "parallel")]
     fn shift_inner(&mut self, by: u32);
 }
 
@@ -39,6 +40,7 @@ impl CollapsedNode for WideNode {
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32) {
         WideNode::set_lane(self, lane, aabb, child, count);
     }
+    #[cfg(feature = "parallel")]
     fn shift_inner(&mut self, by: u32) {
         shift_inner_lanes(&mut self.child, &self.count, by);
     }
@@ -47,6 +49,7 @@ impl CollapsedNode for WideNode {
 /// [`CollapsedNode::shift_inner`] over a node's `child` and `count` lanes: inner children are
 /// the lanes with a count of 0 and a child other than 0 (no inner child is the root, 0, and
 /// unused lanes hold 0).
+#[cfg(feature = "parallel")]
 pub(super) fn shift_inner_lanes(child: &mut [u32], count: &[u32], by: u32) {
     for (c, &n) in child.iter_mut().zip(count) {
         if n == 0 && *c != 0 {

@@ -58,6 +58,7 @@ impl CollapsedNode for WideNode8 {
             *n = count;
         }
     }
+    #[cfg(feature = "parallel")]
     fn shift_inner(&mut self, by: u32) {
         super::collapse::shift_inner_lanes(&mut self.child, &self.count, by);
     }
