@@ -16,15 +16,7 @@ impl Bvh<'_> {
         mesh: &ValidMesh<'_>,
         out: &'p mut [PackedTriangle],
     ) -> Result<PackedTriangles<'p>, BuildError> {
-        let n = self.order.len();
-        if out.len() < n {
-            return Err(BuildError::BufferTooSmall {
-                buffer: BufferKind::Packed,
-                needed: n,
-                got: out.len(),
-            });
-        }
-        let out = out.get_mut(..n).unwrap_or_default();
+        let out = self.packed_slots(out)?;
         pack_run(mesh, self.order, out);
         let tris: &'p [PackedTriangle] = out;
         Ok(PackedTriangles::new(tris))
@@ -44,20 +36,25 @@ impl Bvh<'_> {
         use rayon::prelude::*;
         /// Slots per task: enough copying for a task's start-up to vanish.
         const RUN: usize = 16 * 1024;
-        let n = self.order.len();
-        if out.len() < n {
-            return Err(BuildError::BufferTooSmall {
-                buffer: BufferKind::Packed,
-                needed: n,
-                got: out.len(),
-            });
-        }
-        let out = out.get_mut(..n).unwrap_or_default();
+        let out = self.packed_slots(out)?;
         out.par_chunks_mut(RUN)
             .zip(self.order.par_chunks(RUN))
             .for_each(|(out, order)| pack_run(mesh, order, out));
         let tris: &'p [PackedTriangle] = out;
         Ok(PackedTriangles::new(tris))
+    }
+
+    /// The first slots of `out`, one per triangle of this tree, or the error of a short `out`.
+    fn packed_slots<'p>(
+        &self,
+        out: &'p mut [PackedTriangle],
+    ) -> Result<&'p mut [PackedTriangle], BuildError> {
+        let (n, got) = (self.order.len(), out.len());
+        out.get_mut(..n).ok_or(BuildError::BufferTooSmall {
+            buffer: BufferKind::Packed,
+            needed: n,
+            got,
+        })
     }
 }
 
