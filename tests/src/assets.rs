@@ -164,3 +164,44 @@ pub fn spot_patch() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     }
     (positions, triangles)
 }
+
+/// A scene of `count` long thin boxes (1.2 × 0.02 × 0.02, twelve triangles each) at random
+/// places and angles in `[-1, 1]³`, from a fixed seed: long triangles that cross each other,
+/// the case spatial splits are for. Deterministic.
+#[must_use]
+pub fn sticks(count: usize) -> LoadedMesh {
+    use glam::Vec3;
+    let mut rng = meshq_workload::SplitMix64::new(0x2545_f491_4f6c_dd1d);
+    let mut next = move || rng.next_f32() * 2.0 - 1.0;
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for _ in 0..count {
+        let centre = Vec3::new(next(), next(), next());
+        let along = Vec3::new(next(), next(), next()).normalize_or(Vec3::X);
+        let side = along.any_orthonormal_vector();
+        let up = along.cross(side);
+        let base = u32::try_from(positions.len()).expect("a small scene");
+        for corner in 0..8u32 {
+            let sign = |bit: u32| if corner & bit == 0 { -1.0 } else { 1.0 };
+            let p =
+                centre + along * (0.6 * sign(4)) + side * (0.01 * sign(2)) + up * (0.01 * sign(1));
+            positions.push(p.to_array());
+        }
+        // The six faces as corner quads (bit 4: along, 2: side, 1: up).
+        for [a, b, c, d] in [
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+        ] {
+            triangles.push([base + a, base + b, base + c]);
+            triangles.push([base + a, base + c, base + d]);
+        }
+    }
+    LoadedMesh {
+        name: format!("sticks-{count}"),
+        positions,
+        triangles,
+    }
+}

@@ -10,7 +10,7 @@ pub mod topology;
 pub mod workload;
 
 pub use assets::{
-    LoadedMesh, MESHES, assets_dir, in_stadium, load_mesh, load_obj, spot_patch, subdivided,
+    LoadedMesh, MESHES, assets_dir, in_stadium, load_mesh, load_obj, spot_patch, sticks, subdivided,
 };
 pub use meshq_workload::SplitMix64;
 pub use topology::Topology;

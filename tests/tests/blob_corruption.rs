@@ -100,18 +100,18 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
 
     let mut future = bytes.clone();
     assert_eq!(future[4], 3, "the version varint follows the magic");
-    future[4] = 4;
-    blob::reseal(&mut future).unwrap_err(); // the header of version 4 is not read at all
+    future[4] = 5;
+    blob::reseal(&mut future).unwrap_err(); // the header of version 5 is not read at all
     let err = BlobView::parse(&future).unwrap_err();
     assert_eq!(
         err,
         BlobError::UnsupportedVersion {
-            found: 4,
+            found: 5,
             oldest: 1,
-            newest: 3
+            newest: 4
         }
     );
-    assert!(err.to_string().contains("versions 1 to 3"), "{err}");
+    assert!(err.to_string().contains("versions 1 to 4"), "{err}");
     let mut past = bytes.clone();
     past[4] = 0;
     assert!(matches!(

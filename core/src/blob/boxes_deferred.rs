@@ -9,7 +9,7 @@
 
 use glam::Vec3;
 
-use super::order_check::check_order_is_permutation;
+use super::split_check::check_slots;
 use super::view::{RawStructure, check_mesh, same_bounds, sections};
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobView};
 use crate::bvh::TreeArrays;
@@ -46,7 +46,7 @@ impl<'a> BoxesUnchecked<'a> {
         }
         let in_range = InRange::of(&mesh);
         tree.depth = check(&tree, Some(&in_range), CheckLevel::Topology, Extent::Exact)?.depth;
-        check_order_is_permutation(tree.order)?;
+        check_slots(&tree, header.triangle_count as usize)?;
         same_bounds(
             &tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb()),
             &header.bounds,

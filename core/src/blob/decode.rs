@@ -6,6 +6,7 @@ use crate::bvh::{Bvh, BvhNode, TreeArrays};
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::{MeshRef, ValidMesh};
+use crate::query::SplitRefs;
 use crate::query::{LeafTriangles, PackedTriangles};
 
 /// The BVH of a BVH view; other kinds have no order to decode.
@@ -23,11 +24,13 @@ fn too_small(section: BlobSection, needed: usize, got: usize) -> BlobError {
     }
 }
 
-impl BlobView<'_> {
+impl<'a> BlobView<'a> {
     /// Copies the tree into `nodes` (at least [`BlobHeader::node_count`](super::BlobHeader)
-    /// entries) and `order` (at least the triangle count) and returns the in-memory [`Bvh`],
-    /// which answers exactly as the view does, usually faster. No re-validation: the view was
-    /// validated at load and the copy is exact.
+    /// entries) and `order` (at least [`BlobHeader::reference_count`](super::BlobHeader)
+    /// entries: the triangle count, more with spatial splits) and returns the in-memory
+    /// [`Bvh`], which answers exactly as the view does, usually faster; a tree with spatial
+    /// splits reads its split references from the blob's bytes. No re-validation: the view
+    /// was validated at load and the copy is exact.
     ///
     /// # Errors
     /// [`BlobError::BufferTooSmall`] (nothing written); [`BlobError::UnsupportedStructure`]
@@ -36,7 +39,10 @@ impl BlobView<'_> {
         &self,
         nodes: &'n mut [BvhNode],
         order: &'n mut [u32],
-    ) -> Result<Bvh<'n>, BlobError> {
+    ) -> Result<Bvh<'n>, BlobError>
+    where
+        'a: 'n,
+    {
         let tree = bvh_tree(self)?;
         let (n, m) = (tree.nodes.len(), tree.order.len());
         if nodes.len() < n {
@@ -57,7 +63,8 @@ impl BlobView<'_> {
             nodes.get(..n).unwrap_or_default(),
             order.get(..m).unwrap_or_default(),
             tree.depth,
-        ))
+        )
+        .with_split_refs(SplitRefs::from_records(tree.splits)))
     }
 
     /// Copies an indexed mesh (stored, or the caller's) into `positions` and `triangles` and

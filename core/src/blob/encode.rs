@@ -5,8 +5,8 @@ use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
 
 use super::checksum::{digest, mesh_checksum};
 use super::format::{
-    CHECKSUM_BYTES, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
-    NodeRecord, TriangleRecord,
+    BASE_VERSION, CHECKSUM_BYTES, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC,
+    MeshLayout, NodeRecord, TriangleRecord,
 };
 use super::source::BlobSource;
 use super::structure_config::WireConfig;
@@ -15,6 +15,7 @@ use crate::cells::TwoWordNode;
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
+use crate::query::SplitRefs;
 
 /// What to put in a blob besides the tree.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -172,9 +173,17 @@ fn header(
 ) -> Result<Header, BlobError> {
     let count = |n: usize| u32::try_from(n).map_err(|_| BlobError::TooLarge);
     let bounds = source.bounds();
+    let split_refs = match spatial_table(source, mesh) {
+        Some(table) => Some(count(table.len())?),
+        None => None,
+    };
     Ok(Header {
         magic: MAGIC,
-        version: FORMAT_VERSION,
+        version: if split_refs.is_some() {
+            FORMAT_VERSION
+        } else {
+            BASE_VERSION
+        },
         counts: HeaderCounts {
             kind: source.kind().tag(),
             mesh: layout.tag(),
@@ -188,6 +197,7 @@ fn header(
         config: WireConfig {
             config: source.config(),
             references: count(source.order().len())?,
+            split_refs,
         },
         seal: HeaderSeal {
             mesh_checksum: mesh_checksum(mesh),
@@ -197,8 +207,20 @@ fn header(
     })
 }
 
-/// Everything after the header: a BVH's nodes and order, or a cell structure's words and
-/// references; then the mesh section.
+/// The split references of a BVH with spatial splits (more slots than triangles, or split
+/// references), which makes its blob a version 4 one; `None` for every other structure.
+fn spatial_table<'s>(source: &'s BlobSource<'_>, mesh: &ValidMesh<'_>) -> Option<SplitRefs<'s>> {
+    match source {
+        BlobSource::Bvh(bvh, _) => {
+            let table = bvh.split_refs();
+            (!table.is_empty() || bvh.order().len() != mesh.triangle_count()).then_some(table)
+        }
+        _ => None,
+    }
+}
+
+/// Everything after the header: a BVH's nodes and order (and split references, version 4), or
+/// a cell structure's words and references; then the mesh section.
 struct Payload<'q, 'a> {
     source: &'q BlobSource<'q>,
     mesh: &'q ValidMesh<'a>,
@@ -208,7 +230,8 @@ struct Payload<'q, 'a> {
 impl Serialize for Payload<'_, '_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeTuple;
-        let mut t = s.serialize_tuple(3)?;
+        let spatial = spatial_table(self.source, self.mesh).is_some();
+        let mut t = s.serialize_tuple(3 + usize::from(spatial))?;
         match self.source {
             BlobSource::Bvh(bvh, _) => {
                 t.serialize_element(&Seq(bvh.nodes().iter().map(NodeRecord::from)))?;
@@ -221,6 +244,9 @@ impl Serialize for Payload<'_, '_> {
         }
         let order = self.source.order();
         t.serialize_element(&Seq(order.iter().map(|&i| FixedU32(i))))?;
+        if let Some(table) = spatial_table(self.source, self.mesh) {
+            t.serialize_element(&Seq(table.iter().map(|r| r.to_le_bytes())))?;
+        }
         t.serialize_element(&MeshSection {
             order,
             mesh: self.mesh,

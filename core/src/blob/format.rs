@@ -13,10 +13,16 @@ pub use crate::structure_kind::StructureKind;
 /// The first four bytes of every blob.
 pub const MAGIC: [u8; 4] = *b"MSHQ";
 
-/// The format version this build writes. Version 3 added the k-d tree, octree and grid kinds
-/// (a BVH blob is laid out as in version 2); version 2 added the split strategy to the config;
-/// version 1 and 2 blobs (always a BVH) are still read.
-pub const FORMAT_VERSION: u16 = 3;
+/// The newest format version this build writes and reads. Version 4 added BVHs built with
+/// spatial splits (more leaf slots than triangles, and the table of split references); version
+/// 3 the k-d tree, octree and grid kinds (a BVH blob is laid out as in version 2); version 2
+/// the split strategy to the config. Blobs are written at the oldest version that can hold
+/// them: version 4 only for trees with spatial splits, version 3 otherwise, byte for byte as
+/// before version 4 existed. Version 1 and 2 blobs (always a BVH) are still read.
+pub const FORMAT_VERSION: u16 = 4;
+
+/// The version of blobs that need nothing newer: every blob but a BVH with spatial splits.
+pub(crate) const BASE_VERSION: u16 = 3;
 
 /// The oldest format version this build reads.
 pub const OLDEST_READABLE_VERSION: u16 = 1;
@@ -115,6 +121,14 @@ pub(crate) struct ConfigCosts {
     pub max_depth: u32,
     pub traversal_cost: f32,
     pub triangle_cost: f32,
+}
+
+/// A BVH's leaf slots and split references, after its config (version 4 only: trees with
+/// spatial splits).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct SpatialWire {
+    pub references: u32,
+    pub split_refs: u32,
 }
 
 /// A k-d tree's config and reference count, after the header counts (version 3).

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use super::format::{
     ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
-    OLDEST_READABLE_VERSION, StructureKind,
+    OLDEST_READABLE_VERSION, SpatialWire, StructureKind,
 };
 #[cfg(feature = "blob-cells")]
 use super::format::{GridWire, KdWire, OctreeWire};
@@ -30,10 +30,13 @@ pub struct BlobHeader {
     pub vertex_count: u32,
     /// Nodes in the tree; a grid's cell count.
     pub node_count: u32,
-    /// Entries of the leaf-slot → triangle array: the triangle count for a BVH (its order),
-    /// the reference count of a k-d tree, octree or grid (a triangle in several cells counts
-    /// once per cell).
+    /// Entries of the leaf-slot → triangle array: a BVH's leaf slots (its order: the triangle
+    /// count, more with spatial splits), the reference count of a k-d tree, octree or grid (a
+    /// triangle in several cells counts once per cell).
     pub reference_count: u32,
+    /// Entries of a BVH's split references ([`SplitRefs`](crate::query::SplitRefs)): 0 unless
+    /// it was built with spatial splits (version 4).
+    pub split_ref_count: u32,
     /// A BVH's levels (0 when empty, 1 for a lone leaf); the depth of the deepest leaf of a
     /// k-d tree or octree (the root is depth 0); 0 for a grid.
     pub depth: u32,
@@ -99,6 +102,7 @@ impl BlobHeader {
             vertex_count: f.vertex_count,
             node_count: f.node_count,
             reference_count: wire.references,
+            split_ref_count: wire.split_refs.unwrap_or(0),
             depth: f.depth,
             bounds: Aabb::new(
                 Vec3::from_array(f.bounds_min),
@@ -130,9 +134,16 @@ fn read_config(
                 r.value(BlobSection::Header)?
             };
             let costs: ConfigCosts = r.value(BlobSection::Header)?;
+            // Version 4 (only written for trees with spatial splits) counts slots and splits.
+            let spatial = if version >= 4 {
+                Some(r.value::<SpatialWire>(BlobSection::Header)?)
+            } else {
+                None
+            };
             WireConfig {
                 config: bvh_config(split, costs),
-                references: triangle_count,
+                references: spatial.map_or(triangle_count, |s| s.references),
+                split_refs: spatial.map(|s| s.split_refs),
             }
         }
         #[cfg(feature = "blob-cells")]

@@ -76,6 +76,7 @@ mod mesh;
 mod order_check;
 mod reader;
 mod source;
+mod split_check;
 mod structure;
 mod structure_config;
 mod tree;

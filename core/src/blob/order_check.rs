@@ -6,7 +6,6 @@
 //! them, except with a chance of about 2⁻⁶⁴ for damage not crafted against the hashes. Decoding into
 //! owned buffers (`MeshBvh::from_blob`) also runs the exact check.
 
-use super::format::ORDER_BYTES;
 use crate::error::BlobError;
 
 /// MurmurHash3's 32-bit finaliser of `x` with `seed` mixed in first: cheap on 32-bit cores
@@ -21,16 +20,36 @@ const fn mix(x: u32, seed: u32) -> u32 {
 /// Two seeds: two independent 32-bit hashes, a 64-bit fingerprint.
 const SEEDS: [u32; 2] = [0x9E37_79B9, 0x7F4A_7C15];
 
-/// Refuses an `order` (little-endian `u32` entries, each already checked to be below its
-/// length) that is not a permutation of `0..order.len()`.
-pub(super) fn check_order_is_permutation(order: &[[u8; ORDER_BYTES]]) -> Result<(), BlobError> {
-    // The sums wrap; for a permutation the entries' and the indices' sums are equal.
+/// Refuses an order (entries each below `n`) that does not name every triangle of `0..n` once
+/// plus, for each group of `k` split references of one triangle (`split_tris`: the triangle
+/// of every entry of a split reference table, grouped), that triangle `k − 1` times more: the
+/// multiset equality, checked by fingerprint. With no split references, the order must be a
+/// permutation.
+pub(super) fn check_order_covers(
+    order: impl Iterator<Item = u32>,
+    n: usize,
+    split_tris: impl Iterator<Item = u32>,
+) -> Result<(), BlobError> {
+    // The sums wrap; they cancel exactly when the multisets agree.
     let [mut a, mut b] = [0u32; 2];
     let [sa, sb] = SEEDS;
-    for (i, entry) in (0u32..).zip(order) {
-        let tri = u32::from_le_bytes(*entry);
-        a = a.wrapping_add(mix(tri, sa)).wrapping_sub(mix(i, sa));
-        b = b.wrapping_add(mix(tri, sb)).wrapping_sub(mix(i, sb));
+    let mut add = |tri: u32, times: u32| {
+        a = a.wrapping_add(mix(tri, sa).wrapping_mul(times));
+        b = b.wrapping_add(mix(tri, sb).wrapping_mul(times));
+    };
+    for tri in order {
+        add(tri, 1);
+    }
+    for i in (0u32..).take(n) {
+        add(i, u32::MAX); // minus once
+    }
+    // Every entry after the first of its group stands for one more copy of its triangle.
+    let mut group: Option<u32> = None;
+    for tri in split_tris {
+        if group == Some(tri) {
+            add(tri, u32::MAX);
+        }
+        group = Some(tri);
     }
     if a == 0 && b == 0 {
         Ok(())
@@ -41,18 +60,18 @@ pub(super) fn check_order_is_permutation(order: &[[u8; ORDER_BYTES]]) -> Result<
 
 #[cfg(test)]
 mod tests {
-    use super::check_order_is_permutation;
+    use super::check_order_covers;
     use crate::error::BlobError;
 
-    fn entries(order: &[u32]) -> Vec<[u8; 4]> {
-        order.iter().map(|t| t.to_le_bytes()).collect()
+    fn permutation(order: &[u32]) -> Result<(), BlobError> {
+        check_order_covers(order.iter().copied(), order.len(), core::iter::empty())
     }
 
     #[test]
     fn permutations_pass_and_repeats_do_not() {
         let mut order: Vec<u32> = (0..1000).rev().collect();
         order.swap(3, 700);
-        assert_eq!(check_order_is_permutation(&entries(&order)), Ok(()));
+        assert_eq!(permutation(&order), Ok(()));
         for (slot, to) in [(589, 588), (0, 999), (999, 0), (10, 11)] {
             let mut bad = order.clone();
             bad[slot] = to;
@@ -60,7 +79,7 @@ mod tests {
                 continue;
             }
             assert_eq!(
-                check_order_is_permutation(&entries(&bad)),
+                permutation(&bad),
                 Err(BlobError::OrderNotPermutation),
                 "slot {slot} → {to}"
             );
@@ -69,6 +88,23 @@ mod tests {
         let mut bad = order.clone();
         let (a, b) = (bad[5], bad[6]);
         (bad[5], bad[6]) = (a + 1, b - 1);
-        assert!(check_order_is_permutation(&entries(&bad)).is_err());
+        assert!(permutation(&bad).is_err());
+    }
+
+    #[test]
+    fn split_triangles_may_repeat_as_often_as_their_entries_say() {
+        // Triangles 0..6; triangle 2 held three times, triangle 4 twice.
+        let order = [5, 2, 0, 4, 2, 1, 3, 4, 2];
+        let entries = [2, 2, 2, 4, 4];
+        let covers = |order: &[u32], entries: &[u32]| {
+            check_order_covers(order.iter().copied(), 6, entries.iter().copied())
+        };
+        assert_eq!(covers(&order, &entries), Ok(()));
+        // One repeat too few or too many in the table, or a triangle repeated without entries.
+        assert!(covers(&order, &[2, 2, 4, 4]).is_err());
+        assert!(covers(&order, &[2, 2, 2, 2, 4, 4]).is_err());
+        assert!(covers(&[5, 2, 0, 4, 2, 1, 3, 4, 1], &entries).is_err());
+        assert!(covers(&[5, 2, 0, 4, 2, 1, 1, 4, 2], &entries).is_err());
+        assert!(covers(&order[..8], &entries).is_err());
     }
 }

@@ -94,7 +94,10 @@ impl BlobSource<'_> {
     pub(super) fn check(&self, mesh: &ValidMesh<'_>) -> Result<(), BlobError> {
         let n = mesh.triangle_count();
         match self {
-            Self::Bvh(b, _) => b.check(mesh)?,
+            Self::Bvh(b, _) => {
+                b.check(mesh)?;
+                super::split_check::check_slots(*b, n)?;
+            }
             Self::KdTree(t, _) => {
                 KdTree::from_parts(*t.bounds(), t.nodes(), t.items(), n)?;
             }

@@ -77,6 +77,15 @@ impl Traverse for BlobStructure<'_> {
             Self::Grid(g) => walk_apart(g, visitor),
         }
     }
+
+    #[inline]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        match self {
+            Self::Bvh(t) => crate::bvh::TreeArrays::split_refs(t),
+            #[cfg(feature = "blob-cells")]
+            _ => crate::query::SplitRefs::NONE,
+        }
+    }
 }
 
 #[cfg(feature = "blob-cells")]

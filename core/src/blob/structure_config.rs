@@ -2,7 +2,7 @@
 
 use serde::ser::{Serialize, Serializer};
 
-use super::format::{ConfigCosts, GridWire, KdWire, OctreeWire};
+use super::format::{ConfigCosts, GridWire, KdWire, OctreeWire, SpatialWire};
 use crate::bvh::{BuildConfig, SplitStrategy};
 use crate::grid::GridConfig;
 use crate::kdtree::KdConfig;
@@ -61,17 +61,28 @@ impl StructureConfig {
 }
 
 /// The config part of a header on the wire, with the reference count of a cell structure:
-/// fields back to back, no tag (the header's kind says which).
+/// fields back to back, no tag (the header's kind says which). A BVH with spatial splits
+/// (`split_refs` is `Some`, version 4) adds its slot count and split references.
 pub(super) struct WireConfig {
     pub(super) config: StructureConfig,
     pub(super) references: u32,
+    pub(super) split_refs: Option<u32>,
 }
 
 impl Serialize for WireConfig {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let references = self.references;
         match self.config {
-            StructureConfig::Bvh(c) => (c.split, ConfigCosts::of(&c)).serialize(s),
+            StructureConfig::Bvh(c) => match self.split_refs {
+                None => (c.split, ConfigCosts::of(&c)).serialize(s),
+                Some(split_refs) => {
+                    let spatial = SpatialWire {
+                        references,
+                        split_refs,
+                    };
+                    (c.split, ConfigCosts::of(&c), spatial).serialize(s)
+                }
+            },
             StructureConfig::KdTree(c) => KdWire {
                 max_depth: c.max_depth,
                 leaf_size: c.leaf_size,
@@ -109,6 +120,7 @@ impl From<KdWire> for WireConfig {
                 empty_bonus: w.empty_bonus,
             }),
             references: w.references,
+            split_refs: None,
         }
     }
 }
@@ -121,6 +133,7 @@ impl From<OctreeWire> for WireConfig {
                 max_items: w.max_items,
             }),
             references: w.references,
+            split_refs: None,
         }
     }
 }
@@ -136,6 +149,7 @@ impl From<GridWire> for WireConfig {
                 resolution: w.resolution,
             },
             references: w.references,
+            split_refs: None,
         }
     }
 }

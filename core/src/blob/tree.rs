@@ -3,6 +3,7 @@
 use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::query::LeafTriangleIds;
+use crate::query::{SPLIT_REF_BYTES, SplitRefs};
 
 /// A BVH whose nodes and order are read straight out of a validated blob's bytes (in RAM or in
 /// flash): no copy, 32 bytes decoded per node visited.
@@ -14,6 +15,8 @@ pub struct BlobTree<'a> {
     pub(super) nodes: &'a [[u8; NODE_BYTES]],
     pub(super) order: &'a [[u8; ORDER_BYTES]],
     pub(super) depth: u32,
+    /// Split reference records (a tree with spatial splits; empty otherwise).
+    pub(super) splits: &'a [[u8; SPLIT_REF_BYTES]],
 }
 
 impl BlobTree<'_> {
@@ -52,5 +55,10 @@ impl TreeArrays for BlobTree<'_> {
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
         let ids = self.order.get(first..first.checked_add(count)?)?;
         Some(LeafTriangleIds::from_le_bytes(first, ids))
+    }
+
+    #[inline(always)]
+    fn split_refs(&self) -> SplitRefs<'_> {
+        SplitRefs::from_records(self.splits)
     }
 }

@@ -8,8 +8,8 @@ use super::format::{
     MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES,
 };
 use super::mesh::{check_indexed, check_packed};
-use super::order_check::check_order_is_permutation;
 use super::reader::Reader;
+use super::split_check::check_slots;
 #[cfg(feature = "blob-cells")]
 use super::structure_config::StructureConfig;
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
@@ -27,6 +27,7 @@ use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 #[cfg(feature = "blob-cells")]
 use crate::octree::Octree;
+use crate::query::SPLIT_REF_BYTES;
 use crate::query::{LeafTriangles, Traverse, Visitor};
 use crate::structure_kind::StructureKind;
 
@@ -138,6 +139,11 @@ impl Traverse for BlobView<'_> {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         self.structure.traverse(visitor);
     }
+
+    #[inline(always)]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        self.structure.split_refs()
+    }
 }
 
 impl LeafTriangles for BlobView<'_> {
@@ -194,8 +200,14 @@ fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
     let structure = if header.kind == StructureKind::Bvh {
         RawStructure::Bvh(BlobTree {
             nodes: r.records::<NODE_BYTES>(header.node_count, BlobSection::Nodes)?,
-            order: r.records::<ORDER_BYTES>(header.triangle_count, BlobSection::Order)?,
+            order: r.records::<ORDER_BYTES>(header.reference_count, BlobSection::Order)?,
             depth: 0,
+            // Version 4 (a tree with spatial splits) has its split references next.
+            splits: if header.version >= 4 {
+                r.records::<SPLIT_REF_BYTES>(header.split_ref_count, BlobSection::SplitRefs)?
+            } else {
+                &[]
+            },
         })
     } else {
         cell_arrays(&header, &mut r)?
@@ -298,7 +310,7 @@ fn check_structure<'a>(
                 return Err(bad_config);
             }
             tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
-            check_order_is_permutation(tree.order)?;
+            check_slots(&tree, header.triangle_count as usize)?;
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
             (BlobStructure::Bvh(tree), tree.depth)

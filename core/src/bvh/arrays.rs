@@ -3,6 +3,7 @@
 
 use super::BvhNode;
 use crate::query::LeafTriangleIds;
+use crate::query::SplitRefs;
 
 /// The node and order arrays of a binary BVH, read by index.
 ///
@@ -14,7 +15,7 @@ pub trait TreeArrays {
     /// Number of nodes (0 for an empty tree).
     fn node_count(&self) -> usize;
 
-    /// Number of order slots: one per triangle.
+    /// Number of order slots: one per triangle (more with spatial splits).
     fn slot_count(&self) -> usize;
 
     /// Node `index` (the root is 0), or `None` past the end.
@@ -27,4 +28,10 @@ pub trait TreeArrays {
     /// The mesh triangle indices in order slots `first..first + count`, or `None` unless all of
     /// them exist.
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>>;
+
+    /// The references of triangles the tree holds more than once (a tree built with spatial
+    /// splits), for walks that report each triangle once; empty (the default) otherwise.
+    fn split_refs(&self) -> SplitRefs<'_> {
+        SplitRefs::NONE
+    }
 }

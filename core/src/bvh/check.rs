@@ -97,7 +97,12 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                     let t = mesh
                         .corners(slot, tri)
                         .ok_or(StructureError::TriangleOutOfRange { node: index, tri })?;
-                    if level == CheckLevel::Full && !holds(&bounds, &t) {
+                    // A reference of a split triangle holds only its part of it.
+                    let whole = level == CheckLevel::Full
+                        && !holds(&bounds, &t)
+                        && tree.split_refs().range_of(tri).is_empty();
+                    let part = level == CheckLevel::Full && !bounds.overlaps(&t.bounds());
+                    if whole || part {
                         return Err(StructureError::TriangleOutsideLeaf { node: index, tri });
                     }
                 }

@@ -24,6 +24,7 @@ impl<'a> Bvh<'a> {
             nodes: &*nodes,
             order,
             depth: 0,
+            splits: crate::query::SplitRefs::NONE,
         };
         let shape = check(&unchecked, Some(mesh), CheckLevel::Topology, Extent::Prefix)?;
         let (nodes, order) = (
@@ -58,6 +59,7 @@ impl<'a> Bvh<'a> {
             nodes,
             order,
             depth,
+            splits: crate::query::SplitRefs::NONE,
         })
     }
 }

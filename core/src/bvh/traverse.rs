@@ -14,6 +14,11 @@ impl<A: TreeArrays + ?Sized> Traverse for A {
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         traverse(self, visitor);
     }
+
+    #[inline(always)]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        TreeArrays::split_refs(self)
+    }
 }
 
 /// A validated tree is at most [`MAX_DEPTH`] deep, so the stack never fills; on anything else

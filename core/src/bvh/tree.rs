@@ -1,10 +1,12 @@
 use super::build::build_into;
 use super::check::{CheckLevel, Extent, check};
-use super::{BuildConfig, BvhNode, PrimRef, TreeArrays};
+use super::spatial_build::build_spatial_into;
+use super::{BuildConfig, BvhNode, PrimRef, SpatialSplits, TreeArrays};
 use crate::error::{BuildError, StructureError};
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 use crate::query::LeafTriangleIds;
+use crate::query::{SplitRef, SplitRefs};
 
 /// A built BVH: a read-only view over the caller's node and order buffers.
 ///
@@ -18,6 +20,7 @@ pub struct Bvh<'a> {
     pub(super) nodes: &'a [BvhNode],
     pub(super) order: &'a [u32],
     pub(super) depth: u32,
+    pub(super) splits: SplitRefs<'a>,
 }
 
 impl<'a> Bvh<'a> {
@@ -53,7 +56,42 @@ impl<'a> Bvh<'a> {
             nodes: nodes.get(..built.node_count).unwrap_or_default(),
             order: order.get(..mesh.triangle_count()).unwrap_or_default(),
             depth: built.depth,
+            splits: SplitRefs::NONE,
         }
+    }
+
+    /// Builds a BVH of `mesh` with spatial splits ([`SpatialSplits`]): the binned-SAH build of
+    /// [`Bvh::build`], where a node whose best split by centroid leaves overlapping children
+    /// may instead cut space at a plane and hold the triangles crossing it on both sides. A
+    /// triangle may then appear in several leaves (and slots of `order`); `split_refs`
+    /// receives one [`SplitRef`] per such reference, which queries that report triangles use
+    /// to report each once ([`Bvh::split_refs`]). Answers are those of [`Bvh::build`]'s tree.
+    ///
+    /// Buffers: `nodes` at least [`node_capacity`](super::node_capacity) of
+    /// [`SpatialSplits::reference_capacity`], `order` and `scratch` that capacity, and
+    /// `split_refs` [`SpatialSplits::split_ref_capacity`] (contents of `scratch` afterwards
+    /// unspecified). The view keeps the used prefixes. Deterministic, like [`Bvh::build`];
+    /// meshes of 2³¹ triangles or more are refused.
+    ///
+    /// # Errors
+    /// As [`Bvh::build`] (with [`BufferKind::SplitRefs`](crate::error::BufferKind::SplitRefs)
+    /// for `split_refs`), and [`BuildError::InvalidConfig`] for a bad `spatial`.
+    pub fn build_spatial(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        spatial: &SpatialSplits,
+        nodes: &'a mut [BvhNode],
+        order: &'a mut [u32],
+        scratch: &mut [PrimRef],
+        split_refs: &'a mut [SplitRef],
+    ) -> Result<Self, BuildError> {
+        let built = build_spatial_into(mesh, config, spatial, nodes, order, scratch, split_refs)?;
+        Ok(Self {
+            nodes: nodes.get(..built.node_count).unwrap_or_default(),
+            order: order.get(..built.slots).unwrap_or_default(),
+            depth: built.depth,
+            splits: SplitRefs::new(split_refs.get(..built.split_refs).unwrap_or_default()),
+        })
     }
 
     /// [`Bvh::build`] on rayon's thread pool (feature `parallel`): the same nodes and order,
@@ -158,7 +196,25 @@ impl<'a> Bvh<'a> {
             nodes,
             order,
             depth,
+            splits: SplitRefs::NONE,
         }
+    }
+
+    /// This view with `splits` as its split references (see [`Bvh::split_refs`]): for a tree
+    /// built by [`Bvh::build_spatial`] and kept elsewhere since, with the table it wrote.
+    /// A table that does not belong to the tree makes reporting queries report a triangle
+    /// twice or not at all; never a panic.
+    #[must_use]
+    pub const fn with_split_refs(mut self, splits: SplitRefs<'a>) -> Self {
+        self.splits = splits;
+        self
+    }
+
+    /// The references of triangles this tree holds more than once (built with spatial
+    /// splits), sorted by triangle then slot; empty otherwise.
+    #[must_use]
+    pub const fn split_refs(&self) -> SplitRefs<'a> {
+        self.splits
     }
 
     /// Validates the structure against `mesh`: children after parents and in range, depth
@@ -243,5 +299,10 @@ impl TreeArrays for Bvh<'_> {
     #[inline(always)]
     fn leaf_triangles(&self, first: usize, count: usize) -> Option<LeafTriangleIds<'_>> {
         LeafTriangleIds::in_order(self.order, first, count)
+    }
+
+    #[inline(always)]
+    fn split_refs(&self) -> SplitRefs<'_> {
+        self.splits
     }
 }

@@ -7,6 +7,7 @@ use super::tree_pairs::for_each_leaf_pair;
 use super::{Affine, CrossingSegment, Found, TrianglePair};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
+use crate::math::Aabb;
 use crate::query::{LeafTriangles, With};
 
 /// Calls `on` with every pair of triangles, one of `a` and one of `b` (placed by `b_to_a`),
@@ -26,6 +27,8 @@ where
 {
     let (tree_a, tris_a) = (a.structure(), a.triangles());
     let (tree_b, tris_b) = (b.structure(), b.triangles());
+    let (splits_a, splits_b) = (tree_a.split_refs(), tree_b.split_refs());
+    let placed = |bx: &Aabb| b_to_a.map_or(*bx, |m| m.apply_box(bx));
     for_each_leaf_pair(
         tree_a,
         tree_b,
@@ -53,7 +56,20 @@ where
                     };
                     *tested += 1;
                     let how = intersect_triangle_triangle(&ta, &tb);
-                    if how != TriangleTriangle::Disjoint {
+                    // Of the leaf pairs holding references of both triangles (spatial
+                    // splits), one reports: the first that this walk pairs and whose `a`
+                    // leaf meets `b`'s triangle as placed.
+                    let reports = || {
+                        splits_a.reports_pair(
+                            (slot_a, id_a, leaf_a.aabb()),
+                            &splits_b,
+                            (slot_b, id_b, leaf_b.aabb()),
+                            |box_a, box_b| {
+                                box_a.overlaps(&placed(box_b)) && bounds_b.overlaps(box_a)
+                            },
+                        )
+                    };
+                    if how != TriangleTriangle::Disjoint && reports() {
                         on(TrianglePair { a: id_a, b: id_b }, how)?;
                     }
                 }

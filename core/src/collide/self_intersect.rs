@@ -8,6 +8,7 @@ use super::tree_pairs::for_each_self_leaf_pair;
 use super::{Found, TrianglePair};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
+use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 
 /// Calls `on` with every pair of `mesh`'s triangles (`a < b`) that meets beyond what the two
@@ -20,6 +21,7 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
     mut on: impl FnMut(TrianglePair) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
     let triangles = mesh.triangles();
+    let splits = tree.split_refs();
     for_each_self_leaf_pair(tree, |one: BvhNode, other: BvhNode| {
         let same_leaf = one.first == other.first;
         let (Some(ids_one), Some(ids_other)) = (
@@ -28,13 +30,17 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
         ) else {
             return ControlFlow::Continue(());
         };
-        for (k, (_, i)) in ids_one.enumerate() {
+        for (k, (slot_i, i)) in ids_one.enumerate() {
             let (Some(ti), Some(&ci)) = (mesh.triangle(i), triangles.get(i as usize)) else {
                 continue;
             };
             // Within one leaf, each unordered pair once: the entries after this one.
             let partners = ids_other.clone().skip(if same_leaf { k + 1 } else { 0 });
-            for (_, j) in partners {
+            for (slot_j, j) in partners {
+                // Two references of one triangle (spatial splits) are not a pair.
+                if i == j {
+                    continue;
+                }
                 let (Some(tj), Some(&cj)) = (mesh.triangle(j), triangles.get(j as usize)) else {
                     continue;
                 };
@@ -52,7 +58,14 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
                 } else {
                     how != TriangleTriangle::Disjoint
                 };
-                if meets {
+                // Of the leaf pairs holding references of both (spatial splits), the first
+                // whose boxes meet reports, lower triangle's reference first.
+                let (lower, higher) = {
+                    let ri = (slot_i, i, one.aabb());
+                    let rj = (slot_j, j, other.aabb());
+                    if i < j { (ri, rj) } else { (rj, ri) }
+                };
+                if meets && splits.reports_pair(lower, &splits, higher, Aabb::overlaps) {
                     on(TrianglePair {
                         a: i.min(j),
                         b: i.max(j),

@@ -25,6 +25,8 @@ pub enum BlobSection {
     MeshLayout,
     /// A k-d tree's, octree's or grid's references (leaf slot → input triangle index).
     References,
+    /// The split references of a BVH built with spatial splits (version 4).
+    SplitRefs,
 }
 
 impl fmt::Display for BlobSection {
@@ -38,6 +40,7 @@ impl fmt::Display for BlobSection {
             Self::PackedTriangles => "packed triangles",
             Self::MeshLayout => "mesh layout",
             Self::References => "references",
+            Self::SplitRefs => "split references",
         })
     }
 }
@@ -125,8 +128,18 @@ pub enum BlobError {
     },
     /// The BVH's triangle order is not a permutation of the triangles (some triangle is
     /// named twice and another never), found without memory by comparing a fingerprint of the
-    /// order with that of `0..n`; the blob's checksum was recomputed over the damage.
+    /// order with that of `0..n`; the blob's checksum was recomputed over the damage. For a
+    /// tree with spatial splits: the order does not name every triangle once plus each split
+    /// triangle as often again as its split references say.
     OrderNotPermutation,
+    /// An entry of a BVH's split references (version 4) is out of order, out of range, names
+    /// another triangle than its slot holds, or has another box than its leaf; or the table
+    /// misses a slot of a triangle the order names twice. The payload is the entry's index
+    /// (the entry count when an entry is missing).
+    BadSplitRef {
+        /// Index of the entry.
+        entry: u32,
+    },
     /// The stored mesh fails validation; the payload names the vertex or triangle.
     InvalidMesh(MeshError),
     /// The blob was baked without its mesh. Fix: use
@@ -202,6 +215,9 @@ impl fmt::Display for BlobError {
             Self::OrderNotPermutation => f.write_str(
                 "the triangle order names some triangle twice and another never (not a permutation)",
             ),
+            Self::BadSplitRef { entry } => {
+                write!(f, "split reference {entry} disagrees with the tree")
+            }
             Self::InvalidMesh(e) => write!(f, "invalid stored mesh: {e}"),
             Self::MeshNotIncluded => f.write_str(
                 "the blob was baked without its mesh; supply the mesh it was baked from",

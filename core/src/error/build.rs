@@ -22,6 +22,9 @@ pub enum BufferKind {
     /// The references of a k-d tree, octree or grid (one per triangle and cell it touches;
     /// size it with the structure's `measure`).
     References,
+    /// The split references of a build with spatial splits (size it with
+    /// [`SpatialSplits::split_ref_capacity`](crate::bvh::SpatialSplits::split_ref_capacity)).
+    SplitRefs,
 }
 
 /// Why a structure could not be built.
@@ -71,6 +74,7 @@ impl fmt::Display for BuildError {
                     BufferKind::WideNodes => "wide node",
                     BufferKind::CellOffsets => "cell offset",
                     BufferKind::References => "reference",
+                    BufferKind::SplitRefs => "split reference",
                 };
                 write!(f, "{which} buffer too small: needed {needed}, got {got}")
             }

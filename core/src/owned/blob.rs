@@ -5,11 +5,12 @@ use alloc::vec::Vec;
 
 use super::MeshBvh;
 use crate::blob::{self, BlobView, BoxesUnchecked, EncodeOptions, MeshLayout};
-use crate::bvh::BvhNode;
 use crate::bvh::check::{CheckLevel, Extent, check};
+use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
+use crate::query::{SplitRef, SplitRefs};
 
 impl MeshBvh {
     /// Validates a self-contained blob with every check of [`BlobView::parse`] and decodes it
@@ -66,16 +67,21 @@ impl MeshBvh {
             kind: header.kind.tag(),
         })?;
         let (n, v) = (header.triangle_count as usize, header.vertex_count as usize);
+        let slots = header.reference_count as usize;
         let mut nodes = vec![BvhNode::EMPTY; header.node_count as usize];
-        let mut order = vec![0u32; n];
+        let mut order = vec![0u32; slots];
         let depth = view.decode_tree(&mut nodes, &mut order)?.depth();
-        check_permutation(&order)?;
+        let splits: Vec<SplitRef> = view
+            .tree()
+            .map(|t| t.split_refs().iter().collect())
+            .unwrap_or_default();
+        check_references(&order, n, &SplitRefs::new(&splits))?;
         let (positions, triangles) = if header.mesh == MeshLayout::Packed {
             // Three vertices of its own per triangle: their indices must fit in `u32`.
             if header.triangle_count > u32::MAX / 3 {
                 return Err(BlobError::TooLarge);
             }
-            let mut packed = vec![PackedTriangle::EMPTY; n];
+            let mut packed = vec![PackedTriangle::EMPTY; slots];
             view.decode_packed(&mut packed)?;
             unshared_mesh(n, &order, &packed)
         } else {
@@ -84,14 +90,17 @@ impl MeshBvh {
             view.decode_mesh(&mut positions, &mut triangles)?;
             (positions, triangles)
         };
-        Self::assemble(positions, triangles, nodes, order, depth, config, false).map_err(|_| {
+        let mut loaded = Self::assemble(positions, triangles, nodes, order, depth, config, false)
+            .map_err(|_| {
             // Unreachable: the buffers are sized from the validated blob's own counts.
             BlobError::BufferTooSmall {
                 section: BlobSection::PackedTriangles,
-                needed: n,
+                needed: slots,
                 got: 0,
             }
-        })
+        })?;
+        loaded.splits = splits;
+        Ok(loaded)
     }
 
     /// The exact size of [`MeshBvh::to_blob`]'s output for `layout`.
@@ -125,13 +134,26 @@ impl MeshBvh {
     }
 }
 
-/// Refuses an order that names a triangle twice (the validated view bounds every entry by the
-/// triangle count, so with as many slots as triangles each one then appears exactly once).
-fn check_permutation(order: &[u32]) -> Result<(), BlobError> {
-    let mut seen = vec![false; order.len()];
+/// Refuses an order (entries below `n`, as the validated view ensures) that names a triangle
+/// more often than once plus its split references beyond the first say, exactly: counted,
+/// where the view compared fingerprints. With as many slots as the triangles and entries
+/// allow, every triangle is then held exactly that often.
+fn check_references(order: &[u32], n: usize, splits: &SplitRefs<'_>) -> Result<(), BlobError> {
+    // Slots: one per triangle, and one more per entry after the first of its triangle's.
+    let groups = splits
+        .iter()
+        .zip(splits.iter().skip(1))
+        .filter(|(a, b)| a.tri != b.tri)
+        .count()
+        + usize::from(!splits.is_empty());
+    if order.len() != n + splits.len() - groups {
+        return Err(BlobError::OrderNotPermutation);
+    }
+    let mut seen = vec![0u32; n];
     for (slot, &tri) in (0u32..).zip(order) {
+        let allowed = splits.range_of(tri).len().max(1);
         match seen.get_mut(tri as usize) {
-            Some(s) if !*s => *s = true,
+            Some(s) if (*s as usize) < allowed => *s += 1,
             _ => return Err(BlobError::RepeatedTriangle { slot, tri }),
         }
     }

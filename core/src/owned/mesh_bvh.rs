@@ -3,11 +3,11 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
+use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, SpatialSplits, node_capacity};
 use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
-use crate::query::{LeafTriangles, PackedTriangles, Traverse, Visitor};
+use crate::query::{LeafTriangles, PackedTriangles, SplitRef, SplitRefs, Traverse, Visitor};
 use crate::wide::collapse::collapse_vec;
 #[cfg(feature = "parallel")]
 use crate::wide::parallel_collapse::collapse_vec_parallel;
@@ -39,6 +39,8 @@ pub struct MeshBvh {
     pub(super) packed: Vec<PackedTriangle>,
     pub(super) wide: WideNodes,
     pub(super) config: BuildConfig,
+    /// The references of triangles held in several leaves (spatial splits), by triangle.
+    pub(super) splits: Vec<SplitRef>,
 }
 
 /// The nodes queries walk: the four-wide tree, the same quantized, or the eight-wide tree.
@@ -78,6 +80,62 @@ impl MeshBvh {
     #[cfg(feature = "parallel")]
     pub fn build_parallel(mesh: &ValidMesh<'_>, config: &BuildConfig) -> Result<Self, BuildError> {
         Self::build_with(mesh, config, true)
+    }
+
+    /// [`MeshBvh::build`] with spatial splits ([`Bvh::build_spatial`]): a node whose best split
+    /// by centroid leaves overlapping children may cut space instead and hold the triangles
+    /// crossing the plane on both sides, each boxed by its part. For meshes of long thin
+    /// triangles that cross (architecture, CAD, foliage) rays then visit fewer nodes; on
+    /// meshes of even triangles the tree is much the one [`MeshBvh::build`] makes. Every query
+    /// answers exactly as on [`MeshBvh::build`]'s tree: rays and closest points the same
+    /// triangle and bits, overlaps and triangle pairs each triangle once
+    /// ([`SplitRefs`]). [`MeshQuery::shapecast`](crate::query::MeshQuery::shapecast) may offer
+    /// a split triangle once per leaf holding it; `shapecast_once` offers each once. Built on
+    /// one thread. Deterministic.
+    ///
+    /// # Errors
+    /// As [`MeshBvh::build`], and [`BuildError::InvalidConfig`] for a bad `spatial`.
+    pub fn build_spatial(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        spatial: &SpatialSplits,
+    ) -> Result<Self, BuildError> {
+        spatial.check()?;
+        let positions = mesh.positions().to_vec();
+        let triangles = mesh.triangles().to_vec();
+        let n = triangles.len();
+        let room = spatial.reference_capacity(n);
+        let mut nodes = vec![BvhNode::EMPTY; node_capacity(room)];
+        let mut order = vec![0u32; room];
+        let mut scratch = vec![PrimRef::EMPTY; room];
+        let mut splits = vec![SplitRef::EMPTY; spatial.split_ref_capacity(n)];
+        let (used, slots, split_count, depth) = {
+            let copy = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
+            let bvh = Bvh::build_spatial(
+                &copy,
+                config,
+                spatial,
+                &mut nodes,
+                &mut order,
+                &mut scratch,
+                &mut splits,
+            )?;
+            (
+                bvh.nodes().len(),
+                bvh.order().len(),
+                bvh.split_refs().len(),
+                bvh.depth(),
+            )
+        };
+        drop(scratch);
+        nodes.truncate(used);
+        order.truncate(slots);
+        order.shrink_to_fit();
+        splits.truncate(split_count);
+        splits.shrink_to_fit();
+        let mut built = Self::assemble(positions, triangles, nodes, order, depth, *config, false)?;
+        built.splits = splits;
+        Ok(built)
     }
 
     /// Copies the mesh, builds its tree (on the thread pool when `parallel`), packs and
@@ -160,6 +218,7 @@ impl MeshBvh {
             packed,
             wide,
             config,
+            splits: Vec::new(),
         })
     }
 
@@ -257,7 +316,21 @@ impl MeshBvh {
     /// The binary BVH over [`MeshBvh::mesh`].
     #[must_use]
     pub fn bvh(&self) -> Bvh<'_> {
-        Bvh::from_validated(&self.nodes, &self.order, self.depth)
+        Bvh::from_validated(&self.nodes, &self.order, self.depth).with_split_refs(self.split_refs())
+    }
+
+    /// The references of triangles the tree holds in more than one leaf (built by
+    /// [`MeshBvh::build_spatial`]), sorted by triangle then slot; empty otherwise.
+    #[must_use]
+    pub fn split_refs(&self) -> SplitRefs<'_> {
+        SplitRefs::new(&self.splits)
+    }
+
+    /// Number of leaf references: [`MeshBvh::triangle_count`], and more when spatial splits
+    /// hold some triangles in several leaves.
+    #[must_use]
+    pub fn reference_count(&self) -> usize {
+        self.order.len()
     }
 
     /// The same tree four-wide, when queries walk it (by default where
@@ -266,7 +339,9 @@ impl MeshBvh {
     #[must_use]
     pub fn wide(&self) -> Option<WideBvh<'_>> {
         match &self.wide {
-            WideNodes::Full(nodes) => Some(WideBvh::from_validated(nodes, &self.order)),
+            WideNodes::Full(nodes) => {
+                Some(WideBvh::from_validated(nodes, &self.order).with_split_refs(self.split_refs()))
+            }
             WideNodes::Compact(_) | WideNodes::Eight(_) => None,
         }
     }
@@ -277,7 +352,9 @@ impl MeshBvh {
     #[must_use]
     pub fn eight_wide(&self) -> Option<WideBvh8<'_>> {
         match &self.wide {
-            WideNodes::Eight(nodes) => Some(WideBvh8::from_validated(nodes, &self.order)),
+            WideNodes::Eight(nodes) => Some(
+                WideBvh8::from_validated(nodes, &self.order).with_split_refs(self.split_refs()),
+            ),
             WideNodes::Full(_) | WideNodes::Compact(_) => None,
         }
     }
@@ -288,7 +365,10 @@ impl MeshBvh {
     pub fn compact(&self) -> Option<CompactWideBvh<'_>> {
         match &self.wide {
             WideNodes::Full(_) | WideNodes::Eight(_) => None,
-            WideNodes::Compact(nodes) => Some(CompactWideBvh::from_validated(nodes, &self.order)),
+            WideNodes::Compact(nodes) => Some(
+                CompactWideBvh::from_validated(nodes, &self.order)
+                    .with_split_refs(self.split_refs()),
+            ),
         }
     }
 
@@ -346,6 +426,11 @@ impl Traverse for MeshBvh {
     fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
         self.traverse(visitor);
         true
+    }
+
+    #[inline(always)]
+    fn split_refs(&self) -> SplitRefs<'_> {
+        SplitRefs::new(&self.splits)
     }
 }
 

@@ -88,6 +88,14 @@ impl Traverse for MeshIndex {
         }
     }
 
+    #[inline]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        match self {
+            Self::Bvh(s) => s.split_refs(),
+            Self::KdTree(_) | Self::Octree(_) | Self::Grid(_) => crate::query::SplitRefs::NONE,
+        }
+    }
+
     /// The BVH walks packets; the cell structures march one ray at a time.
     #[inline]
     fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {

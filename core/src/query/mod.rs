@@ -94,6 +94,7 @@ mod ray_all;
 mod ray_packet;
 mod raycast_batch;
 mod shapecast;
+mod split_refs;
 mod traverse;
 
 pub use cell::Cell;
@@ -104,4 +105,5 @@ pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
 pub use ray_all::RayHits;
 pub use shapecast::{BoundsOverlap, ShapeCast};
+pub use split_refs::{SPLIT_REF_BYTES, SplitRef, SplitRefs};
 pub use traverse::{Traverse, Visitor, With};

@@ -5,7 +5,7 @@ use core::ops::ControlFlow;
 use glam::Vec3;
 
 use super::box_lanes::MARGIN;
-use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
+use super::{LeafTriangleIds, LeafTriangles, SplitRefs, Traverse, Visitor};
 use crate::geom::{clip_triangle_aabb, closest_point_regions, overlap_triangle_aabb};
 use crate::math::{Aabb, Triangle, dot};
 
@@ -29,8 +29,11 @@ impl OverlapCount {
 /// Visits leaves whose box passes `enter_box`, reporting triangles that pass `hits`. In a leaf
 /// with a [`Cell`](super::Cell) a triangle is reported only when the cell owns its `witness`: a
 /// point of the triangle and the query, the same in every cell, so exactly one cell reports it.
+/// A triangle a tree holds in several leaves by spatial splits is reported by the reference
+/// [`SplitRefs::reports`] picks.
 pub(super) struct Overlap<'m, S: ?Sized, B, T, W, F> {
     pub(super) source: &'m S,
+    pub(super) splits: SplitRefs<'m>,
     pub(super) enter_box: B,
     pub(super) hits: T,
     pub(super) witness: W,
@@ -58,6 +61,7 @@ where
             if !t.is_degenerate()
                 && (self.hits)(&t)
                 && cell.is_none_or(|c| c.owns((self.witness)(&t)))
+                && self.splits.reports(slot, tri, &self.enter_box)
             {
                 (self.report)(tri)?;
             }
@@ -104,6 +108,7 @@ where
     let query = *aabb;
     let mut v = Overlap {
         source,
+        splits: tree.split_refs(),
         enter_box: |b: &Aabb| b.overlaps(&query),
         hits: |t: &Triangle| overlap_triangle_aabb(t, &query),
         witness: |t: &Triangle| box_witness(t, &query),
@@ -126,6 +131,7 @@ where
     let r2 = radius * radius;
     let mut v = Overlap {
         source,
+        splits: tree.split_refs(),
         // With slack, so the cell owning a triangle's witness is entered despite rounding.
         enter_box: |b: &Aabb| b.distance_squared_to_point(center) * (1.0 - MARGIN) <= r2,
         hits: |t: &Triangle| {

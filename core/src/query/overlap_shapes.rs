@@ -23,6 +23,7 @@ where
     // owning a point of it inside those bounds: one cell the walk enters, and only one.
     let mut v = Overlap {
         source,
+        splits: tree.split_refs(),
         enter_box: |b: &Aabb| b.overlaps(&bounds),
         hits: |t: &Triangle| intersect_triangle_triangle(t, query) != TriangleTriangle::Disjoint,
         witness: |t: &Triangle| box_witness(t, &bounds),
@@ -45,6 +46,7 @@ where
     }
     let mut v = Overlap {
         source,
+        splits: tree.split_refs(),
         enter_box: |b: &Aabb| b.overlaps(&bounds),
         hits: |t: &Triangle| overlap_triangle_obb(t, obb),
         witness: |t: &Triangle| box_witness(t, &bounds),

@@ -133,6 +133,14 @@ pub trait Traverse {
     /// Runs `visitor` over the structure.
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V);
 
+    /// The references of triangles the structure holds in more than one leaf by spatial
+    /// splits ([`Bvh::build_spatial`](crate::bvh::Bvh::build_spatial)), which the built-in
+    /// reporting queries read to report each triangle once; empty (the default) for
+    /// structures that hold each triangle once or own cells ([`Cell`](super::Cell)).
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        crate::query::SplitRefs::NONE
+    }
+
     /// Runs `visitor` as [`traverse`](Self::traverse) does, if this structure walks packets
     /// well — visitors for several rays at once, which judge four boxes together through
     /// [`Visitor::enter_lanes`] and have no single [`ray`](Visitor::ray) — and returns `true`;
@@ -202,6 +210,11 @@ impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         self.structure.traverse(visitor);
+    }
+
+    #[inline(always)]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        self.structure.split_refs()
     }
 
     #[inline(always)]

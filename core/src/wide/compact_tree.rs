@@ -19,6 +19,7 @@ use crate::query::{Traverse, Visitor};
 pub struct CompactWideBvh<'a> {
     nodes: &'a [CompactNode],
     order: &'a [u32],
+    pub(super) splits: crate::query::SplitRefs<'a>,
 }
 
 impl<'a> CompactWideBvh<'a> {
@@ -49,6 +50,7 @@ impl<'a> CompactWideBvh<'a> {
         Ok(Self {
             nodes: nodes.get(..needed).unwrap_or_default(),
             order: wide.order(),
+            splits: wide.split_refs(),
         })
     }
 
@@ -56,13 +58,32 @@ impl<'a> CompactWideBvh<'a> {
     /// kept unchanged since (the owned type's buffers).
     #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     pub(crate) const fn from_validated(nodes: &'a [CompactNode], order: &'a [u32]) -> Self {
-        Self { nodes, order }
+        Self {
+            nodes,
+            order,
+            splits: crate::query::SplitRefs::NONE,
+        }
     }
 
     /// The nodes, root first.
     #[must_use]
     pub const fn nodes(&self) -> &'a [CompactNode] {
         self.nodes
+    }
+
+    /// This view with `splits` as its split references (those of the binary tree it was
+    /// collapsed from, [`Bvh::split_refs`](crate::bvh::Bvh::split_refs)), for reporting
+    /// queries to report each triangle once.
+    #[must_use]
+    pub const fn with_split_refs(mut self, splits: crate::query::SplitRefs<'a>) -> Self {
+        self.splits = splits;
+        self
+    }
+
+    /// The split references queries read (see [`Self::with_split_refs`]).
+    #[must_use]
+    pub const fn split_refs(&self) -> crate::query::SplitRefs<'a> {
+        self.splits
     }
 
     /// Mesh triangle indices in leaf order (the binary tree's).
@@ -98,6 +119,11 @@ impl Traverse for CompactWideBvh<'_> {
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         traverse_wide::<_, _, STACK4>(self.nodes, self.order, visitor);
+    }
+
+    #[inline(always)]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        self.splits
     }
 
     /// Yes: boxes are judged four at a time.

@@ -129,6 +129,11 @@ impl Traverse for WideBvh<'_> {
         traverse_wide::<_, _, STACK4>(self.nodes, self.order, visitor);
     }
 
+    #[inline(always)]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        self.splits
+    }
+
     /// Yes: boxes are judged four at a time.
     #[inline(always)]
     fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
@@ -144,6 +149,11 @@ impl Traverse for WideBvh8<'_> {
     #[inline(always)]
     fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
         traverse_wide::<_, _, STACK8>(self.nodes, self.order, visitor);
+    }
+
+    #[inline(always)]
+    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
+        self.splits
     }
 
     /// Yes: boxes are judged eight at a time.

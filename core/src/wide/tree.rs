@@ -19,6 +19,7 @@ use crate::math::Aabb;
 pub struct WideBvh<'a> {
     pub(super) nodes: &'a [WideNode],
     pub(super) order: &'a [u32],
+    pub(super) splits: crate::query::SplitRefs<'a>,
 }
 
 impl<'a> WideBvh<'a> {
@@ -42,6 +43,7 @@ impl<'a> WideBvh<'a> {
         Ok(WideBvh {
             nodes: nodes.get(..needed).unwrap_or_default(),
             order: bvh.order(),
+            splits: bvh.split_refs(),
         })
     }
 
@@ -71,6 +73,7 @@ impl<'a> WideBvh<'a> {
         Ok(WideBvh {
             nodes: nodes.get(..count).unwrap_or_default(),
             order: bvh.order(),
+            splits: bvh.split_refs(),
         })
     }
 }
@@ -80,13 +83,32 @@ impl<'a> WideBvh<'a> {
     /// unchanged since (the owned type's buffers).
     #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     pub(crate) const fn from_validated(nodes: &'a [WideNode], order: &'a [u32]) -> Self {
-        Self { nodes, order }
+        Self {
+            nodes,
+            order,
+            splits: crate::query::SplitRefs::NONE,
+        }
     }
 
     /// The nodes, root first.
     #[must_use]
     pub const fn nodes(&self) -> &'a [WideNode] {
         self.nodes
+    }
+
+    /// This view with `splits` as its split references (those of the binary tree it was
+    /// collapsed from, [`Bvh::split_refs`](crate::bvh::Bvh::split_refs)), for reporting
+    /// queries to report each triangle once.
+    #[must_use]
+    pub const fn with_split_refs(mut self, splits: crate::query::SplitRefs<'a>) -> Self {
+        self.splits = splits;
+        self
+    }
+
+    /// The split references queries read (see [`Self::with_split_refs`]).
+    #[must_use]
+    pub const fn split_refs(&self) -> crate::query::SplitRefs<'a> {
+        self.splits
     }
 
     /// Mesh triangle indices in leaf order (the binary tree's).
