@@ -36,6 +36,9 @@ pub struct BakeArgs {
     /// Build quality (BVH only; the others use their default configs).
     #[arg(long, value_enum, default_value_t = Quality::Balanced)]
     pub quality: Quality,
+    #[arg(long, value_name = "EXTRA", num_args = 0..=1, default_missing_value = "1",
+          help = crate::quality::SPATIAL_SPLITS_HELP)]
+    pub spatial_splits: Option<f32>,
     /// Leave the mesh out (the reader supplies it; it is matched by checksum).
     #[arg(long, conflicts_with = "packed")]
     pub no_mesh: bool,
@@ -59,7 +62,8 @@ struct Summary {
     triangles: usize,
     vertices: usize,
     nodes: usize,
-    /// Triangle references in leaves (a BVH references each triangle once).
+    /// Triangle references in leaves (a BVH references each triangle once, a split triangle
+    /// of a BVH with spatial splits once per leaf holding a part of it).
     references: usize,
     /// BVH: levels; k-d tree and octree: the deepest leaf (root 0); grid: 0.
     depth: u32,
@@ -78,13 +82,19 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         .validate()
         .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
     let config = args.quality.config();
+    let spatial = crate::quality::spatial_splits(args.spatial_splits)?;
+    if spatial.is_some() && args.structure.kind() != StructureKind::Bvh {
+        anyhow::bail!("--spatial-splits applies to a BVH");
+    }
     let threads = Threads::new(args.threads)?;
     let n = mesh.triangle_count();
     let kind = args.structure.kind();
     spinner.set_message(format!("building a {kind} over {n} triangles"));
     let start = Instant::now();
     let scene = match kind {
-        StructureKind::Bvh => MeshIndex::Bvh(threads.build_bvh(&mesh, &config)?),
+        StructureKind::Bvh => {
+            MeshIndex::Bvh(threads.build_bvh(&mesh, &config, spatial.as_ref())?)
+        }
         other => MeshIndex::build(&mesh, other)?,
     };
     let build_seconds = start.elapsed().as_secs_f64();
@@ -107,7 +117,7 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     spinner.finish_and_clear();
 
     let (nodes, references, depth) = match (&scene, scene.cell_stats()) {
-        (MeshIndex::Bvh(s), _) => (s.bvh().nodes().len(), n, s.bvh().depth()),
+        (MeshIndex::Bvh(s), _) => (s.bvh().nodes().len(), s.reference_count(), s.bvh().depth()),
         (_, Some(c)) => (
             c.nodes,
             c.references,

@@ -46,6 +46,10 @@ struct Report {
     vertices: u32,
     nodes: u32,
     leaves: usize,
+    /// Leaf slots: the triangle count, more with spatial splits.
+    references: u32,
+    /// Entries of the split references (spatial splits; 0 otherwise).
+    split_refs: u32,
     depth: u32,
     bounds_min: [f32; 3],
     bounds_max: [f32; 3],
@@ -75,6 +79,7 @@ struct Bytes {
     header: usize,
     nodes: usize,
     order: usize,
+    split_refs: usize,
     mesh: usize,
     per_triangle: f64,
 }
@@ -106,7 +111,8 @@ pub fn run(args: &InspectArgs) -> Result<()> {
 fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usize) -> Report {
     let stats = TreeStats::of(tree, config);
     let nodes = 32 * h.node_count as usize;
-    let order = 4 * h.triangle_count as usize;
+    let order = 4 * h.reference_count as usize;
+    let split_refs = meshq::query::SPLIT_REF_BYTES * h.split_ref_count as usize;
     let leaf_sizes = (0..LEAF_HISTOGRAM_LEN)
         .filter_map(|k| {
             let n = *stats.leaf_sizes.get(k)?;
@@ -121,6 +127,8 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
         vertices: h.vertex_count,
         nodes: h.node_count,
         leaves: stats.leaves,
+        references: h.reference_count,
+        split_refs: h.split_ref_count,
         depth: h.depth,
         bounds_min: h.bounds.min.to_array(),
         bounds_max: h.bounds.max.to_array(),
@@ -139,8 +147,9 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
             header: h.header_len,
             nodes,
             order,
+            split_refs,
             // Everything else, with the varint lengths of the sequences.
-            mesh: total.saturating_sub(h.header_len + nodes + order),
+            mesh: total.saturating_sub(h.header_len + nodes + order + split_refs),
             per_triangle: if h.triangle_count > 0 {
                 total as f64 / f64::from(h.triangle_count)
             } else {
@@ -167,6 +176,13 @@ fn print(r: &Report) -> Result<()> {
         r.leaves,
         r.depth
     );
+    if r.split_refs > 0 {
+        say!(
+            "  spatial splits: {} references ({} split references)",
+            r.references,
+            r.split_refs
+        );
+    }
     say!("  bounds {:?} .. {:?}", r.bounds_min, r.bounds_max);
     let c = &r.config;
     if c.split == "centre" {
@@ -194,12 +210,17 @@ fn print(r: &Report) -> Result<()> {
     say!("  leaf sizes (triangles: leaves) {}", sizes.join(", "));
     let b = &r.bytes;
     say!(
-        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, mesh {}",
+        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, {}mesh {}",
         b.total,
         b.per_triangle,
         b.header,
         b.nodes,
         b.order,
+        if b.split_refs > 0 {
+            format!("split references {}, ", b.split_refs)
+        } else {
+            String::new()
+        },
         b.mesh
     );
     say!("  checksums: blob {}, mesh {}", r.checksum, r.mesh_checksum);

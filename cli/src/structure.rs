@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use meshq::blob::{BlobHeader, MAGIC};
-use meshq::bvh::BuildConfig;
+use meshq::bvh::{BuildConfig, SpatialSplits};
 use meshq::error::BlobError;
 use meshq::mesh::MeshRef;
 use meshq::owned::{MeshBvh, MeshIndex, StructureKind};
@@ -83,6 +83,9 @@ pub struct QueryInput {
     /// Build quality when INPUT is a mesh (BVH only).
     #[arg(long, value_enum, default_value_t = Quality::Balanced)]
     pub quality: Quality,
+    #[arg(long, value_name = "EXTRA", num_args = 0..=1, default_missing_value = "1",
+          help = crate::quality::SPATIAL_SPLITS_HELP)]
+    pub spatial_splits: Option<f32>,
     /// The structure to build when INPUT is a mesh (default bvh). For a blob, the structure
     /// it must hold.
     #[arg(long, value_enum)]
@@ -151,13 +154,18 @@ pub fn with_structure<R>(
                 input.display()
             );
         }
+        let kind = args.structure.unwrap_or_default().kind();
+        let spatial = crate::quality::spatial_splits(args.spatial_splits)?;
+        if spatial.is_some() && kind != StructureKind::Bvh {
+            bail!("--spatial-splits applies to a BVH");
+        }
         drop(bytes);
         let data = read_mesh(input)?;
         with_built(
             &data,
             input,
-            args.structure.unwrap_or_default().kind(),
-            config,
+            kind,
+            (config, spatial.as_ref()),
             &Threads::new(args.threads)?,
             query,
         )
@@ -210,7 +218,7 @@ pub fn with_built<R>(
     data: &MeshData,
     path: &Path,
     kind: StructureKind,
-    config: &BuildConfig,
+    (config, spatial): (&BuildConfig, Option<&SpatialSplits>),
     threads: &Threads,
     query: impl FnOnce(Prepared) -> Result<R>,
 ) -> Result<R> {
@@ -219,7 +227,7 @@ pub fn with_built<R>(
         .with_context(|| format!("{}: invalid mesh", path.display()))?;
     let start = Instant::now();
     let scene = match kind {
-        StructureKind::Bvh => MeshIndex::Bvh(threads.build_bvh(&mesh, config)?),
+        StructureKind::Bvh => MeshIndex::Bvh(threads.build_bvh(&mesh, config, spatial)?),
         other => MeshIndex::build(&mesh, other)?,
     };
     let prepare_seconds = start.elapsed().as_secs_f64();

@@ -5,7 +5,7 @@
 
 use anyhow::{Context, Result};
 use meshq::MeshBvh;
-use meshq::bvh::BuildConfig;
+use meshq::bvh::{BuildConfig, SpatialSplits};
 use meshq::error::BuildError;
 use meshq::mesh::ValidMesh;
 
@@ -47,10 +47,13 @@ impl Threads {
         &self,
         mesh: &ValidMesh<'_>,
         config: &BuildConfig,
+        spatial: Option<&SpatialSplits>,
     ) -> Result<MeshBvh, BuildError> {
-        match self.pool() {
-            None => MeshBvh::build(mesh, config),
-            Some(pool) => pool.install(|| MeshBvh::build_parallel(mesh, config)),
+        match (spatial, self.pool()) {
+            // The spatial-split builder runs on one thread.
+            (Some(spatial), _) => MeshBvh::build_spatial(mesh, config, spatial),
+            (None, None) => MeshBvh::build(mesh, config),
+            (None, Some(pool)) => pool.install(|| MeshBvh::build_parallel(mesh, config)),
         }
     }
 }

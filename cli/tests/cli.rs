@@ -1022,3 +1022,89 @@ fn threads_give_the_same_records() {
         );
     }
 }
+
+#[test]
+fn spatial_splits_bake_a_version_4_blob_that_answers_as_brute_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("fandisk");
+    let mesh = loaded.valid();
+    let obj = asset("fandisk.obj");
+    let blob = dir.path().join("fandisk.meshq");
+    let bake: serde_json::Value = serde_json::from_str(&ok(&[
+        &"bake",
+        &obj,
+        &"-o",
+        &blob,
+        &"--spatial-splits",
+        &"--json",
+    ]))
+    .unwrap();
+    let references = bake["references"].as_u64().unwrap();
+    assert!(references > mesh.triangle_count() as u64, "{bake}");
+    let inspect: serde_json::Value =
+        serde_json::from_str(&ok(&[&"inspect", &blob, &"--json"])).unwrap();
+    assert_eq!(inspect["format_version"], 4);
+    assert_eq!(inspect["references"], references);
+    assert!(inspect["split_refs"].as_u64().unwrap() > 0);
+    assert!(ok(&[&"inspect", &blob]).contains("spatial splits"));
+
+    let rays = workload::random_rays(&loaded.positions, 3_000, 78);
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let brute = BruteForce::new(&mesh);
+    let expected: Vec<(u32, u32)> = rays
+        .iter()
+        .map(|r| {
+            brute
+                .raycast(r, &RayOptions::default())
+                .map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
+                    (h.t.to_bits(), h.tri)
+                })
+        })
+        .collect();
+    let hits = dir.path().join("hits.bin");
+    for args in [
+        vec![&blob as &dyn AsRef<std::ffi::OsStr>],
+        vec![&obj, &"--spatial-splits", &"0.5"],
+    ] {
+        let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"raycast"];
+        all.extend(args);
+        all.extend([
+            &"--rays" as &dyn AsRef<std::ffi::OsStr>,
+            &ray_file,
+            &"--out",
+            &hits,
+        ]);
+        ok(&all);
+        let got: Vec<(u32, u32)> = read_records(&hits)
+            .into_iter()
+            .map(|(t, i)| (t.to_bits(), i))
+            .collect();
+        assert_eq!(got, expected);
+    }
+    // Out of range, or for another structure: one line, non-zero status.
+    for bad in [
+        vec![
+            &"bake" as &dyn AsRef<std::ffi::OsStr>,
+            &obj,
+            &"-o",
+            &blob,
+            &"--spatial-splits",
+            &"5",
+        ],
+        vec![
+            &"bake",
+            &obj,
+            &"-o",
+            &blob,
+            &"--spatial-splits",
+            &"--structure",
+            &"grid",
+        ],
+    ] {
+        let out = meshq(&bad);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--spatial-splits"), "{err}");
+    }
+}

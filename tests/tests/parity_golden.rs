@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use glam::Vec3;
 use meshq::MeshBvh;
 use meshq::blob::{BlobView, MeshLayout};
-use meshq::bvh::{BuildConfig, Bvh};
+use meshq::bvh::{BuildConfig, Bvh, SpatialSplits};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq::mesh::ValidMesh;
 use meshq::owned::{MeshIndex, StructureKind};
@@ -216,7 +216,8 @@ const BLOBS_HEADER: &str = "\
 # meshq blob golden file: length and header checksum (CRC-32 over every other byte) of each
 # bundled mesh's blob with the indexed mesh layout, built with the default config (binned SAH)
 # and, as `<mesh>-fast`, with the fast preset (centre splits); `<mesh>-kdtree`, `-octree` and
-# `-grid` hold the other structures with their default configs. Builds are deterministic, so
+# `-grid` hold the other structures with their default configs; `<mesh>-spatial` the BVH with
+# spatial splits (default config and room, format version 4). Builds are deterministic, so
 # the WebAssembly build must produce these exact bytes too.
 ";
 
@@ -243,6 +244,23 @@ fn default_and_fast_blobs_match_the_golden_blob_file() {
             )
             .unwrap();
         }
+    }
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let spatial = SpatialSplits::DEFAULT;
+        let scene = MeshBvh::build_spatial(&mesh, &BuildConfig::default(), &spatial).unwrap();
+        let blob = scene.to_blob(MeshLayout::Indexed).unwrap();
+        let again = MeshBvh::build_spatial(&mesh, &BuildConfig::default(), &spatial).unwrap();
+        assert_eq!(again.to_blob(MeshLayout::Indexed).unwrap(), blob, "{name}");
+        let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+        writeln!(
+            file,
+            "{name}-spatial bytes={} checksum={:#010x}",
+            blob.len(),
+            header.checksum
+        )
+        .unwrap();
     }
     for kind in &StructureKind::ALL[1..] {
         for name in MESHES {

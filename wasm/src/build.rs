@@ -1,13 +1,13 @@
 //! Building a [`Storage`] from JavaScript arrays or from a blob.
 
 use js_sys::{Array, Uint16Array, Uint32Array};
-use meshq::bvh::BuildConfig;
 use meshq::mesh::MeshRef;
 use meshq::owned::{MeshIndex, StructureKind};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use crate::args::{range_error, type_error, value_kind};
+use crate::options::BuildChoice;
 use crate::storage::Storage;
 
 fn error(e: impl core::fmt::Display) -> JsError {
@@ -56,8 +56,7 @@ pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsValue> {
 pub fn build(
     positions: Vec<f32>,
     indices: Option<Vec<u32>>,
-    kind: StructureKind,
-    config: &BuildConfig,
+    choice: &BuildChoice,
 ) -> Result<Storage, JsError> {
     if !positions.len().is_multiple_of(3) {
         return Err(JsError::new(&format!(
@@ -79,13 +78,23 @@ pub fn build(
             indices.len()
         )));
     }
-    check_memory(positions.len() / 3, indices.len() / 3)?;
+    // A build with spatial splits holds room for the extra references as well.
+    let room = choice
+        .spatial
+        .map_or(1.0, |s| 1.0 + f64::from(s.extra_references));
+    check_memory(positions.len() / 3, indices.len() / 3, room)?;
     let mesh = MeshRef::from_flat(&positions, &indices)
         .and_then(MeshRef::validate)
         .map_err(error)?;
-    let scene = match kind {
-        StructureKind::Bvh => MeshIndex::Bvh(meshq::MeshBvh::build(&mesh, config).map_err(error)?),
-        other => MeshIndex::build(&mesh, other).map_err(error)?,
+    let config = &choice.config;
+    let scene = match (choice.kind, &choice.spatial) {
+        (StructureKind::Bvh, None) => {
+            MeshIndex::Bvh(meshq::MeshBvh::build(&mesh, config).map_err(error)?)
+        }
+        (StructureKind::Bvh, Some(spatial)) => {
+            MeshIndex::Bvh(meshq::MeshBvh::build_spatial(&mesh, config, spatial).map_err(error)?)
+        }
+        (other, _) => MeshIndex::build(&mesh, other).map_err(error)?,
     };
     Ok(Storage { scene, blob: None })
 }
@@ -99,9 +108,11 @@ const WASM_MEMORY_LIMIT: u64 = 1 << 32;
 
 /// Refuses a mesh whose build would need more memory than this module can still grow by: a
 /// failed allocation would abort the module (a trap), so the limit is checked first.
-fn check_memory(vertices: usize, triangles: usize) -> Result<(), JsError> {
+fn check_memory(vertices: usize, triangles: usize, room: f64) -> Result<(), JsError> {
+    // `room` (1 to 5) scales the per-triangle bound for builds with spatial splits.
+    let per_triangle = (BUILD_BYTES_PER_TRIANGLE as f64 * room) as u64;
     let need = (triangles as u64)
-        .saturating_mul(BUILD_BYTES_PER_TRIANGLE)
+        .saturating_mul(per_triangle)
         .saturating_add((vertices as u64).saturating_mul(BUILD_BYTES_PER_VERTEX));
     let left = WASM_MEMORY_LIMIT.saturating_sub(memory_in_use());
     if need > left {

@@ -126,7 +126,10 @@ impl MeshBvh {
     /// `options` (`MeshBvhOptions`, every field optional): `structure` (`"bvh"`, the default,
     /// `"kdtree"`, `"octree"` or `"grid"`: the same answers from each), `quality` (`"balanced"`
     /// binned SAH by default, `"fast"` centre splits, `"high"`), `maxLeafSize`, `bins` and
-    /// `maxDepth` (which tune the BVH; the other structures use their default configs). Throws
+    /// `maxDepth` (which tune the BVH; the other structures use their default configs),
+    /// `spatialSplits` (`true`, or the extra room as a fraction of the triangle count, `0..=4`:
+    /// a BVH with spatial splits, for scenes of long crossing triangles; the same answers,
+    /// several times the build time). Throws
     /// a `TypeError` or `RangeError` naming a bad argument or an unknown option, and an `Error`
     /// with the core's message for an invalid mesh (an index out of range, a non-finite
     /// position…).
@@ -140,9 +143,9 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "MeshBvhOptions | null")] options: Option<JsValue>,
     ) -> Result<MeshBvh, JsValue> {
         let positions = floats_or_numbers(positions, "positions")?;
-        let (config, kind) = build_options(&options.unwrap_or(JsValue::UNDEFINED))?;
+        let choice = build_options(&options.unwrap_or(JsValue::UNDEFINED))?;
         let indices = crate::build::read_indices(&indices.unwrap_or(JsValue::NULL))?;
-        let storage = crate::build::build(positions, indices, kind, &config)?;
+        let storage = crate::build::build(positions, indices, &choice)?;
         Ok(Self { storage })
     }
 

@@ -1,19 +1,64 @@
 //! Build options passed from JavaScript, read strictly (see [`crate::fields`]).
 
-use meshq::bvh::{BuildConfig, MAX_DEPTH};
+use meshq::bvh::{BuildConfig, MAX_DEPTH, SpatialSplits};
 use meshq::error::BuildError;
 use meshq::owned::StructureKind;
 use wasm_bindgen::prelude::*;
 
-use crate::fields::{field, optional_choice, optional_u32, options};
+use crate::args::{range_error, type_error, value_kind};
+use crate::fields::{field, omitted, optional_choice, optional_u32, options};
 
 /// The keys `MeshBvh.build` accepts.
-const BUILD_KEYS: &[&str] = &["structure", "quality", "maxLeafSize", "bins", "maxDepth"];
+const BUILD_KEYS: &[&str] = &[
+    "structure",
+    "quality",
+    "maxLeafSize",
+    "bins",
+    "maxDepth",
+    "spatialSplits",
+];
 
-/// Reads `{ structure?, quality?, maxLeafSize?, bins?, maxDepth? }`: every field optional
-/// (`undefined` or `null` means the default: a BVH, balanced). An unknown key, a value of the
-/// wrong kind or out of range throws, naming it.
-pub fn build_options(value: &JsValue) -> Result<(BuildConfig, StructureKind), JsValue> {
+/// What `MeshBvh.build`'s options ask for.
+pub struct BuildChoice {
+    pub config: BuildConfig,
+    pub kind: StructureKind,
+    /// Spatial splits for the BVH (`spatialSplits`), if asked for.
+    pub spatial: Option<SpatialSplits>,
+}
+
+/// `spatialSplits`: omitted or `false` → none; `true` → the default room; a number → that
+/// room (`extra_references`, `0..=4`).
+fn spatial_option(value: &JsValue) -> Result<Option<SpatialSplits>, JsValue> {
+    const WHAT: &str = "options.spatialSplits";
+    if omitted(value) {
+        return Ok(None);
+    }
+    if let Some(on) = value.as_bool() {
+        return Ok(on.then_some(SpatialSplits::DEFAULT));
+    }
+    let Some(extra) = value.as_f64() else {
+        return Err(type_error(&format!(
+            "{WHAT} must be a boolean or a number, got {}",
+            value_kind(value)
+        )));
+    };
+    let spatial = SpatialSplits {
+        extra_references: extra as f32,
+        ..SpatialSplits::DEFAULT
+    };
+    if spatial.check().is_err() || !(0.0..=f64::from(SpatialSplits::MAX_EXTRA)).contains(&extra) {
+        return Err(range_error(&format!(
+            "{WHAT} must be true, false or a number in 0..={}, got {extra}",
+            SpatialSplits::MAX_EXTRA
+        )));
+    }
+    Ok(Some(spatial))
+}
+
+/// Reads `{ structure?, quality?, maxLeafSize?, bins?, maxDepth?, spatialSplits? }`: every
+/// field optional (`undefined` or `null` means the default: a BVH, balanced, no spatial
+/// splits). An unknown key, a value of the wrong kind or out of range throws, naming it.
+pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
     let o = options(value, "options", BUILD_KEYS)?;
     let o = o.as_ref();
     let kind = match optional_choice(
@@ -64,7 +109,17 @@ pub fn build_options(value: &JsValue) -> Result<(BuildConfig, StructureKind), Js
             ),
             other => other.to_string(),
         };
-        return Err(crate::args::range_error(&message));
+        return Err(range_error(&message));
     }
-    Ok((config, kind))
+    let spatial = spatial_option(&field(o, "spatialSplits"))?;
+    if spatial.is_some() && kind != StructureKind::Bvh {
+        return Err(type_error(&format!(
+            "options.spatialSplits applies to the BVH, not a {kind}"
+        )));
+    }
+    Ok(BuildChoice {
+        config,
+        kind,
+        spatial,
+    })
 }

@@ -118,7 +118,13 @@ fn floats_js(values: &[f32]) -> JsValue {
 
 #[wasm_bindgen_test]
 fn every_mesh_matches_the_golden_digest_and_blob() {
-    let presets = [("", JsValue::UNDEFINED), ("-fast", fast())];
+    let spatial = js_sys::Object::new();
+    Reflect::set(&spatial, &"spatialSplits".into(), &true.into()).unwrap();
+    let presets = [
+        ("", JsValue::UNDEFINED),
+        ("-fast", fast()),
+        ("-spatial", spatial.into()),
+    ];
     for ((name, obj), (suffix, options)) in MESHES
         .iter()
         .flat_map(|m| presets.iter().map(move |p| (m, p)))

@@ -97,6 +97,16 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   assert.ok(a.total > 0);
   assert.equal(bvh.intersectingPairs(other, shifted, 2).pairs.length, 4, 'maxPairs caps');
   assert.deepEqual(MeshBvh.build(positions, indices, { quality: undefined, structure: null }).toBlob(), bvh.toBlob());
+  // Spatial splits off (false, null) is the ordinary build; on, the same answers.
+  assert.deepEqual(MeshBvh.build(positions, indices, { spatialSplits: false }).toBlob(), bvh.toBlob());
+  const split = MeshBvh.build(positions, indices, { spatialSplits: 0.5 });
+  const splitBack = MeshBvh.fromBlob(split.toBlob());
+  for (const [o, d] of [[[0.1, 0.2, 5], [0, 0, -1]], [[0.3, -2, 0.2], [0, 1, 0]], [above, down]]) {
+    assert.deepEqual(split.raycast(o, d), bvh.raycast(o, d));
+    assert.deepEqual(splitBack.raycast(o, d), bvh.raycast(o, d));
+  }
+  split.free();
+  splitBack.free();
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
   // Built or loaded, a BVH walks eight-wide nodes (256 bytes each); four-wide ones are fewer
@@ -178,6 +188,10 @@ const cases = [
   [() => MeshBvh.build(positions, indices, { bins: NaN }), RangeError, /options.bins must be a number, got NaN/],
   [() => MeshBvh.build(positions, indices, { maxDepth: 2.5 }), RangeError, /options.maxDepth must be a whole number/],
   [() => MeshBvh.build(positions, indices, { maxLeafSize: 0 }), RangeError, /options.maxLeafSize must be in 1..=\d+, got 0/],
+  [() => MeshBvh.build(positions, indices, { spatialSplits: 'yes' }), TypeError, /options.spatialSplits must be a boolean or a number/],
+  [() => MeshBvh.build(positions, indices, { spatialSplits: 5 }), RangeError, /options.spatialSplits must be true, false or a number in 0..=4, got 5/],
+  [() => MeshBvh.build(positions, indices, { spatialSplits: -1 }), RangeError, /options.spatialSplits must be/],
+  [() => MeshBvh.build(positions, indices, { spatialSplits: true, structure: 'grid' }), TypeError, /options.spatialSplits applies to the BVH/],
   [() => bvh.toBlob(5), TypeError, /layout must be a string/],
   [() => bvh.toBlob('zip'), RangeError, /layout must be one of "indexed", "packed", "omitted"/],
   [() => bvh.levelBoxes(), TypeError, /level must be a whole number/],

@@ -12,6 +12,11 @@ impl<'a> Bvh<'a> {
     /// One bottom-up pass: children always come after their parents, so visiting nodes from
     /// last to first sees both children before each parent.
     ///
+    /// A tree built with spatial splits ([`Bvh::build_spatial`]) refits to leaf boxes that hold
+    /// its split triangles whole, and the view returned has no split references: queries that
+    /// report triangles may then report a split triangle once per leaf holding it. Rebuild such
+    /// a tree instead.
+    ///
     /// # Errors
     /// A [`StructureError`] if `nodes`/`order` are not a valid tree or name triangles `mesh`
     /// does not have; the nodes are then left untouched.

@@ -214,10 +214,11 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     /// ascending [`score`](ShapeCast::score), and every non-degenerate triangle inside them is
     /// offered until the cast breaks.
     ///
-    /// A BVH (and a blob of one) offers each triangle at most once. A structure that
-    /// references a triangle from several cells (k-d tree, octree, grid) drops most repeats
-    /// but may offer a triangle again; [`MeshQuery::shapecast_once`] offers each once on every
-    /// structure.
+    /// A BVH (and a blob of one) offers each triangle at most once, unless it was built with
+    /// spatial splits: then a triangle cut by them may be offered once per leaf holding a part
+    /// of it. A structure that references a triangle from several cells (k-d tree, octree,
+    /// grid) drops most repeats but may offer a triangle again. [`MeshQuery::shapecast_once`]
+    /// offers each once on every structure.
     fn shapecast<C: ShapeCast + ?Sized>(&self, cast: &mut C) {
         shapecast::shapecast(self, self, cast, None);
     }
