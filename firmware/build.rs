@@ -30,11 +30,14 @@ fn main() {
         panic!("enable exactly one of --features bunny, spot or remesh");
     };
 
-    // `--features octree` places the mesh's octree blob in flash instead of its BVH blob.
-    let suffix = if env::var_os("CARGO_FEATURE_OCTREE").is_some() {
-        "-octree"
+    // `--features octree` places the mesh's octree blob in flash instead of its BVH blob, and
+    // `--features spatial` its BVH blob built with spatial splits.
+    let (suffix, bake_flag) = if env::var_os("CARGO_FEATURE_OCTREE").is_some() {
+        ("-octree", " --structure octree")
+    } else if env::var_os("CARGO_FEATURE_SPATIAL").is_some() {
+        ("-spatial", " --spatial-splits")
     } else {
-        ""
+        ("", "")
     };
     println!("cargo:rerun-if-env-changed=MESHQ_BLOB_DIR");
     let dir = env::var_os("MESHQ_BLOB_DIR")
@@ -48,11 +51,7 @@ fn main() {
          (scripts/firmware.sh does this), or point MESHQ_BLOB_DIR at a folder holding it",
         blob.display(),
         blob.display(),
-        if suffix.is_empty() {
-            ""
-        } else {
-            " --structure octree"
-        }
+        bake_flag
     );
     println!("cargo:rustc-env=MESHQ_BLOB={}", blob.display());
     println!("cargo:rustc-env=MESHQ_MESH={stem}");

@@ -46,7 +46,7 @@ impl<'a> BoxesUnchecked<'a> {
         }
         let in_range = InRange::of(&mesh);
         tree.depth = check(&tree, Some(&in_range), CheckLevel::Topology, Extent::Exact)?.depth;
-        check_slots(&tree, header.triangle_count as usize)?;
+        check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
         same_bounds(
             &tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb()),
             &header.bounds,

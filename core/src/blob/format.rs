@@ -24,6 +24,14 @@ pub const FORMAT_VERSION: u16 = 4;
 /// The version of blobs that need nothing newer: every blob but a BVH with spatial splits.
 pub(crate) const BASE_VERSION: u16 = 3;
 
+/// The newest format version this build reads: [`FORMAT_VERSION`] with the `blob-spatial`
+/// feature (BVHs with spatial splits), 3 without it.
+pub const NEWEST_READABLE_VERSION: u16 = if cfg!(feature = "blob-spatial") {
+    FORMAT_VERSION
+} else {
+    BASE_VERSION
+};
+
 /// The oldest format version this build reads.
 pub const OLDEST_READABLE_VERSION: u16 = 1;
 

@@ -3,8 +3,8 @@
 use glam::Vec3;
 
 use super::format::{
-    ConfigCosts, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
-    OLDEST_READABLE_VERSION, SpatialWire, StructureKind,
+    ConfigCosts, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout, NEWEST_READABLE_VERSION,
+    OLDEST_READABLE_VERSION, StructureKind,
 };
 #[cfg(feature = "blob-cells")]
 use super::format::{GridWire, KdWire, OctreeWire};
@@ -18,7 +18,8 @@ use crate::math::Aabb;
 /// it; [`BlobView::parse`](super::BlobView::parse) checks that everything agrees with it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlobHeader {
-    /// The format version ([`FORMAT_VERSION`] for blobs this build writes).
+    /// The format version ([`FORMAT_VERSION`](super::FORMAT_VERSION) for a BVH with spatial
+    /// splits, 3 for every other blob this build writes).
     pub version: u16,
     /// The structure.
     pub kind: StructureKind,
@@ -71,11 +72,11 @@ impl BlobHeader {
             return Err(BlobError::BadMagic);
         }
         let version: u16 = r.value(BlobSection::Header)?;
-        if !(OLDEST_READABLE_VERSION..=FORMAT_VERSION).contains(&version) {
+        if !(OLDEST_READABLE_VERSION..=NEWEST_READABLE_VERSION).contains(&version) {
             return Err(BlobError::UnsupportedVersion {
                 found: version,
                 oldest: OLDEST_READABLE_VERSION,
-                newest: FORMAT_VERSION,
+                newest: NEWEST_READABLE_VERSION,
             });
         }
         let f: HeaderCounts = r.value(BlobSection::Header)?;
@@ -135,11 +136,14 @@ fn read_config(
             };
             let costs: ConfigCosts = r.value(BlobSection::Header)?;
             // Version 4 (only written for trees with spatial splits) counts slots and splits.
+            #[cfg(feature = "blob-spatial")]
             let spatial = if version >= 4 {
-                Some(r.value::<SpatialWire>(BlobSection::Header)?)
+                Some(r.value::<super::format::SpatialWire>(BlobSection::Header)?)
             } else {
                 None
             };
+            #[cfg(not(feature = "blob-spatial"))]
+            let spatial: Option<super::format::SpatialWire> = None;
             WireConfig {
                 config: bvh_config(split, costs),
                 references: spatial.map_or(triangle_count, |s| s.references),

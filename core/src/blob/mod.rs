@@ -31,7 +31,7 @@
 //! | field | encoding | meaning |
 //! |---|---|---|
 //! | magic | 4 bytes | `MSHQ` |
-//! | version | varint `u16` | [`FORMAT_VERSION`]; read before anything else |
+//! | version | varint `u16` | 4 ([`FORMAT_VERSION`]) for a BVH with spatial splits, 3 for every other blob; read before anything else |
 //! | kind | varint `u32` | [`StructureKind`] tag: 0 BVH, 1 k-d tree, 2 octree, 3 grid |
 //! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
 //! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and structure (node_count: a grid's cells; depth: see [`BlobHeader::depth`]) |
@@ -41,11 +41,13 @@
 //! | payload_len | fixed `u64` | bytes after the header |
 //! | checksum | fixed `u32` | CRC-32/ISO-HDLC of every blob byte except these four |
 //! | nodes | BVH: sequence of 32-byte records; others: sequence of fixed `u32` | BVH: [`BvhNode`](crate::bvh::BvhNode) (min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32`); k-d tree and octree: two words per node ([`KdNode`](crate::kdtree::KdNode), [`OctreeNode`](crate::octree::OctreeNode) `a`, `b`); grid: the cell offsets (cells + 1) |
-//! | order | sequence of fixed `u32` | leaf slot → input triangle index: a BVH's order (one per triangle), the references of the others (header `config`'s count) |
+//! | order | sequence of fixed `u32` | leaf slot → input triangle index: a BVH's order (one per triangle; with spatial splits, the header's slot count), the references of the others (header `config`'s count) |
+//! | split references | version 4 only: sequence of 32-byte records | a BVH with spatial splits: [`SplitRef`](crate::query::SplitRef)s sorted by triangle then slot (triangle and slot fixed `u32`, the leaf's box `f32`×6) |
 //! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples, one per order entry; omitted: nothing |
 //!
 //! The config by kind: BVH: split tag (0 SAH, 1 centre), then varint `u32` × 3 (bins,
-//! max_leaf_size, max_depth) and `f32` × 2 (traversal_cost, triangle_cost). k-d tree:
+//! max_leaf_size, max_depth) and `f32` × 2 (traversal_cost, triangle_cost); version 4 then
+//! adds varint `u32` × 2 (leaf slots, split references). k-d tree:
 //! varint max_depth, leaf_size, `f32` traversal_cost, triangle_cost, empty_bonus, varint
 //! reference count. Octree: varint max_depth, max_items, reference count. Grid: `f32`
 //! cells_per_triangle, varint max_resolution, resolution × 3, reference count.
@@ -56,9 +58,11 @@
 //! # Versioning
 //! The version is the second field and is read before anything else. A change to any field or
 //! record increments [`FORMAT_VERSION`]; a reader refuses versions outside
-//! [`OLDEST_READABLE_VERSION`]`..=`[`FORMAT_VERSION`] with
+//! [`OLDEST_READABLE_VERSION`]`..=`[`NEWEST_READABLE_VERSION`] with
 //! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
-//! Version 3 added the k-d tree, octree and grid kinds; its BVH blobs are laid out as in
+//! Blobs are written at the oldest version that holds them. Version 4 added BVHs built with
+//! spatial splits (read with the `blob-spatial` feature); every other blob is written as
+//! version 3, byte for byte as before version 4. Version 3 added the k-d tree, octree and grid kinds; its BVH blobs are laid out as in
 //! version 2. Version 1 differs from 2 only in the config, which lacks the split tag (it was
 //! always SAH); this build reads it as SAH. Versions 1 and 2 hold BVHs only.
 //!
@@ -88,7 +92,10 @@ pub use checksum::mesh_checksum;
 pub use encode::{
     EncodeOptions, encode_into, encode_structure_into, encoded_len, reseal, structure_encoded_len,
 };
-pub use format::{FORMAT_VERSION, MAGIC, MeshLayout, OLDEST_READABLE_VERSION, StructureKind};
+pub use format::{
+    FORMAT_VERSION, MAGIC, MeshLayout, NEWEST_READABLE_VERSION, OLDEST_READABLE_VERSION,
+    StructureKind,
+};
 pub use header::BlobHeader;
 pub use mesh::BlobMesh;
 pub use source::BlobSource;

@@ -96,7 +96,7 @@ impl BlobSource<'_> {
         match self {
             Self::Bvh(b, _) => {
                 b.check(mesh)?;
-                super::split_check::check_slots(*b, n)?;
+                super::split_check::check_slots(*b, b.order().iter().copied(), n)?;
             }
             Self::KdTree(t, _) => {
                 KdTree::from_parts(*t.bounds(), t.nodes(), t.items(), n)?;

@@ -5,8 +5,8 @@ use super::order_check::check_order_covers;
 use crate::bvh::TreeArrays;
 use crate::error::BlobError;
 
-/// Checks `tree`'s order and split references against a mesh of `n` triangles (entries of
-/// the order already checked to be below `n`, topology already validated):
+/// Checks `tree`'s order (`order`: its entries, already checked to be below `n`) and split
+/// references against a mesh of `n` triangles (topology already validated):
 /// - with no split references, the order is a permutation of `0..n`;
 /// - otherwise every entry is in range, in strict `(triangle, slot)` order, names the triangle
 ///   its slot holds and carries the box of the leaf holding that slot, bit for bit; each
@@ -16,15 +16,17 @@ use crate::error::BlobError;
 /// # Errors
 /// [`BlobError::BadSplitRef`] naming the first bad entry, or
 /// [`BlobError::OrderNotPermutation`].
-pub(crate) fn check_slots<A: TreeArrays + ?Sized>(tree: &A, n: usize) -> Result<(), BlobError> {
+pub(crate) fn check_slots<A: TreeArrays + ?Sized>(
+    tree: &A,
+    order: impl Iterator<Item = u32>,
+    n: usize,
+) -> Result<(), BlobError> {
     let splits = tree.split_refs();
-    let slots = tree.slot_count();
     let tri_at = |slot: usize| {
         tree.leaf_triangles(slot, 1)
             .and_then(|mut ids| ids.next())
             .map(|(_, t)| t)
     };
-    let order = (0..slots).filter_map(tri_at);
     if splits.is_empty() {
         return check_order_covers(order, n, core::iter::empty());
     }

@@ -25,6 +25,11 @@ impl BlobTree<'_> {
     pub const fn depth(&self) -> u32 {
         self.depth
     }
+
+    /// The order's entries (triangle indices, one per leaf slot).
+    pub(super) fn order_entries(&self) -> impl Iterator<Item = u32> + '_ {
+        self.order.iter().map(|e| u32::from_le_bytes(*e))
+    }
 }
 
 impl TreeArrays for BlobTree<'_> {
@@ -59,6 +64,11 @@ impl TreeArrays for BlobTree<'_> {
 
     #[inline(always)]
     fn split_refs(&self) -> SplitRefs<'_> {
-        SplitRefs::from_records(self.splits)
+        // Without the feature no blob read has any: the constant lets checks fold away.
+        if cfg!(feature = "blob-spatial") {
+            SplitRefs::from_records(self.splits)
+        } else {
+            SplitRefs::NONE
+        }
     }
 }

@@ -202,12 +202,7 @@ fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
             nodes: r.records::<NODE_BYTES>(header.node_count, BlobSection::Nodes)?,
             order: r.records::<ORDER_BYTES>(header.reference_count, BlobSection::Order)?,
             depth: 0,
-            // Version 4 (a tree with spatial splits) has its split references next.
-            splits: if header.version >= 4 {
-                r.records::<SPLIT_REF_BYTES>(header.split_ref_count, BlobSection::SplitRefs)?
-            } else {
-                &[]
-            },
+            splits: split_records(&header, &mut r)?,
         })
     } else {
         cell_arrays(&header, &mut r)?
@@ -240,6 +235,30 @@ fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
         structure,
         mesh,
     })
+}
+
+/// A BVH's split references: version 4 (a tree with spatial splits) has them after the order.
+#[cfg(feature = "blob-spatial")]
+#[inline(always)]
+fn split_records<'a>(
+    header: &BlobHeader,
+    r: &mut Reader<'a>,
+) -> Result<&'a [[u8; SPLIT_REF_BYTES]], BlobError> {
+    if header.version >= 4 {
+        r.records::<SPLIT_REF_BYTES>(header.split_ref_count, BlobSection::SplitRefs)
+    } else {
+        Ok(&[])
+    }
+}
+
+/// Without the feature the header reader refuses version 4: no blob has split references.
+#[cfg(not(feature = "blob-spatial"))]
+#[inline(always)]
+fn split_records<'a>(
+    _: &BlobHeader,
+    _: &mut Reader<'a>,
+) -> Result<&'a [[u8; SPLIT_REF_BYTES]], BlobError> {
+    Ok(&[])
 }
 
 /// A cell structure's node words (or cell offsets) and references, cut out of the bytes.
@@ -310,7 +329,7 @@ fn check_structure<'a>(
                 return Err(bad_config);
             }
             tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
-            check_slots(&tree, header.triangle_count as usize)?;
+            check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
             (BlobStructure::Bvh(tree), tree.depth)
