@@ -40,7 +40,8 @@ pub(super) struct Task {
     pub centroids: BuildBox,
 }
 
-fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildError> {
+/// Refuses a `buffer` of `got` elements where `needed` are.
+pub(super) fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildError> {
     if got < needed {
         return Err(BuildError::BufferTooSmall {
             buffer,

@@ -8,7 +8,7 @@
 //! slot, so the finished order array is dense.
 
 use super::binning::{Binning, batches};
-use super::build::{Task, fill_prims, split_node};
+use super::build::{Task, check_len, fill_prims, split_node};
 use super::build_box::BuildBox;
 use super::clip::{clipped, holds_something, lane};
 use super::partition::bounds_of;
@@ -62,17 +62,6 @@ struct Out<'b> {
     written: usize,
 }
 
-fn check_len(buffer: BufferKind, needed: usize, got: usize) -> Result<(), BuildError> {
-    if got < needed {
-        return Err(BuildError::BufferTooSmall {
-            buffer,
-            needed,
-            got,
-        });
-    }
-    Ok(())
-}
-
 /// Builds into the caller's buffers (see [`Bvh::build_spatial`](super::Bvh::build_spatial)).
 pub(super) fn build_spatial_into(
     mesh: &ValidMesh<'_>,
@@ -86,12 +75,13 @@ pub(super) fn build_spatial_into(
     config.check()?;
     spatial.check()?;
     let n = mesh.triangle_count();
-    if n >= SPLIT_FLAG as usize {
+    let room = spatial.reference_capacity(n);
+    // Entries carry a flag in their top bit while building, and leaves name slots in `u32`.
+    if n >= SPLIT_FLAG as usize || u32::try_from(room).is_err() {
         return Err(BuildError::InvalidConfig {
             field: "extra_references",
         });
     }
-    let room = spatial.reference_capacity(n);
     check_len(BufferKind::Nodes, node_capacity(room), nodes.len())?;
     check_len(BufferKind::Order, room, order.len())?;
     check_len(BufferKind::Scratch, room, scratch.len())?;

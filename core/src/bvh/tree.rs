@@ -71,7 +71,8 @@ impl<'a> Bvh<'a> {
     /// [`SpatialSplits::reference_capacity`], `order` and `scratch` that capacity, and
     /// `split_refs` [`SpatialSplits::split_ref_capacity`] (contents of `scratch` afterwards
     /// unspecified). The view keeps the used prefixes. Deterministic, like [`Bvh::build`];
-    /// meshes of 2³¹ triangles or more are refused.
+    /// meshes of 2³¹ triangles or more, and a room of 2³² references or more, are refused
+    /// ([`BuildError::InvalidConfig`] naming `extra_references`).
     ///
     /// # Errors
     /// As [`Bvh::build`] (with [`BufferKind::SplitRefs`](crate::error::BufferKind::SplitRefs)
