@@ -13,7 +13,7 @@
 use std::time::Instant;
 
 use meshq::MeshBvh;
-use meshq::bvh::BuildConfig;
+use meshq::bvh::{BuildConfig, SpatialSplits};
 use meshq::mesh::MeshRef;
 use meshq::parallel;
 use meshq::query::RayOptions;
@@ -180,4 +180,33 @@ fn main() {
         ms[0]
     );
     report("  build_parallel", &threads, &ms[1..]);
+
+    // The build with spatial splits, on the same mesh (best of 3: each takes seconds).
+    let spatial = SpatialSplits::DEFAULT;
+    let want =
+        MeshBvh::build_spatial(&big_mesh, &config, &spatial).unwrap_or_else(|e| panic!("{e}"));
+    let mut runs: Vec<Box<dyn FnMut()>> = vec![Box::new(|| {
+        std::hint::black_box(
+            MeshBvh::build_spatial(&big_mesh, &config, &spatial).unwrap_or_else(|e| panic!("{e}")),
+        );
+    })];
+    for p in &pools {
+        let (big_mesh, config, want, spatial) = (&big_mesh, &config, &want, &spatial);
+        runs.push(Box::new(move || {
+            let built = p
+                .install(|| MeshBvh::build_spatial_parallel(big_mesh, config, spatial))
+                .unwrap_or_else(|e| panic!("{e}"));
+            assert!(
+                built.bvh().nodes() == want.bvh().nodes(),
+                "spatial build: another tree"
+            );
+        }));
+    }
+    let ms = best_of(3, &mut runs);
+    println!(
+        "build with spatial splits ({} references): sequential {:.1} ms",
+        want.reference_count(),
+        ms[0]
+    );
+    report("  build_spatial_parallel", &threads, &ms[1..]);
 }

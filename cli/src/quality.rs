@@ -30,7 +30,7 @@ impl Quality {
 pub const SPATIAL_SPLITS_HELP: &str = "Build the BVH with spatial splits: a node may cut space \
 and hold the triangles crossing the plane on both sides, each boxed by its part. Much faster \
 rays on scenes of long crossing triangles (architecture, CAD, foliage), about the same on \
-meshes of even triangles, several times the build time (one thread, whatever --threads says). \
+meshes of even triangles, several times the build time (on --threads threads, the same tree). \
 EXTRA is the room for references beyond one per triangle, as a fraction of the triangle count \
 (0 to 4, default 1)";
 

@@ -50,8 +50,10 @@ impl Threads {
         spatial: Option<&SpatialSplits>,
     ) -> Result<MeshBvh, BuildError> {
         match (spatial, self.pool()) {
-            // The spatial-split builder runs on one thread.
-            (Some(spatial), _) => MeshBvh::build_spatial(mesh, config, spatial),
+            (Some(spatial), None) => MeshBvh::build_spatial(mesh, config, spatial),
+            (Some(spatial), Some(pool)) => {
+                pool.install(|| MeshBvh::build_spatial_parallel(mesh, config, spatial))
+            }
             (None, None) => MeshBvh::build(mesh, config),
             (None, Some(pool)) => pool.install(|| MeshBvh::build_parallel(mesh, config)),
         }

@@ -251,3 +251,47 @@ fn the_parallel_build_is_the_sequential_build() {
     );
     assert!(order.iter().all(|&o| o == 7));
 }
+
+/// The spatial-split build on pools of 2 and 3 threads gives the sequential build's nodes,
+/// order and split references, bit for bit, and the owned form the same blob bytes, on scenes
+/// large enough to be split in parallel (the sticks repeat many triangles; the bunny few).
+#[test]
+fn the_parallel_spatial_build_is_the_sequential_one() {
+    use meshq::bvh::SpatialSplits;
+    let spatial = SpatialSplits::DEFAULT;
+    let config = BuildConfig::default();
+    for loaded in [meshq_tests::sticks(2500), load_mesh("stanford-bunny")] {
+        let mesh = loaded.valid();
+        let name = &loaded.name;
+        let a = MeshBvh::build_spatial(&mesh, &config, &spatial).expect("build");
+        assert!(
+            a.reference_count() > 17 * 1024,
+            "{name}: large enough for parallel pieces"
+        );
+        assert!(!a.split_refs().is_empty(), "{name}: split references");
+        for threads in [2, 3] {
+            let b = pool(threads)
+                .install(|| MeshBvh::build_spatial_parallel(&mesh, &config, &spatial))
+                .expect("build");
+            assert_eq!(
+                a.bvh().nodes(),
+                b.bvh().nodes(),
+                "{name}, {threads} threads: nodes"
+            );
+            assert_eq!(
+                a.bvh().order(),
+                b.bvh().order(),
+                "{name}, {threads} threads: order"
+            );
+            assert!(
+                a.split_refs() == b.split_refs(),
+                "{name}, {threads} threads: split references"
+            );
+            assert_eq!(
+                a.to_blob(MeshLayout::Indexed).expect("blob"),
+                b.to_blob(MeshLayout::Indexed).expect("blob"),
+                "{name}, {threads} threads: blob bytes"
+            );
+        }
+    }
+}

@@ -39,6 +39,8 @@ mod node;
 mod packed;
 #[cfg(feature = "parallel")]
 mod parallel_build;
+#[cfg(feature = "parallel")]
+mod parallel_spatial;
 mod partition;
 mod prim_ref;
 mod refit;
@@ -46,6 +48,7 @@ mod sizing;
 mod spatial;
 mod spatial_bins;
 mod spatial_build;
+mod spatial_compact;
 mod stats;
 mod traverse;
 mod tree;

@@ -29,7 +29,7 @@ use rayon::prelude::*;
 pub(super) const PARALLEL_FROM: usize = 16 * 1024;
 
 /// A built piece of the tree, before it is laid down in the node array.
-enum Piece {
+pub(super) enum Piece {
     /// A subtree from the sequential builder: its root at 0, its descendants from 1.
     Subtree(Vec<BvhNode>),
     /// A node split here: its box, then its two children.
@@ -66,7 +66,7 @@ pub(super) fn build_parallel(
 
 /// [`fill_prims`] and [`bounds_of`] over runs of triangles on the pool: the same boxes, and
 /// the same bounds (a minimum and a maximum do not depend on the order they are taken in).
-fn fill_prims_parallel(
+pub(super) fn fill_prims_parallel(
     mesh: &ValidMesh<'_>,
     prims: &mut [PrimRef],
     order: &mut [u32],
@@ -156,7 +156,7 @@ fn build_piece(
 
 /// Lays `piece` down with its root at `at`, numbering its other nodes from `*next` as the
 /// sequential builder does, and moves `*next` past them.
-fn place(piece: Piece, at: usize, nodes: &mut [BvhNode], next: &mut usize) {
+pub(super) fn place(piece: Piece, at: usize, nodes: &mut [BvhNode], next: &mut usize) {
     match piece {
         Piece::Subtree(local) => {
             // Local node k ≥ 1 goes to base + k - 1; inner nodes' children move with them.

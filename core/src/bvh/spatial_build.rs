@@ -4,15 +4,18 @@
 //! Every node owns a range of the reference buffers with room after its references; a split
 //! shares that room between its children in proportion to their references (moving the right
 //! child's references up), and a spatial split spends some of it on the repeated references.
-//! Leaves are written in depth-first order and their references moved down to the next free
-//! slot, so the finished order array is dense.
+//! Leaves name their references where they lie in that roomy layout; once the tree is built,
+//! [`compact`](super::spatial_compact::compact) moves them down in depth-first order, so the
+//! finished order array is dense. A subtree therefore depends only on its own range, which
+//! lets the parallel build (feature `parallel`) build children concurrently.
 
 use super::binning::{Binning, batches};
-use super::build::{Task, check_len, fill_prims, split_node};
+use super::build::{Built, FillPrims, Task, check_len, fill_prims, split_node};
 use super::build_box::BuildBox;
 use super::clip::{clipped, holds_something, lane};
 use super::partition::bounds_of;
 use super::spatial_bins::{SPLIT_FLAG, SpatialBinning, SpatialSplit, corners_of};
+use super::spatial_compact::compact;
 use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, SpatialSplits, node_capacity};
 use crate::error::{BufferKind, BuildError};
 use crate::mesh::ValidMesh;
@@ -30,7 +33,7 @@ pub(super) struct SpatialBuilt {
 
 impl SpatialBuilt {
     /// The build of a mesh without triangles.
-    const NOTHING: Self = Self {
+    pub(super) const NOTHING: Self = Self {
         node_count: 0,
         depth: 0,
         slots: 0,
@@ -40,9 +43,9 @@ impl SpatialBuilt {
 
 /// A node to build: [`Task`] plus the end of the room its subtree may use.
 #[derive(Clone, Copy)]
-struct RoomTask {
-    task: Task,
-    room_end: usize,
+pub(super) struct RoomTask {
+    pub task: Task,
+    pub room_end: usize,
 }
 
 /// Where a reference goes under a spatial split.
@@ -51,15 +54,6 @@ enum Side {
     Left,
     Right,
     Both,
-}
-
-/// The caller's buffers and what has been written to them.
-struct Out<'b> {
-    nodes: &'b mut [BvhNode],
-    splits: &'b mut [SplitRef],
-    split_count: usize,
-    /// Next free order slot for a leaf's references.
-    written: usize,
 }
 
 /// Builds into the caller's buffers (see [`Bvh::build_spatial`](super::Bvh::build_spatial)).
@@ -72,6 +66,36 @@ pub(super) fn build_spatial_into(
     scratch: &mut [PrimRef],
     splits: &mut [SplitRef],
 ) -> Result<SpatialBuilt, BuildError> {
+    let lens = (nodes.len(), splits.len());
+    let fill = &mut |prims: &mut [PrimRef], order: &mut [u32]| {
+        fill_prims(mesh, 0, prims, order);
+        bounds_of(prims)
+    };
+    let Some((prims, order, root)) = prepare(mesh, config, spatial, lens, order, scratch, fill)?
+    else {
+        return Ok(SpatialBuilt::NOTHING);
+    };
+    let builder = Builder::new(mesh, config, spatial, &root.task.bounds);
+    let built = build_subtree(builder, root, prims, order, nodes, 0)?;
+    finish(built, nodes, order, splits)
+}
+
+/// The reference room of a build's scratch and order, with the root's task.
+pub(super) type Prepared<'s> = (&'s mut [PrimRef], &'s mut [u32], RoomTask);
+
+/// The first step of both builds: checks the settings, the buffer lengths (`lens`: nodes and
+/// split references) and the depth limit, then fills the first `n` references (`fill`
+/// measures them too). Returns the reference room of `scratch` and `order` with the root's
+/// task, or `None` for a mesh without triangles.
+pub(super) fn prepare<'s>(
+    mesh: &ValidMesh<'_>,
+    config: &BuildConfig,
+    spatial: &SpatialSplits,
+    (nodes_len, splits_len): (usize, usize),
+    order: &'s mut [u32],
+    scratch: &'s mut [PrimRef],
+    fill: &mut FillPrims<'_>,
+) -> Result<Option<Prepared<'s>>, BuildError> {
     config.check()?;
     spatial.check()?;
     let n = mesh.triangle_count();
@@ -82,13 +106,13 @@ pub(super) fn build_spatial_into(
             field: "extra_references",
         });
     }
-    check_len(BufferKind::Nodes, node_capacity(room), nodes.len())?;
+    check_len(BufferKind::Nodes, node_capacity(room), nodes_len)?;
     check_len(BufferKind::Order, room, order.len())?;
     check_len(BufferKind::Scratch, room, scratch.len())?;
     check_len(
         BufferKind::SplitRefs,
         spatial.split_ref_capacity(n),
-        splits.len(),
+        splits_len,
     )?;
     if n > config.subtree_capacity(1) {
         return Err(BuildError::TooDeep {
@@ -97,16 +121,15 @@ pub(super) fn build_spatial_into(
         });
     }
     let (Some(prims), Some(order)) = (scratch.get_mut(..room), order.get_mut(..room)) else {
-        return Ok(SpatialBuilt::NOTHING);
-    };
-    let (Some(first_prims), Some(first_order)) = (prims.get_mut(..n), order.get_mut(..n)) else {
-        return Ok(SpatialBuilt::NOTHING);
+        return Ok(None);
     };
     if n == 0 {
-        return Ok(SpatialBuilt::NOTHING);
+        return Ok(None);
     }
-    fill_prims(mesh, 0, first_prims, first_order);
-    let (bounds, centroids) = bounds_of(prims.get(..n).unwrap_or_default());
+    let (Some(first_prims), Some(first_order)) = (prims.get_mut(..n), order.get_mut(..n)) else {
+        return Ok(None);
+    };
+    let (bounds, centroids) = fill(first_prims, first_order);
     let root = RoomTask {
         task: Task {
             node: 0,
@@ -118,30 +141,92 @@ pub(super) fn build_spatial_into(
         },
         room_end: room,
     };
-    let mut out = Out {
-        nodes,
+    Ok(Some((prims, order, root)))
+}
+
+/// Compacts the built tree's leaves and sorts the split table: the end of every build.
+pub(super) fn finish(
+    built: Built,
+    nodes: &mut [BvhNode],
+    order: &mut [u32],
+    splits: &mut [SplitRef],
+) -> Result<SpatialBuilt, BuildError> {
+    let (slots, split_refs) = compact(
+        nodes.get_mut(..built.node_count).unwrap_or_default(),
+        order,
         splits,
-        split_count: 0,
-        written: 0,
-    };
-    let built = Builder {
-        mesh,
-        config,
-        min_overlap: spatial.min_overlap * bounds.half_area(),
-        binning: Binning::new(),
-        spatial: SpatialBinning::new(),
-    }
-    .run(root, prims, order, &mut out)?;
-    let table = out.splits.get_mut(..out.split_count).unwrap_or_default();
+    );
+    let table = splits.get_mut(..split_refs).unwrap_or_default();
     table.sort_unstable_by_key(|r| (r.tri, r.slot));
     Ok(SpatialBuilt {
-        split_refs: out.split_count,
-        slots: out.written,
-        ..built
+        node_count: built.node_count,
+        depth: built.depth,
+        slots,
+        split_refs,
     })
 }
 
-struct Builder<'m, 'c> {
+/// Builds the subtree of `root` (a task over all of `prims` and `order`, positions relative
+/// to them; its node at 0) depth first, left child first, into `nodes`: the root at 0 and
+/// each split's children as the next free pair. Leaves name their references by position in
+/// the whole build's arrays, `base` plus their position here.
+pub(super) fn build_subtree(
+    mut builder: Builder<'_, '_>,
+    root: RoomTask,
+    prims: &mut [PrimRef],
+    order: &mut [u32],
+    nodes: &mut [BvhNode],
+    base: usize,
+) -> Result<Built, BuildError> {
+    let mut stack = [None::<RoomTask>; MAX_DEPTH as usize];
+    let mut sp = 0;
+    let mut next = Some(root);
+    let mut node_count = 1;
+    let mut depth = 0;
+    while let Some(rt) = next.take() {
+        let task = rt.task;
+        depth = depth.max(task.level);
+        let children = builder.split(&rt, prims, order)?;
+        let Some(slot) = nodes.get_mut(task.node) else {
+            break;
+        };
+        let bounds = task.bounds.to_aabb().padded();
+        match children {
+            None => {
+                // base + end ≤ the reference room, which fits in u32 (checked up front).
+                let count = task.end - task.begin;
+                *slot = BvhNode::new(bounds, (base + task.begin) as u32, count as u32);
+            }
+            Some((mut left, mut right)) => {
+                let first = node_count;
+                node_count += 2;
+                *slot = BvhNode::new(bounds, first as u32, 0);
+                left.task.node = first;
+                right.task.node = first + 1;
+                // One pending right sibling per level above at most: the stack cannot fill
+                // within the depth limit checked up front.
+                let Some(pending) = stack.get_mut(sp) else {
+                    return Err(BuildError::TooDeep {
+                        max_depth: builder.config.max_depth,
+                        triangles: builder.mesh.triangle_count(),
+                    });
+                };
+                *pending = Some(right);
+                sp += 1;
+                next = Some(left);
+                continue;
+            }
+        }
+        if sp > 0 {
+            sp -= 1;
+            next = stack.get_mut(sp).and_then(Option::take);
+        }
+    }
+    Ok(Built { node_count, depth })
+}
+
+/// What decides a node: the mesh, the config, the spatial-split threshold, and bin storage.
+pub(super) struct Builder<'m, 'c> {
     mesh: &'m ValidMesh<'m>,
     config: &'c BuildConfig,
     /// Overlap (half area) of the best object split's children above which a node tries
@@ -151,94 +236,26 @@ struct Builder<'m, 'c> {
     spatial: SpatialBinning,
 }
 
-impl Builder<'_, '_> {
-    /// Builds the tree of `root` depth first, left child first.
-    fn run(
-        mut self,
-        root: RoomTask,
-        prims: &mut [PrimRef],
-        order: &mut [u32],
-        out: &mut Out<'_>,
-    ) -> Result<SpatialBuilt, BuildError> {
-        let mut stack = [None::<RoomTask>; MAX_DEPTH as usize];
-        let mut sp = 0;
-        let mut next = Some(root);
-        let mut node_count = 1;
-        let mut depth = 0;
-        while let Some(rt) = next.take() {
-            let task = rt.task;
-            depth = depth.max(task.level);
-            match self.split(&rt, prims, order)? {
-                None => self.leaf(&task, order, out),
-                Some((left, right)) => {
-                    let first = node_count;
-                    node_count += 2;
-                    if let Some(slot) = out.nodes.get_mut(task.node) {
-                        *slot = BvhNode::new(task.bounds.to_aabb().padded(), first as u32, 0);
-                    }
-                    let (mut left, mut right) = (left, right);
-                    left.task.node = first;
-                    right.task.node = first + 1;
-                    // One pending right sibling per level above at most: the stack cannot fill
-                    // within the depth limit checked up front.
-                    let Some(pending) = stack.get_mut(sp) else {
-                        return Err(BuildError::TooDeep {
-                            max_depth: self.config.max_depth,
-                            triangles: self.mesh.triangle_count(),
-                        });
-                    };
-                    *pending = Some(right);
-                    sp += 1;
-                    next = Some(left);
-                    continue;
-                }
-            }
-            if sp > 0 {
-                sp -= 1;
-                next = stack.get_mut(sp).and_then(Option::take);
-            }
-        }
-        Ok(SpatialBuilt {
-            node_count,
-            depth,
-            slots: 0,
-            split_refs: 0,
-        })
-    }
-
-    /// Writes a leaf: its references moved down to the next free slots (flags cleared), and
-    /// an entry in the split table for each reference of a triangle held more than once.
-    fn leaf(&self, task: &Task, order: &mut [u32], out: &mut Out<'_>) {
-        let count = task.end - task.begin;
-        let first = out.written;
-        order.copy_within(task.begin..task.end, first);
-        let leaf_box = task.bounds.to_aabb().padded();
-        for slot in first..first + count {
-            let Some(entry) = order.get_mut(slot) else {
-                break;
-            };
-            if *entry & SPLIT_FLAG != 0 {
-                *entry &= !SPLIT_FLAG;
-                if let Some(r) = out.splits.get_mut(out.split_count) {
-                    *r = SplitRef {
-                        tri: *entry,
-                        slot: slot as u32,
-                        leaf_box,
-                    };
-                    out.split_count += 1;
-                }
-            }
-        }
-        out.written += count;
-        if let Some(node) = out.nodes.get_mut(task.node) {
-            // first + count ≤ the reference room, which fits in u32 (checked up front).
-            *node = BvhNode::new(leaf_box, first as u32, count as u32);
+impl<'m, 'c> Builder<'m, 'c> {
+    /// A builder for `mesh` whose root box is `bounds`.
+    pub(super) fn new(
+        mesh: &'m ValidMesh<'m>,
+        config: &'c BuildConfig,
+        spatial: &SpatialSplits,
+        bounds: &BuildBox,
+    ) -> Self {
+        Self {
+            mesh,
+            config,
+            min_overlap: spatial.min_overlap * bounds.half_area(),
+            binning: Binning::new(),
+            spatial: SpatialBinning::new(),
         }
     }
 
     /// Decides a node: `None` for a leaf, or its two children (node indices unset), their
     /// references in place.
-    fn split(
+    pub(super) fn split(
         &mut self,
         rt: &RoomTask,
         prims: &mut [PrimRef],

@@ -87,12 +87,7 @@ impl<'a> Bvh<'a> {
         split_refs: &'a mut [SplitRef],
     ) -> Result<Self, BuildError> {
         let built = build_spatial_into(mesh, config, spatial, nodes, order, scratch, split_refs)?;
-        Ok(Self {
-            nodes: nodes.get(..built.node_count).unwrap_or_default(),
-            order: order.get(..built.slots).unwrap_or_default(),
-            depth: built.depth,
-            splits: SplitRefs::new(split_refs.get(..built.split_refs).unwrap_or_default()),
-        })
+        Ok(Self::of_spatial(&built, nodes, order, split_refs))
     }
 
     /// [`Bvh::build`] on rayon's thread pool (feature `parallel`): the same nodes and order,
@@ -113,6 +108,46 @@ impl<'a> Bvh<'a> {
     ) -> Result<Self, BuildError> {
         let built = super::parallel_build::build_parallel(mesh, config, nodes, order, scratch)?;
         Ok(Self::of_built(&built, mesh, nodes, order))
+    }
+
+    /// [`Bvh::build_spatial`] on rayon's thread pool (feature `parallel`): the same nodes,
+    /// order and split references, bit for bit, whatever the number of threads. Once a node
+    /// is split its two children are built concurrently (each owns its part of the buffers);
+    /// subtrees under about 16,000 references are built as [`Bvh::build_spatial`] builds them.
+    /// Buffers and errors as [`Bvh::build_spatial`]; the build allocates room for the pieces it
+    /// builds concurrently.
+    ///
+    /// # Errors
+    /// As [`Bvh::build_spatial`].
+    #[cfg(feature = "parallel")]
+    pub fn build_spatial_parallel(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        spatial: &SpatialSplits,
+        nodes: &'a mut [BvhNode],
+        order: &'a mut [u32],
+        scratch: &mut [PrimRef],
+        split_refs: &'a mut [SplitRef],
+    ) -> Result<Self, BuildError> {
+        let built = super::parallel_spatial::build_spatial_parallel(
+            mesh, config, spatial, nodes, order, scratch, split_refs,
+        )?;
+        Ok(Self::of_spatial(&built, nodes, order, split_refs))
+    }
+
+    /// The view of what a spatial-split builder wrote.
+    fn of_spatial(
+        built: &super::spatial_build::SpatialBuilt,
+        nodes: &'a [BvhNode],
+        order: &'a [u32],
+        split_refs: &'a [SplitRef],
+    ) -> Self {
+        Self {
+            nodes: nodes.get(..built.node_count).unwrap_or_default(),
+            order: order.get(..built.slots).unwrap_or_default(),
+            depth: built.depth,
+            splits: SplitRefs::new(split_refs.get(..built.split_refs).unwrap_or_default()),
+        }
     }
 
     /// A view over nodes and order kept from an earlier build (or decoded from storage),

@@ -91,7 +91,7 @@ impl MeshBvh {
     /// triangle and bits, overlaps and triangle pairs each triangle once
     /// ([`SplitRefs`]). [`MeshQuery::shapecast`](crate::query::MeshQuery::shapecast) may offer
     /// a split triangle once per leaf holding it; `shapecast_once` offers each once. Built on
-    /// one thread. Deterministic.
+    /// one thread ([`MeshBvh::build_spatial_parallel`] builds on the pool). Deterministic.
     ///
     /// # Errors
     /// As [`MeshBvh::build`], and [`BuildError::InvalidConfig`] for a bad `spatial`.
@@ -100,18 +100,55 @@ impl MeshBvh {
         config: &BuildConfig,
         spatial: &SpatialSplits,
     ) -> Result<Self, BuildError> {
+        Self::build_spatial_with(mesh, config, spatial, false)
+    }
+
+    /// [`MeshBvh::build_spatial`] on rayon's thread pool ([`Bvh::build_spatial_parallel`],
+    /// feature `parallel`): the same buffers, bit for bit.
+    ///
+    /// # Errors
+    /// As [`MeshBvh::build_spatial`].
+    #[cfg(feature = "parallel")]
+    pub fn build_spatial_parallel(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        spatial: &SpatialSplits,
+    ) -> Result<Self, BuildError> {
+        Self::build_spatial_with(mesh, config, spatial, true)
+    }
+
+    /// Copies the mesh, builds its tree with spatial splits (on the pool when `parallel`),
+    /// packs and widens.
+    fn build_spatial_with(
+        mesh: &ValidMesh<'_>,
+        config: &BuildConfig,
+        spatial: &SpatialSplits,
+        parallel: bool,
+    ) -> Result<Self, BuildError> {
         spatial.check()?;
         let positions = mesh.positions().to_vec();
         let triangles = mesh.triangles().to_vec();
         let n = triangles.len();
         let room = spatial.reference_capacity(n);
-        let mut nodes = vec![BvhNode::EMPTY; node_capacity(room)];
-        let mut order = vec![0u32; room];
-        let mut scratch = vec![PrimRef::EMPTY; room];
+        let mut nodes = filled(BvhNode::EMPTY, node_capacity(room), parallel);
+        let mut order = filled(0u32, room, parallel);
+        let mut scratch = filled(PrimRef::EMPTY, room, parallel);
         let mut splits = vec![SplitRef::EMPTY; spatial.split_ref_capacity(n)];
         let (used, slots, split_count, depth) = {
             let copy = ValidMesh::new_unchecked_by_validate(&positions, &triangles);
-            let bvh = Bvh::build_spatial(
+            let build = if parallel {
+                #[cfg(feature = "parallel")]
+                {
+                    Bvh::build_spatial_parallel
+                }
+                #[cfg(not(feature = "parallel"))]
+                {
+                    Bvh::build_spatial
+                }
+            } else {
+                Bvh::build_spatial
+            };
+            let bvh = build(
                 &copy,
                 config,
                 spatial,
@@ -133,7 +170,8 @@ impl MeshBvh {
         order.shrink_to_fit();
         splits.truncate(split_count);
         splits.shrink_to_fit();
-        let mut built = Self::assemble(positions, triangles, nodes, order, depth, *config, false)?;
+        let mut built =
+            Self::assemble(positions, triangles, nodes, order, depth, *config, parallel)?;
         built.splits = splits;
         Ok(built)
     }
