@@ -1041,6 +1041,21 @@ fn spatial_splits_bake_a_version_4_blob_that_answers_as_brute_force() {
     .unwrap();
     let references = bake["references"].as_u64().unwrap();
     assert!(references > mesh.triangle_count() as u64, "{bake}");
+    // On two threads: the same blob, byte for byte.
+    let threaded = dir.path().join("fandisk-2.meshq");
+    ok(&[
+        &"bake",
+        &obj,
+        &"-o",
+        &threaded,
+        &"--spatial-splits",
+        &"--threads",
+        &"2",
+    ]);
+    assert_eq!(
+        std::fs::read(&threaded).unwrap(),
+        std::fs::read(&blob).unwrap()
+    );
     let inspect: serde_json::Value =
         serde_json::from_str(&ok(&[&"inspect", &blob, &"--json"])).unwrap();
     assert_eq!(inspect["format_version"], 4);
