@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes blob parsing and queries, then the command's mesh loaders:
 # `scripts/fuzz.sh [SECONDS] [extra libFuzzer flags...]` runs each target for SECONDS.
-# Blob seeds are small valid blobs written by fuzz/src/bin/make_seeds.rs; mesh seeds are the
-# small OBJ, PLY and STL files in fuzz/seeds/mesh_load. Needs a nightly toolchain and
+# Blob seeds are small valid blobs written by fuzz/src/bin/make_seeds.rs and the findings kept
+# in fuzz/seeds/blob_parse; mesh seeds are the small OBJ, PLY and STL files in
+# fuzz/seeds/mesh_load. Needs a nightly toolchain and
 # cargo-fuzz (scripts/setup.sh installs it when nightly exists). No sanitizer: the code is all
 # safe Rust (unsafe is forbidden), so AddressSanitizer has nothing to add and halves the
 # executions per second. The mesh loaders run under a 256 MB allocation cap, so an allocation
@@ -14,6 +15,7 @@ shift || true
 corpus=../target/fuzz-corpus/blob_parse
 mkdir -p "$corpus"
 cargo +nightly run --quiet --release --bin make_seeds -- "$corpus"
+cp seeds/blob_parse/* "$corpus"/
 cargo +nightly fuzz run --sanitizer none blob_parse "$corpus" -- -max_total_time="$seconds" -max_len=8192 "$@"
 meshes=../target/fuzz-corpus/mesh_load
 mkdir -p "$meshes"

@@ -436,6 +436,29 @@ fn spatial_split_trees_round_trip_through_blobs() {
         );
         assert_eq!(view, owned, "{what}");
     }
+    // A packed blob whose two slots of one split triangle hold its corners in another order:
+    // the same points, other bytes. Found by the fuzzer (the view and the owned loader, which
+    // keeps one corner triple per triangle, disagreed); now both refuse it alike.
+    let packed = scene.to_blob(MeshLayout::Packed).unwrap();
+    let hp = meshq::blob::BlobHeader::read(&packed).unwrap();
+    let corners_at = {
+        let order_at = hp.header_len + varint(hp.node_count) + 32 * hp.node_count as usize;
+        let table_at = order_at + varint(hp.reference_count) + 4 * hp.reference_count as usize;
+        let mesh_at = table_at + varint(hp.split_ref_count) + 32 * hp.split_ref_count as usize;
+        // The layout tag, then the corner triples' count.
+        mesh_at + 1 + varint(hp.reference_count)
+    };
+    let mut b = packed.clone();
+    let at = corners_at + 36 * second.slot as usize;
+    b[at..at + 36].rotate_left(12);
+    reseal(&mut b).unwrap();
+    let (view, owned) = read(&b);
+    assert_eq!(
+        view,
+        Some(meshq::error::BlobError::BadSplitRef { entry: 1 })
+    );
+    assert_eq!(owned, view);
+
     // A slot naming a split triangle once more than its entries say.
     let order_at = order_at + varint(h.reference_count);
     let mut b = bytes.clone();

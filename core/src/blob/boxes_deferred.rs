@@ -9,7 +9,7 @@
 
 use glam::Vec3;
 
-use super::split_check::check_slots;
+use super::split_check::{check_repeated_corners, check_slots};
 use super::view::{RawStructure, check_mesh, same_bounds, sections};
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobView};
 use crate::bvh::TreeArrays;
@@ -47,6 +47,7 @@ impl<'a> BoxesUnchecked<'a> {
         let in_range = InRange::of(&mesh);
         tree.depth = check(&tree, Some(&in_range), CheckLevel::Topology, Extent::Exact)?.depth;
         check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
+        check_repeated_corners(&tree, Some(&mesh))?;
         same_bounds(
             &tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb()),
             &header.bounds,

@@ -1,6 +1,8 @@
 //! Whether a BVH's leaf slots and split references agree: the checks a tree with spatial
 //! splits needs instead of "the order is a permutation".
 
+use super::BlobMesh;
+use super::format::PACKED_BYTES;
 use super::order_check::check_order_covers;
 use crate::bvh::TreeArrays;
 use crate::error::BlobError;
@@ -88,4 +90,35 @@ pub(crate) fn check_slots<A: TreeArrays + ?Sized>(
         return Err(bad(splits.len()));
     }
     check_order_covers(order, n, splits.iter().map(|r| r.tri))
+}
+
+/// Refuses a packed mesh (corners per leaf slot) whose slots of one split triangle hold
+/// different corners: a query would then meet another triangle in each leaf. Other layouts
+/// read a triangle's corners through its index, the same from every slot.
+///
+/// # Errors
+/// [`BlobError::BadSplitRef`] naming the first entry whose slot's corners differ from those
+/// of its triangle's first entry.
+pub(crate) fn check_repeated_corners<A: TreeArrays + ?Sized>(
+    tree: &A,
+    mesh: Option<&BlobMesh<'_>>,
+) -> Result<(), BlobError> {
+    let (Some(BlobMesh::Packed { corners }), splits) = (mesh, tree.split_refs()) else {
+        return Ok(());
+    };
+    let mut first: Option<(u32, Option<&[u8; PACKED_BYTES]>)> = None;
+    for (i, r) in splits.iter().enumerate() {
+        let here = corners.get(r.slot as usize);
+        match first {
+            Some((tri, there)) if tri == r.tri => {
+                if here.is_none() || here != there {
+                    return Err(BlobError::BadSplitRef {
+                        entry: u32::try_from(i).unwrap_or(u32::MAX),
+                    });
+                }
+            }
+            _ => first = Some((r.tri, here)),
+        }
+    }
+    Ok(())
 }

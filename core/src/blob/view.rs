@@ -9,7 +9,7 @@ use super::format::{
 };
 use super::mesh::{check_indexed, check_packed};
 use super::reader::Reader;
-use super::split_check::check_slots;
+use super::split_check::{check_repeated_corners, check_slots};
 #[cfg(feature = "blob-cells")]
 use super::structure_config::StructureConfig;
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
@@ -330,6 +330,7 @@ fn check_structure<'a>(
             }
             tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
             check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
+            check_repeated_corners(&tree, mesh)?;
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
             (BlobStructure::Bvh(tree), tree.depth)
