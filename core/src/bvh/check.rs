@@ -97,12 +97,13 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                     let t = mesh
                         .corners(slot, tri)
                         .ok_or(StructureError::TriangleOutOfRange { node: index, tri })?;
-                    // A reference of a split triangle holds only its part of it.
-                    let whole = level == CheckLevel::Full
+                    // A reference of a split triangle holds only its part of it: its leaf
+                    // box need only meet the triangle's.
+                    if level == CheckLevel::Full
                         && !holds(&bounds, &t)
-                        && tree.split_refs().range_of(tri).is_empty();
-                    let part = level == CheckLevel::Full && !bounds.overlaps(&t.bounds());
-                    if whole || part {
+                        && (tree.split_refs().range_of(tri).is_empty()
+                            || !bounds.overlaps(&t.bounds()))
+                    {
                         return Err(StructureError::TriangleOutsideLeaf { node: index, tri });
                     }
                 }
