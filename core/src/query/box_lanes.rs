@@ -53,9 +53,9 @@ impl LaneRay {
         let [ox, oy, oz] = self.origin;
         let [ix, iy, iz] = self.inv_dir;
         let [neg_x, neg_y, neg_z] = self.negative;
-        let (nx, fx) = near_far(neg_x, node.min_x, node.max_x);
-        let (ny, fy) = near_far(neg_y, node.min_y, node.max_y);
-        let (nz, fz) = near_far(neg_z, node.min_z, node.max_z);
+        let (nx, fx) = near_far(neg_x, &node.min_x, &node.max_x);
+        let (ny, fy) = near_far(neg_y, &node.min_y, &node.max_y);
+        let (nz, fz) = near_far(neg_z, &node.min_z, &node.max_z);
         let entry = ((nx - ox) * ix)
             .max((ny - oy) * iy)
             .max((nz - oz) * iz)
@@ -82,12 +82,9 @@ impl LaneRay {
 
 /// One axis's (near, far) planes for a ray whose inverse direction is `negative` or not.
 #[inline(always)]
-pub(super) fn near_far(negative: bool, min: [f32; 4], max: [f32; 4]) -> (Vec4, Vec4) {
-    if negative {
-        (Vec4::from_array(max), Vec4::from_array(min))
-    } else {
-        (Vec4::from_array(min), Vec4::from_array(max))
-    }
+pub(super) fn near_far(negative: bool, min: &[f32; 4], max: &[f32; 4]) -> (Vec4, Vec4) {
+    let (near, far) = if negative { (max, min) } else { (min, max) };
+    (Vec4::from_array(*near), Vec4::from_array(*far))
 }
 
 /// The lanes whose box lies within squared distance `limit` of `point`, after shrinking each
@@ -195,11 +192,8 @@ pub(super) fn widened_verdict8(
 /// `negative` or not.
 #[inline(always)]
 fn near_far8(negative: bool, min: &[f32; 8], max: &[f32; 8]) -> (f32x8, f32x8) {
-    if negative {
-        (f32x8::new(*max), f32x8::new(*min))
-    } else {
-        (f32x8::new(*min), f32x8::new(*max))
-    }
+    let (near, far) = if negative { (max, min) } else { (min, max) };
+    (f32x8::new(*near), f32x8::new(*far))
 }
 
 /// [`enter_point`] for eight boxes: the lanes within squared distance `limit` of `point`

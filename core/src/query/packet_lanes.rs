@@ -76,9 +76,9 @@ impl PacketLanes {
         let [lx, ly, lz] = self.inv_lo;
         let [hx, hy, hz] = self.inv_hi;
         let [neg_x, neg_y, neg_z] = self.negative;
-        let (nx, fx) = near_far(neg_x, node.min_x, node.max_x);
-        let (ny, fy) = near_far(neg_y, node.min_y, node.max_y);
-        let (nz, fz) = near_far(neg_z, node.min_z, node.max_z);
+        let (nx, fx) = near_far(neg_x, &node.min_x, &node.max_x);
+        let (ny, fy) = near_far(neg_y, &node.min_y, &node.max_y);
+        let (nz, fz) = near_far(neg_z, &node.min_z, &node.max_z);
         // The smallest of `d · inv` over the interval (the entry), and the largest (the exit).
         let least = |d: Vec4, lo: Vec4, hi: Vec4| Vec4::select(d.cmpge(Vec4::ZERO), d * lo, d * hi);
         let most = |d: Vec4, lo: Vec4, hi: Vec4| Vec4::select(d.cmpge(Vec4::ZERO), d * hi, d * lo);
