@@ -192,8 +192,11 @@ pub(super) fn widened_verdict8(
 /// `negative` or not.
 #[inline(always)]
 fn near_far8(negative: bool, min: &[f32; 8], max: &[f32; 8]) -> (f32x8, f32x8) {
-    let (near, far) = if negative { (max, min) } else { (min, max) };
-    (f32x8::new(*near), f32x8::new(*far))
+    if negative {
+        (f32x8::new(*max), f32x8::new(*min))
+    } else {
+        (f32x8::new(*min), f32x8::new(*max))
+    }
 }
 
 /// [`enter_point`] for eight boxes: the lanes within squared distance `limit` of `point`
