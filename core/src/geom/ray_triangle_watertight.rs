@@ -13,6 +13,8 @@ pub(crate) struct WatertightRay {
     pub(super) kx: usize,
     pub(super) ky: usize,
     pub(super) kz: usize,
+    /// The origin's coordinates at `kx`, `ky` and `kz`.
+    pub(super) origin_k: [f32; 3],
     pub(super) sx: f32,
     pub(super) sy: f32,
     pub(super) sz: f32,
@@ -53,6 +55,11 @@ impl WatertightRay {
             kx,
             ky,
             kz,
+            origin_k: [
+                axis(ray.origin, kx),
+                axis(ray.origin, ky),
+                axis(ray.origin, kz),
+            ],
             sx: axis(d, kx) / dz,
             sy: axis(d, ky) / dz,
             sz: 1.0 / dz,

@@ -34,20 +34,29 @@ impl WatertightRay {
     /// (and their hits, bit for bit) and those only it can decide.
     #[inline(always)]
     pub(crate) fn hits(&self, tris: &TriangleLanes, cull: CullMode) -> LaneHits {
-        let o = Lanes3::splat(self.origin);
-        let (pa, pb, pc) = (tris.a.sub(o), tris.b.sub(o), tris.c.sub(o));
+        // `(a − o)` picked at axis `k` is `a[k] − o[k]`: the same subtraction, so each row is
+        // picked first (by address) and only the three rows the frame uses are subtracted.
+        let [okx, oky, okz] = self.origin_k.map(Vec4::splat);
         let (sx, sy, sz) = (
             Vec4::splat(self.sx),
             Vec4::splat(self.sy),
             Vec4::splat(self.sz),
         );
-        let (az, bz, cz) = (pa.axis(self.kz), pb.axis(self.kz), pc.axis(self.kz));
-        let ax = pa.axis(self.kx) - sx * az;
-        let ay = pa.axis(self.ky) - sy * az;
-        let bx = pb.axis(self.kx) - sx * bz;
-        let by = pb.axis(self.ky) - sy * bz;
-        let cx = pc.axis(self.kx) - sx * cz;
-        let cy = pc.axis(self.ky) - sy * cz;
+        let frame = |p: &Lanes3| {
+            (
+                *p.axis_ref(self.kx) - okx,
+                *p.axis_ref(self.ky) - oky,
+                *p.axis_ref(self.kz) - okz,
+            )
+        };
+        let ((pax, pay, az), (pbx, pby, bz), (pcx, pcy, cz)) =
+            (frame(&tris.a), frame(&tris.b), frame(&tris.c));
+        let ax = pax - sx * az;
+        let ay = pay - sy * az;
+        let bx = pbx - sx * bz;
+        let by = pby - sy * bz;
+        let cx = pcx - sx * cz;
+        let cy = pcy - sy * cz;
         let u = cx * by - cy * bx;
         let v = ax * cy - ay * cx;
         let w = bx * ay - by * ax;

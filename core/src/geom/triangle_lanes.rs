@@ -23,14 +23,13 @@ impl Lanes3 {
         }
     }
 
-    /// Coordinate `k` (0 = x, 1 = y, anything else z) of the four points.
+    /// Coordinate `k` (0 = x, 1 = y, anything else z) of the four points, read where it is
+    /// stored: the row is chosen by address (a conditional move), not by a branch per axis
+    /// that a new ray's frame would mispredict.
     #[inline(always)]
-    pub(crate) fn axis(&self, k: usize) -> Vec4 {
-        match k {
-            0 => self.x,
-            1 => self.y,
-            _ => self.z,
-        }
+    pub(crate) fn axis_ref(&self, k: usize) -> &Vec4 {
+        let (x_or_y, z) = (if k == 0 { &self.x } else { &self.y }, &self.z);
+        if k >= 2 { z } else { x_or_y }
     }
 
     #[inline(always)]
