@@ -111,6 +111,30 @@ fn main() {
             }),
         ),
         (
+            "away wide packed",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| {
+                        let away = meshq::math::Ray::new(r.origin, -r.dir);
+                        wide.with(&packed).raycast(&away).is_some()
+                    })
+                    .count()
+            }),
+        ),
+        (
+            "noop away",
+            rays.len(),
+            Box::new(|| {
+                rays.iter()
+                    .filter(|r| {
+                        let away = meshq::math::Ray::new(r.origin, -r.dir);
+                        std::hint::black_box(away).t_max < 0.0
+                    })
+                    .count()
+            }),
+        ),
+        (
             "rays wide batch",
             rays.len(),
             Box::new(|| {
