@@ -22,47 +22,37 @@ pub(crate) struct WatertightRay {
     pub(super) t_max: f32,
 }
 
-#[inline(always)]
-fn axis(v: Vec3, k: usize) -> f32 {
-    match k {
-        0 => v.x,
-        1 => v.y,
-        _ => v.z,
-    }
-}
-
 impl WatertightRay {
     #[inline]
     pub fn new(ray: &Ray) -> Self {
-        let d = ray.dir;
-        let ad = d.abs();
+        // Every choice here is a select or an indexed load, not a branch: the frame of one
+        // random ray says nothing about the next one's, so branches would mispredict.
+        let d = ray.dir.to_array();
+        let at = |v: &[f32; 3], k: usize| v.get(k).copied().unwrap_or(0.0);
+        let [ax, ay, az] = ray.dir.abs().to_array();
         // Ties go to the lower axis so that every target picks the same frame.
-        let kz = if ad.x >= ad.y && ad.x >= ad.z {
-            0
-        } else if ad.y >= ad.z {
-            1
+        let x_largest = (ax >= ay) & (ax >= az);
+        let kz = if x_largest { 0 } else { 2 - usize::from(ay >= az) };
+        let (next, after) = ((kz + 1) % 3, (kz + 2) % 3);
+        let dz = at(&d, kz);
+        // The two other axes in cyclic order, swapped for a negative `dz` so that the sheared
+        // frame stays right-handed.
+        let (kx, ky) = if dz < 0.0 {
+            (after, next)
         } else {
-            2
+            (next, after)
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if axis(d, kz) < 0.0 {
-            core::mem::swap(&mut kx, &mut ky);
-        }
-        let dz = axis(d, kz);
+        let (sx, sy, sz) = (at(&d, kx) / dz, at(&d, ky) / dz, 1.0 / dz);
+        let o = ray.origin.to_array();
         Self {
             origin: ray.origin,
             kx,
             ky,
             kz,
-            origin_k: [
-                axis(ray.origin, kx),
-                axis(ray.origin, ky),
-                axis(ray.origin, kz),
-            ],
-            sx: axis(d, kx) / dz,
-            sy: axis(d, ky) / dz,
-            sz: 1.0 / dz,
+            origin_k: [at(&o, kx), at(&o, ky), at(&o, kz)],
+            sx,
+            sy,
+            sz,
             t_min: ray.t_min,
             t_max: ray.t_max,
         }
