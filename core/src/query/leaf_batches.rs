@@ -60,14 +60,7 @@ pub(crate) fn for_each_batch<S: LeafTriangles + ?Sized>(
 ) -> ControlFlow<()> {
     if let Some(run) = source.run(tris.first_slot(), tris.entries()) {
         for chunk in run.chunks(4) {
-            let mut ids = [0u32; 4];
-            let mut used = 0u32;
-            for (lane, id) in ids.iter_mut().enumerate().take(chunk.len()) {
-                if let Some((_, tri, skipped)) = tris.next_entry() {
-                    *id = tri;
-                    used |= u32::from(!skipped) << lane;
-                }
-            }
+            let (ids, used) = tris.next_four(chunk.len());
             if used == 0 {
                 continue;
             }
