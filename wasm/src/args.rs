@@ -42,6 +42,30 @@ pub fn value_kind(value: &JsValue) -> String {
     }
 }
 
+/// A number as JavaScript writes it, for error messages: `Infinity`, `-Infinity` and `NaN`
+/// (Rust would write `inf` and `NaN`), and an exponent beyond JavaScript's fixed-point range.
+pub struct JsNumber(pub f64);
+
+impl core::fmt::Display for JsNumber {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let x = self.0;
+        if x.is_nan() {
+            f.write_str("NaN")
+        } else if x.is_infinite() {
+            f.write_str(if x > 0.0 { "Infinity" } else { "-Infinity" })
+        } else if x != 0.0 && !(1e-7..1e21).contains(&x.abs()) {
+            // JavaScript switches to exponents outside that range, with an explicit sign.
+            let text = format!("{x:e}");
+            match text.split_once('e') {
+                Some((mantissa, exp)) if !exp.starts_with('-') => write!(f, "{mantissa}e+{exp}"),
+                _ => f.write_str(&text),
+            }
+        } else {
+            write!(f, "{x}")
+        }
+    }
+}
+
 /// A number (`f64`) or a `TypeError`.
 fn number(value: &JsValue, what: &str) -> Result<f64, JsValue> {
     value.as_f64().ok_or_else(|| {
@@ -58,7 +82,8 @@ pub fn finite(value: &JsValue, what: &str) -> Result<f32, JsValue> {
     let f = x as f32;
     if !f.is_finite() {
         return Err(range_error(&format!(
-            "{what} must be a finite number, got {x}"
+            "{what} must be a finite number, got {}",
+            JsNumber(x)
         )));
     }
     Ok(f)
@@ -122,8 +147,9 @@ pub fn vector(value: &JsValue, what: &str) -> Result<Vec3, JsValue> {
         *o = c as f32;
         if !o.is_finite() {
             return Err(range_error(&format!(
-                "{what}.{} must be a finite number, got {c}",
-                AXES[axis]
+                "{what}.{} must be a finite number, got {}",
+                AXES[axis],
+                JsNumber(c)
             )));
         }
     }
@@ -136,7 +162,8 @@ pub fn finite_number(x: f64, what: &str) -> Result<f32, JsValue> {
     let f = x as f32;
     if !f.is_finite() {
         return Err(range_error(&format!(
-            "{what} must be a finite number, got {x}"
+            "{what} must be a finite number, got {}",
+            JsNumber(x)
         )));
     }
     Ok(f)
@@ -198,7 +225,8 @@ pub fn max_distance(value: &JsValue) -> Result<f32, JsValue> {
     let x = number(value, "maxDistance")?;
     if !(x >= 0.0) {
         return Err(range_error(&format!(
-            "maxDistance must be a number ≥ 0 (or omitted for no limit), got {x}"
+            "maxDistance must be a number ≥ 0 (or omitted for no limit), got {}",
+            JsNumber(x)
         )));
     }
     Ok(x as f32)
@@ -217,7 +245,8 @@ pub fn side(value: &JsValue) -> Result<RayOptions, JsValue> {
             2.0 => CullMode::None,
             other => {
                 return Err(range_error(&format!(
-                    "side must be 0 (front), 1 (back) or 2 (double), got {other}"
+                    "side must be 0 (front), 1 (back) or 2 (double), got {}",
+                    JsNumber(other)
                 )));
             }
         }

@@ -6,7 +6,7 @@ use meshq::owned::{MeshIndex, StructureKind};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
-use crate::args::{range_error, type_error, value_kind};
+use crate::args::{JsNumber, range_error, type_error, value_kind};
 use crate::options::BuildChoice;
 use crate::storage::Storage;
 
@@ -35,7 +35,8 @@ pub fn read_indices(indices: &JsValue) -> Result<Option<Vec<u32>>, JsValue> {
                     Ok(x as u32)
                 }
                 Some(x) => Err(range_error(&format!(
-                    "indices[{i}] must be a whole number in 0..2^32, got {x}"
+                    "indices[{i}] must be a whole number in 0..2^32, got {}",
+                    JsNumber(x)
                 ))),
                 None => Err(type_error(&format!(
                     "indices[{i}] must be a number, got {}",

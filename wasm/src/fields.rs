@@ -9,7 +9,7 @@ use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
-use crate::args::{range_error, type_error, value_kind};
+use crate::args::{JsNumber, range_error, type_error, value_kind};
 
 /// Whether `value` is `undefined` or `null`.
 pub fn omitted(value: &JsValue) -> bool {
@@ -74,7 +74,8 @@ pub fn optional_whole(value: &JsValue, what: &str, max: f64) -> Result<Option<u6
     };
     if x.fract() != 0.0 || !(0.0..=max).contains(&x) {
         return Err(range_error(&format!(
-            "{what} must be a whole number in 0..={max}, got {x}"
+            "{what} must be a whole number in 0..={max}, got {}",
+            JsNumber(x)
         )));
     }
     Ok(Some(x as u64))

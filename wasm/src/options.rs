@@ -5,7 +5,7 @@ use meshq::error::BuildError;
 use meshq::owned::StructureKind;
 use wasm_bindgen::prelude::*;
 
-use crate::args::{range_error, type_error, value_kind};
+use crate::args::{JsNumber, range_error, type_error, value_kind};
 use crate::fields::{field, omitted, optional_choice, optional_u32, options};
 
 /// The keys `MeshBvh.build` accepts.
@@ -48,8 +48,9 @@ fn spatial_option(value: &JsValue) -> Result<Option<SpatialSplits>, JsValue> {
     };
     if spatial.check().is_err() || !(0.0..=f64::from(SpatialSplits::MAX_EXTRA)).contains(&extra) {
         return Err(range_error(&format!(
-            "{WHAT} must be true, false or a number in 0..={}, got {extra}",
-            SpatialSplits::MAX_EXTRA
+            "{WHAT} must be true, false or a number in 0..={}, got {}",
+            SpatialSplits::MAX_EXTRA,
+            JsNumber(extra)
         )));
     }
     Ok(Some(spatial))

@@ -9,7 +9,7 @@ use meshq::owned::{Remeshed, mean_edge_length};
 use meshq::remesh::{MeshQuality, RemeshConfig};
 use wasm_bindgen::prelude::*;
 
-use crate::args::{floats_or_numbers, range_error};
+use crate::args::{JsNumber, floats_or_numbers, range_error};
 use crate::build::read_indices;
 use crate::fields::{field, optional_number, optional_whole, options};
 use crate::js_objects::set;
@@ -27,7 +27,8 @@ fn config(options_in: &JsValue, mean_edge: impl FnOnce() -> f32) -> Result<Remes
         let what = format!("options.{name}");
         match optional_number(&field(o, name), &what)? {
             Some(x) if !(x > 0.0 && x.is_finite()) => Err(range_error(&format!(
-                "{what} must be a positive finite number, got {x}"
+                "{what} must be a positive finite number, got {}",
+                JsNumber(x)
             ))),
             x => Ok(x),
         }

@@ -189,6 +189,11 @@ const cases = [
   [() => MeshBvh.build(positions, indices, { maxDepth: 2.5 }), RangeError, /options.maxDepth must be a whole number/],
   [() => MeshBvh.build(positions, indices, { maxLeafSize: 0 }), RangeError, /options.maxLeafSize must be in 1..=\d+, got 0/],
   [() => MeshBvh.build(positions, indices, { spatialSplits: 'yes' }), TypeError, /options.spatialSplits must be a boolean or a number/],
+  // Numbers are echoed as JavaScript writes them.
+  [() => MeshBvh.build(positions, indices, { spatialSplits: Infinity }), RangeError, /options.spatialSplits .* got Infinity$/],
+  [() => MeshBvh.build(positions, indices, { spatialSplits: -1e30 }), RangeError, /got -1e\+30$/],
+  [() => bvh.raycastXyz(0.3, 0.6, -Infinity, 0, 0, -1), RangeError, /oz must be a finite number, got -Infinity$/],
+  [() => bvh.raycast(above, down, 0, Infinity, 0.5), RangeError, /side .* got 0\.5$/],
   [() => MeshBvh.build(positions, indices, { spatialSplits: 5 }), RangeError, /options.spatialSplits must be true, false or a number in 0..=4, got 5/],
   [() => MeshBvh.build(positions, indices, { spatialSplits: -1 }), RangeError, /options.spatialSplits must be/],
   [() => MeshBvh.build(positions, indices, { spatialSplits: true, structure: 'grid' }), TypeError, /options.spatialSplits applies to the BVH/],

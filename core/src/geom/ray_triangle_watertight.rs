@@ -32,7 +32,11 @@ impl WatertightRay {
         let [ax, ay, az] = ray.dir.abs().to_array();
         // Ties go to the lower axis so that every target picks the same frame.
         let x_largest = (ax >= ay) & (ax >= az);
-        let kz = if x_largest { 0 } else { 2 - usize::from(ay >= az) };
+        let kz = if x_largest {
+            0
+        } else {
+            2 - usize::from(ay >= az)
+        };
         let (next, after) = ((kz + 1) % 3, (kz + 2) % 3);
         let dz = at(&d, kz);
         // The two other axes in cyclic order, swapped for a negative `dz` so that the sheared
