@@ -54,7 +54,7 @@ impl<N: Words, W: Words> Traverse for Octree<N, W> {
                         boxes.set_lane(lane, c.aabb());
                     }
                 }
-                let (mask, keys) = visitor.enter_lanes(&boxes);
+                let (mask, keys) = visitor.enter_computed_lanes(&boxes);
                 for (lane, &k) in keys.iter().enumerate() {
                     if mask & (1 << lane) != 0
                         && let Some(slot) = entered.get_mut(count)

@@ -13,7 +13,7 @@
 use glam::Vec4;
 use wide::f32x8;
 
-use super::box_lanes::{near_far, widened_verdict8};
+use super::box_lanes::{Planes, widened_verdict8};
 use crate::geom::SlabRay;
 use crate::math::{Aabb, Aabb4, Aabb8, max_f32, min_f32};
 
@@ -69,16 +69,23 @@ impl PacketLanes {
 
     /// The lanes some ray of the packet may enter within `[self.t_min, t_max]` (`t_max` the
     /// largest of the packet's), widened by `margin` as a single ray's test is, and each lane's
-    /// entry distance less that margin: no larger than any ray's own.
+    /// entry distance less that margin: no larger than any ray's own. `planes` picks each
+    /// axis's planes: by address for stored boxes, among values for computed ones.
     #[inline(always)]
-    pub(super) fn enter(&self, node: &Aabb4, t_max: f32, margin: f32) -> (u32, [f32; 4]) {
+    pub(super) fn enter(
+        &self,
+        node: &Aabb4,
+        t_max: f32,
+        margin: f32,
+        planes: Planes,
+    ) -> (u32, [f32; 4]) {
         let [ox, oy, oz] = self.origin;
         let [lx, ly, lz] = self.inv_lo;
         let [hx, hy, hz] = self.inv_hi;
         let [neg_x, neg_y, neg_z] = self.negative;
-        let (nx, fx) = near_far(neg_x, &node.min_x, &node.max_x);
-        let (ny, fy) = near_far(neg_y, &node.min_y, &node.max_y);
-        let (nz, fz) = near_far(neg_z, &node.min_z, &node.max_z);
+        let (nx, fx) = planes(neg_x, &node.min_x, &node.max_x);
+        let (ny, fy) = planes(neg_y, &node.min_y, &node.max_y);
+        let (nz, fz) = planes(neg_z, &node.min_z, &node.max_z);
         // The smallest of `d · inv` over the interval (the entry), and the largest (the exit).
         let least = |d: Vec4, lo: Vec4, hi: Vec4| Vec4::select(d.cmpge(Vec4::ZERO), d * lo, d * hi);
         let most = |d: Vec4, lo: Vec4, hi: Vec4| Vec4::select(d.cmpge(Vec4::ZERO), d * hi, d * lo);

@@ -4,7 +4,7 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::box_lanes::{LaneRay, LaneRay8, MARGIN};
+use super::box_lanes::{LaneRay, LaneRay8, MARGIN, near_far, near_far_values};
 use super::leaf_batches::{Batch, LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::geom::{
@@ -223,7 +223,15 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
         let slab = &self.tester.slab;
-        self.lanes.enter(boxes, slab.t_min, slab.t_max, MARGIN)
+        self.lanes
+            .enter(boxes, slab.t_min, slab.t_max, MARGIN, near_far)
+    }
+
+    #[inline(always)]
+    fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        let slab = &self.tester.slab;
+        self.lanes
+            .enter(boxes, slab.t_min, slab.t_max, MARGIN, near_far_values)
     }
 
     #[inline(always)]

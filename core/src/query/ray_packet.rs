@@ -12,7 +12,7 @@ use core::ops::ControlFlow;
 use glam::Vec3;
 
 use super::batch_order::query_index;
-use super::box_lanes::MARGIN;
+use super::box_lanes::{MARGIN, near_far, near_far_values};
 use super::leaf_batches::for_each_batch;
 use super::packet_lanes::{PACKET_RAYS, PacketLanes, PacketRays};
 use super::ray::{Goal, Kernel, RayTester, moller_trumbore_kernel, walk, watertight, within_reach};
@@ -69,7 +69,12 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K,
 
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes.enter(boxes, self.t_max, MARGIN)
+        self.lanes.enter(boxes, self.t_max, MARGIN, near_far)
+    }
+
+    #[inline(always)]
+    fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        self.lanes.enter(boxes, self.t_max, MARGIN, near_far_values)
     }
 
     #[inline(always)]

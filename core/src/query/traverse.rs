@@ -51,6 +51,15 @@ pub trait Visitor {
         (mask, keys)
     }
 
+    /// [`enter_lanes`](Self::enter_lanes) for four boxes the structure has just computed
+    /// (decoded from a compact node, or an octree cell's children) rather than read where
+    /// they are stored: the same verdict and keys. The default calls `enter_lanes`; the
+    /// built-in ray visitors pick each axis's planes among the values here, and by address
+    /// among stored boxes.
+    fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        self.enter_lanes(boxes)
+    }
+
     /// [`enter_lanes`](Self::enter_lanes) for eight boxes (an eight-wide node): bit `i` of the
     /// mask for lane `i`, its key in `keys[i]`. The default asks `enter_lanes` for each half;
     /// built-in visitors test all eight at once.

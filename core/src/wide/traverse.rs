@@ -100,7 +100,10 @@ impl LaneNode for CompactNode {
     type Keys = [f32; 4];
     #[inline(always)]
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 4]) {
-        judge4(&CompactNode::boxes(self), visitor)
+        // Decoded on the way: the boxes are values, not stored ones.
+        let boxes = CompactNode::boxes(self);
+        let (mask, keys) = visitor.enter_computed_lanes(&boxes);
+        (mask & boxes.used_mask() & 0xF, keys)
     }
     #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 4]) -> ([u32; 8], usize) {
