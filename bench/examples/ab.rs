@@ -157,6 +157,20 @@ fn main() {
             }),
         ),
         (
+            "rays eight-wide batch",
+            rays.len(),
+            Box::new(|| {
+                let mut keys = vec![0u64; rays.len()];
+                let mut out = vec![None; rays.len()];
+                let options = meshq::query::RayOptions::default();
+                wide8
+                    .with(&packed)
+                    .raycast_batch(&rays, &options, &mut keys, &mut out)
+                    .expect("batch");
+                out.iter().filter(|h| h.is_some()).count()
+            }),
+        ),
+        (
             "camera eight-wide batch",
             camera.len(),
             Box::new(|| {
