@@ -16,11 +16,18 @@ use crate::math::{Aabb4, Aabb8};
 pub(super) const MARGIN: f32 = 1.0 / 65_536.0;
 
 /// A ray's origin and padded inverse direction (from its [`SlabRay`]) spread over four lanes,
-/// computed once per ray.
+/// computed once per ray, and its interval.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LaneRay {
     origin: [Vec4; 3],
     inv_dir: [Vec4; 3],
+    /// `t_min` and `t_max` in every lane. Kept here as whole vectors, written whole when a hit
+    /// shrinks `t_max`: a splat of the scalar read next to other fields is compiled to one wide
+    /// load, which waits for a just-stored scalar instead of forwarding it.
+    t_min: Vec4,
+    t_max: Vec4,
+    /// Whether `t_min ≥ 0` (no entry distance is negative then).
+    from_zero: bool,
     /// Per axis, whether the inverse direction is negative (the near plane is `max`).
     negative: [bool; 3],
 }
@@ -32,11 +39,20 @@ impl LaneRay {
         Self {
             origin: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
             inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
+            t_min: Vec4::splat(ray.t_min),
+            t_max: Vec4::splat(ray.t_max),
+            from_zero: ray.t_min >= 0.0,
             negative: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
         }
     }
 
-    /// The lanes this ray enters within `[t_min, t_max]`, widened by `margin` (relative), and
+    /// Lowers the interval's end to `t_max` (a hit was found).
+    #[inline(always)]
+    pub(crate) fn set_t_max(&mut self, t_max: f32) {
+        self.t_max = Vec4::splat(t_max);
+    }
+
+    /// The lanes this ray enters within its interval, widened by `margin` (relative), and
     /// each lane's entry distance less that margin.
     ///
     /// Each axis reads its near plane first (`min` for a positive inverse direction), which
@@ -44,21 +60,14 @@ impl LaneRay {
     /// empty box to an empty interval. `planes` picks them: [`near_far`] for boxes read where
     /// they are stored, [`near_far_values`] for boxes just computed.
     #[inline(always)]
-    pub(crate) fn enter(
-        &self,
-        node: &Aabb4,
-        t_min: f32,
-        t_max: f32,
-        margin: f32,
-        planes: Planes,
-    ) -> (u32, [f32; 4]) {
+    pub(crate) fn enter(&self, node: &Aabb4, margin: f32, planes: Planes) -> (u32, [f32; 4]) {
         let [neg_x, neg_y, neg_z] = self.negative;
         let planes = [
             planes(neg_x, &node.min_x, &node.max_x),
             planes(neg_y, &node.min_y, &node.max_y),
             planes(neg_z, &node.min_z, &node.max_z),
         ];
-        self.verdict(planes, t_min, t_max, margin)
+        self.verdict(planes, margin)
     }
 
     /// The verdict and keys from each axis's (near, far) planes.
@@ -66,8 +75,6 @@ impl LaneRay {
     fn verdict(
         &self,
         [(nx, fx), (ny, fy), (nz, fz)]: [(Vec4, Vec4); 3],
-        t_min: f32,
-        t_max: f32,
         margin: f32,
     ) -> (u32, [f32; 4]) {
         let [ox, oy, oz] = self.origin;
@@ -75,17 +82,17 @@ impl LaneRay {
         let entry = ((nx - ox) * ix)
             .max((ny - oy) * iy)
             .max((nz - oz) * iz)
-            .max(Vec4::splat(t_min));
+            .max(self.t_min);
         let exit = ((fx - ox) * ix)
             .min((fy - oy) * iy)
             .min((fz - oz) * iz)
-            .min(Vec4::splat(t_max));
+            .min(self.t_max);
         // For `t_min ≥ 0` the entry is never negative, and a negative exit leaves the interval
         // empty whichever way it is widened, so `x ∓ |x|·margin` is `x·(1 ∓ margin)`: one
         // product, the same real number. Rounded once instead of twice, it can differ by an ulp
         // where `x·margin` is subnormal (|x| below about 1e-33), still widening by the margin
         // to within that ulp, far more than the slab arithmetic's own rounding.
-        let (lo, hi) = if t_min >= 0.0 {
+        let (lo, hi) = if self.from_zero {
             (entry * (1.0 - margin), exit * (1.0 + margin))
         } else {
             (entry - entry.abs() * margin, exit + exit.abs() * margin)
@@ -138,12 +145,17 @@ pub(crate) fn enter_point(node: &Aabb4, point: Vec3, limit: f32, margin: f32) ->
     )
 }
 
-/// A ray's origin and padded inverse direction spread over eight lanes, computed once per ray
-/// ([`LaneRay`] for eight boxes).
+/// A ray's origin and padded inverse direction spread over eight lanes, computed once per ray,
+/// and its interval ([`LaneRay`] for eight boxes).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LaneRay8 {
     origin: [f32x8; 3],
     inv_dir: [f32x8; 3],
+    /// `t_min` and `t_max` in every lane, written whole (see [`LaneRay`]).
+    t_min: f32x8,
+    t_max: f32x8,
+    /// Whether `t_min ≥ 0`.
+    from_zero: bool,
     /// Per axis, whether the inverse direction is negative (the near plane is `max`).
     negative: [bool; 3],
 }
@@ -159,22 +171,25 @@ impl LaneRay8 {
                 f32x8::splat(inv.y),
                 f32x8::splat(inv.z),
             ],
+            t_min: f32x8::splat(ray.t_min),
+            t_max: f32x8::splat(ray.t_max),
+            from_zero: ray.t_min >= 0.0,
             negative: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
         }
     }
 
-    /// [`LaneRay::enter`] for eight boxes: the lanes this ray enters within `[t_min, t_max]`,
+    /// Lowers the interval's end to `t_max` (a hit was found).
+    #[inline(always)]
+    pub(crate) fn set_t_max(&mut self, t_max: f32) {
+        self.t_max = f32x8::splat(t_max);
+    }
+
+    /// [`LaneRay::enter`] for eight boxes: the lanes this ray enters within its interval,
     /// widened by `margin` (relative), and each lane's entry distance less that margin. The
     /// same arithmetic lane for lane, in eight-lane vectors (one AVX instruction where the
     /// target has it, two four-lane ones elsewhere).
     #[inline(always)]
-    pub(crate) fn enter(
-        &self,
-        node: &Aabb8,
-        t_min: f32,
-        t_max: f32,
-        margin: f32,
-    ) -> (u32, [f32; 8]) {
+    pub(crate) fn enter(&self, node: &Aabb8, margin: f32) -> (u32, [f32; 8]) {
         let [ox, oy, oz] = self.origin;
         let [ix, iy, iz] = self.inv_dir;
         let [neg_x, neg_y, neg_z] = self.negative;
@@ -184,26 +199,26 @@ impl LaneRay8 {
         let entry = ((nx - ox) * ix)
             .fast_max((ny - oy) * iy)
             .fast_max((nz - oz) * iz)
-            .fast_max(f32x8::splat(t_min));
+            .fast_max(self.t_min);
         let exit = ((fx - ox) * ix)
             .fast_min((fy - oy) * iy)
             .fast_min((fz - oz) * iz)
-            .fast_min(f32x8::splat(t_max));
-        widened_verdict8(entry, exit, t_min, margin)
+            .fast_min(self.t_max);
+        widened_verdict8(entry, exit, self.from_zero, margin)
     }
 }
 
 /// The lanes whose interval `[entry, exit]`, widened by `margin` (relative), is not empty, and
 /// each lane's widened entry: the end of every eight-lane ray test. As in `LaneRay::enter`, one
-/// product widens when `t_min ≥ 0` (no entry is negative then).
+/// product widens when `from_zero` (`t_min ≥ 0`: no entry is negative then).
 #[inline(always)]
 pub(super) fn widened_verdict8(
     entry: f32x8,
     exit: f32x8,
-    t_min: f32,
+    from_zero: bool,
     margin: f32,
 ) -> (u32, [f32; 8]) {
-    let (lo, hi) = if t_min >= 0.0 {
+    let (lo, hi) = if from_zero {
         (
             entry * f32x8::splat(1.0 - margin),
             exit * f32x8::splat(1.0 + margin),
@@ -283,8 +298,8 @@ mod tests {
             if round % 3 == 0 {
                 boxes.set_lane(1, &Aabb::new(origin - 0.01, origin + 0.01));
             }
-            let by_address = lanes.enter(&boxes, ray.t_min, ray.t_max, MARGIN, near_far);
-            let by_value = lanes.enter(&boxes, ray.t_min, ray.t_max, MARGIN, near_far_values);
+            let by_address = lanes.enter(&boxes, MARGIN, near_far);
+            let by_value = lanes.enter(&boxes, MARGIN, near_far_values);
             assert_eq!(by_address.0, by_value.0, "round {round}");
             assert_eq!(
                 by_address.1.map(f32::to_bits),

@@ -68,14 +68,14 @@ impl PacketLanes {
     }
 
     /// The lanes some ray of the packet may enter within `[self.t_min, t_max]` (`t_max` the
-    /// largest of the packet's), widened by `margin` as a single ray's test is, and each lane's
+    /// largest of the packet's, in every lane), widened by `margin` as a single ray's test is, and each lane's
     /// entry distance less that margin: no larger than any ray's own. `planes` picks each
     /// axis's planes: by address for stored boxes, among values for computed ones.
     #[inline(always)]
     pub(super) fn enter(
         &self,
         node: &Aabb4,
-        t_max: f32,
+        t_max: Vec4,
         margin: f32,
         planes: Planes,
     ) -> (u32, [f32; 4]) {
@@ -96,7 +96,7 @@ impl PacketLanes {
         let exit = most(fx - ox, lx, hx)
             .min(most(fy - oy, ly, hy))
             .min(most(fz - oz, lz, hz))
-            .min(Vec4::splat(t_max));
+            .min(t_max);
         // Widened as a single ray's test is (`LaneRay::enter`, one product for `t_min ≥ 0`);
         // unused lanes are the structure's to ignore.
         let (lo, hi) = if self.t_min >= 0.0 {
@@ -112,7 +112,7 @@ impl PacketLanes {
     /// [`PacketLanes::enter`] for eight boxes, in eight-lane vectors: the same arithmetic lane
     /// for lane.
     #[inline(always)]
-    pub(super) fn enter8(&self, node: &Aabb8, t_max: f32, margin: f32) -> (u32, [f32; 8]) {
+    pub(super) fn enter8(&self, node: &Aabb8, t_max: f32x8, margin: f32) -> (u32, [f32; 8]) {
         let splat = |v: &[Vec4; 3]| v.map(|x| f32x8::splat(x.x));
         let [ox, oy, oz] = splat(&self.origin);
         let [lx, ly, lz] = splat(&self.inv_lo);
@@ -135,8 +135,8 @@ impl PacketLanes {
         let exit = most(fx - ox, lx, hx)
             .fast_min(most(fy - oy, ly, hy))
             .fast_min(most(fz - oz, lz, hz))
-            .fast_min(f32x8::splat(t_max));
-        widened_verdict8(entry, exit, self.t_min, margin)
+            .fast_min(t_max);
+        widened_verdict8(entry, exit, self.t_min >= 0.0, margin)
     }
 }
 

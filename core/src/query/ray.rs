@@ -216,22 +216,17 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
-        let slab = &self.tester.slab;
-        self.lanes8.enter(boxes, slab.t_min, slab.t_max, MARGIN)
+        self.lanes8.enter(boxes, MARGIN)
     }
 
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        let slab = &self.tester.slab;
-        self.lanes
-            .enter(boxes, slab.t_min, slab.t_max, MARGIN, near_far)
+        self.lanes.enter(boxes, MARGIN, near_far)
     }
 
     #[inline(always)]
     fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        let slab = &self.tester.slab;
-        self.lanes
-            .enter(boxes, slab.t_min, slab.t_max, MARGIN, near_far_values)
+        self.lanes.enter(boxes, MARGIN, near_far_values)
     }
 
     #[inline(always)]
@@ -246,7 +241,11 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
-        self.tester.leaf(self.source, tris)
+        let flow = self.tester.leaf(self.source, tris);
+        let t_max = self.tester.slab.t_max;
+        self.lanes.set_t_max(t_max);
+        self.lanes8.set_t_max(t_max);
+        flow
     }
 }
 

@@ -9,7 +9,8 @@
 
 use core::ops::ControlFlow;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
+use wide::f32x8;
 
 use super::batch_order::query_index;
 use super::box_lanes::{MARGIN, near_far, near_far_values};
@@ -34,6 +35,10 @@ pub(super) struct Packet<'m, S: ?Sized, K, G> {
     done: u32,
     /// The largest `t_max` of the rays still looking (each shrinks as hits are found).
     t_max: f32,
+    /// The same in every lane, written whole (see `LaneRay`: a splat of the scalar could be
+    /// one wide load that waits for the scalar's store).
+    t_max4: Vec4,
+    t_max8: f32x8,
 }
 
 /// Every ray of a packet done.
@@ -50,6 +55,8 @@ impl<'m, S: ?Sized, K: Kernel, G: Goal> Packet<'m, S, K, G> {
             .filter(|(i, _)| done & (1 << i) == 0)
             .map(|(_, r)| r.slab.t_max)
             .fold(f32::NEG_INFINITY, max_f32);
+        self.t_max4 = Vec4::splat(self.t_max);
+        self.t_max8 = f32x8::splat(self.t_max);
         self.each
             .set_t_max(self.rays.each_ref().map(|r| r.slab.t_max));
     }
@@ -69,17 +76,18 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K,
 
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes.enter(boxes, self.t_max, MARGIN, near_far)
+        self.lanes.enter(boxes, self.t_max4, MARGIN, near_far)
     }
 
     #[inline(always)]
     fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes.enter(boxes, self.t_max, MARGIN, near_far_values)
+        self.lanes
+            .enter(boxes, self.t_max4, MARGIN, near_far_values)
     }
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
-        self.lanes.enter8(boxes, self.t_max, MARGIN)
+        self.lanes.enter8(boxes, self.t_max8, MARGIN)
     }
 
     /// Whether any ray still looking would revisit: the one with the largest `t_max` would.
@@ -280,6 +288,8 @@ where
         rays: rays.each_ref().map(tester),
         done: 0,
         t_max: f32::NEG_INFINITY,
+        t_max4: Vec4::NEG_INFINITY,
+        t_max8: f32x8::splat(f32::NEG_INFINITY),
     };
     packet.update_t_max();
     if !tree.traverse_packet(&mut packet) {
