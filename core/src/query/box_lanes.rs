@@ -145,13 +145,15 @@ pub(crate) fn enter_point(node: &Aabb4, point: Vec3, limit: f32, margin: f32) ->
     )
 }
 
-/// A ray's origin and padded inverse direction spread over eight lanes, computed once per ray,
-/// and its interval ([`LaneRay`] for eight boxes).
+/// A ray's origin, padded inverse direction and interval spread over eight lanes
+/// ([`LaneRay`] for eight boxes). Made from the ray's [`LaneRay`] for each node
+/// ([`LaneRay8::from_lanes`]) rather than kept beside it: on a target without 256-bit
+/// vectors an eight-lane vector is two four-lane ones, so the copy is free there, and a
+/// second stored copy of the ray cost every four-wide walk its stores.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LaneRay8 {
     origin: [f32x8; 3],
     inv_dir: [f32x8; 3],
-    /// `t_min` and `t_max` in every lane, written whole (see [`LaneRay`]).
     t_min: f32x8,
     t_max: f32x8,
     /// Whether `t_min ≥ 0`.
@@ -161,27 +163,21 @@ pub(crate) struct LaneRay8 {
 }
 
 impl LaneRay8 {
+    /// The same ray's eight lanes from its four: each vector twice over.
     #[inline(always)]
-    pub(crate) fn new(ray: &SlabRay) -> Self {
-        let (o, inv) = (ray.origin, ray.inv_dir);
+    pub(crate) fn from_lanes(four: &LaneRay) -> Self {
+        let twice = |v: Vec4| {
+            let a = v.to_array();
+            f32x8::new([a[0], a[1], a[2], a[3], a[0], a[1], a[2], a[3]])
+        };
         Self {
-            origin: [f32x8::splat(o.x), f32x8::splat(o.y), f32x8::splat(o.z)],
-            inv_dir: [
-                f32x8::splat(inv.x),
-                f32x8::splat(inv.y),
-                f32x8::splat(inv.z),
-            ],
-            t_min: f32x8::splat(ray.t_min),
-            t_max: f32x8::splat(ray.t_max),
-            from_zero: ray.t_min >= 0.0,
-            negative: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+            origin: four.origin.map(twice),
+            inv_dir: four.inv_dir.map(twice),
+            t_min: twice(four.t_min),
+            t_max: twice(four.t_max),
+            from_zero: four.from_zero,
+            negative: four.negative,
         }
-    }
-
-    /// Lowers the interval's end to `t_max` (a hit was found).
-    #[inline(always)]
-    pub(crate) fn set_t_max(&mut self, t_max: f32) {
-        self.t_max = f32x8::splat(t_max);
     }
 
     /// [`LaneRay::enter`] for eight boxes: the lanes this ray enters within its interval,

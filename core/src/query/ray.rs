@@ -196,10 +196,9 @@ pub(super) struct RayVisitor<'m, S: ?Sized, K, G> {
     source: &'m S,
     /// The ray as given, for structures that walk along it.
     ray: Ray,
-    /// The same ray for four boxes at once (optimised away when no structure asks).
+    /// The same ray for four boxes at once, and for eight through [`LaneRay8::from_lanes`]
+    /// (optimised away when no structure asks).
     lanes: LaneRay,
-    /// The same for eight boxes at once (likewise).
-    lanes8: LaneRay8,
     pub(super) tester: RayTester<K, G>,
 }
 
@@ -216,7 +215,7 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
-        self.lanes8.enter(boxes, MARGIN)
+        LaneRay8::from_lanes(&self.lanes).enter(boxes, MARGIN)
     }
 
     #[inline(always)]
@@ -244,7 +243,6 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
         let flow = self.tester.leaf(self.source, tris);
         let t_max = self.tester.slab.t_max;
         self.lanes.set_t_max(t_max);
-        self.lanes8.set_t_max(t_max);
         flow
     }
 }
@@ -414,7 +412,6 @@ impl<'m, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, S, K, G> {
             source,
             ray: *ray,
             lanes: LaneRay::new(&tester.slab),
-            lanes8: LaneRay8::new(&tester.slab),
             tester,
         }
     }
