@@ -267,6 +267,77 @@ mod tests {
     use super::*;
     use crate::math::{Aabb, Ray};
 
+    /// An unused lane (an empty box, `min = +∞`, `max = −∞`) is never entered by the ray
+    /// lane tests, one ray or a packet, four lanes or eight, whatever the ray: directions
+    /// with zero components (the padded inverse), negative `t_min`, shrunk `t_max`. The ray
+    /// visitors rely on it (`never_enters_empty_lanes`), so structures keep such lanes in the
+    /// mask.
+    #[test]
+    fn empty_lanes_are_never_entered() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+        };
+        let mut used_entered = 0;
+        for round in 0..20_000 {
+            let origin = Vec3::new(next(), next(), next()) * 3.0;
+            // Most rays aim at the used boxes' region, so that used lanes are entered.
+            let mut dir = Vec3::new(next(), next(), next()) * 0.5 - origin;
+            // Zero, negative-zero and tiny components: the padded inverse directions.
+            match round % 7 {
+                0 => dir.x = 0.0,
+                1 => dir.y = -0.0,
+                2 => dir = Vec3::new(0.0, 0.0, dir.z.signum()),
+                3 => dir.z = 1e-39,
+                _ => {}
+            }
+            let mut ray = Ray::new(origin, dir);
+            ray.t_min = if round % 4 == 0 { -2.0 } else { 0.0 };
+            let mut boxes = Aabb4::EMPTY;
+            for lane in 0..2 {
+                let (a, b) = (
+                    Vec3::new(next(), next(), next()),
+                    Vec3::new(next(), next(), next()),
+                );
+                boxes.set_lane(lane, &Aabb::new(a.min(b), a.max(b)));
+            }
+            let mut lanes = LaneRay::new(&SlabRay::new(&ray));
+            if round % 3 == 0 {
+                lanes.set_t_max(next().abs() * 4.0);
+            }
+            for planes in [near_far as Planes, near_far_values] {
+                let (mask, _) = lanes.enter(&boxes, MARGIN, planes);
+                assert_eq!(mask & 0b1100, 0, "round {round}: {mask:04b}");
+                used_entered += (mask & 0b11).count_ones();
+            }
+            let mut boxes8 = Aabb8::EMPTY;
+            for lane in 0..2 {
+                boxes8.set_lane(lane, &boxes.lane(lane));
+            }
+            let (mask8, _) = LaneRay8::from_lanes(&lanes).enter(&boxes8, MARGIN);
+            assert_eq!(mask8 & 0xFC, 0, "round {round}: {mask8:08b}");
+            // A packet of rays from the same origin, with directions of the same signs.
+            let slabs: [SlabRay; crate::query::packet_lanes::PACKET_RAYS] =
+                core::array::from_fn(|k| {
+                    let mut r = ray;
+                    r.dir *= 1.0 + k as f32 * 0.125;
+                    SlabRay::new(&r)
+                });
+            if let Some(packet) = crate::query::packet_lanes::PacketLanes::new(&slabs) {
+                let t_max = Vec4::splat(ray.t_max);
+                let (mask, _) = packet.enter(&boxes, t_max, MARGIN, near_far);
+                assert_eq!(mask & 0b1100, 0, "round {round}: packet {mask:04b}");
+                let (mask8, _) = packet.enter8(&boxes8, f32x8::splat(ray.t_max), MARGIN);
+                assert_eq!(mask8 & 0xFC, 0, "round {round}: packet {mask8:08b}");
+            }
+        }
+        // Not vacuous: the used lanes are entered often.
+        assert!(used_entered > 10_000, "{used_entered} used lanes entered");
+    }
+
     /// Both plane pickers give the same verdict and keys, bit for bit, and a box around the
     /// ray's start is always entered: random rays of every direction sign against random
     /// boxes, with an empty lane, for `t_min` zero and negative.

@@ -47,6 +47,12 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
         true
     }
 
+    /// True: the lane tests clear unused lanes themselves.
+    #[inline(always)]
+    fn never_enters_empty_lanes(&self) -> bool {
+        true
+    }
+
     #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
         key <= self.limit

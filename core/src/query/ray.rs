@@ -233,6 +233,12 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
         true
     }
 
+    /// True: an empty box's near plane is infinitely far, its far plane infinitely near.
+    #[inline(always)]
+    fn never_enters_empty_lanes(&self) -> bool {
+        true
+    }
+
     #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
         !G::PRUNES || within_reach(key, self.tester.slab.t_max)

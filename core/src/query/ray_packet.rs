@@ -101,6 +101,12 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K,
         true
     }
 
+    /// True: an empty box's near plane is infinitely far, its far plane infinitely near.
+    #[inline(always)]
+    fn never_enters_empty_lanes(&self) -> bool {
+        true
+    }
+
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
         self.leaf_for(None, tris)

@@ -72,6 +72,17 @@ pub trait Visitor {
         )
     }
 
+    /// Whether [`enter_lanes`](Self::enter_lanes) and [`enter_lanes8`](Self::enter_lanes8)
+    /// never enter a lane whose box is [`Aabb4::EMPTY`]'s (`min = +∞`, `max = −∞` on every
+    /// axis), so that structures whose unused lanes hold exactly that box need not clear
+    /// them from the mask. The default, `false`, has structures clear them; the built-in ray
+    /// and closest-point visitors, whose box tests give such a box an empty interval or an
+    /// infinite distance, return `true`. Structures whose unused lanes hold other boxes (a
+    /// compact node's decoded lanes) clear them whatever this says.
+    fn never_enters_empty_lanes(&self) -> bool {
+        false
+    }
+
     /// Whether a box entered earlier with `key` and deferred is still worth visiting now (for
     /// example, not when a closer hit has been found since). Structures that walk in key order
     /// stop at the first `false`. The default visits everything.

@@ -67,7 +67,18 @@ pub(super) trait LaneNode {
 #[inline(always)]
 fn judge4<V: Visitor + ?Sized>(boxes: &Aabb4, visitor: &mut V) -> (u32, [f32; 4]) {
     let (mask, keys) = visitor.enter_lanes(boxes);
-    (mask & boxes.used_mask() & 0xF, keys)
+    (mask & used_lanes(boxes, visitor) & 0xF, keys)
+}
+
+/// The lanes a verdict of `visitor` may keep: the used ones, or all when the visitor never
+/// enters an unused lane.
+#[inline(always)]
+fn used_lanes<V: Visitor + ?Sized>(boxes: &Aabb4, visitor: &V) -> u32 {
+    if visitor.never_enters_empty_lanes() {
+        u32::MAX
+    } else {
+        boxes.used_mask()
+    }
 }
 
 impl LaneNode for WideNode {
@@ -100,7 +111,9 @@ impl LaneNode for CompactNode {
     type Keys = [f32; 4];
     #[inline(always)]
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 4]) {
-        // Decoded on the way: the boxes are values, not stored ones.
+        // Decoded on the way: the boxes are values, not stored ones. An unused lane decodes
+        // to an inverted but finite box, which a margin can widen into an entered interval:
+        // it is always masked out.
         let boxes = CompactNode::boxes(self);
         let (mask, keys) = visitor.enter_computed_lanes(&boxes);
         (mask & boxes.used_mask() & 0xF, keys)
@@ -320,7 +333,12 @@ impl LaneNode for WideNode8 {
     #[inline(always)]
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 8]) {
         let (mask, keys) = visitor.enter_lanes8(&self.bounds);
-        (mask & self.bounds.used_mask() & 0xFF, keys)
+        let used = if visitor.never_enters_empty_lanes() {
+            u32::MAX
+        } else {
+            self.bounds.used_mask()
+        };
+        (mask & used & 0xFF, keys)
     }
     #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
