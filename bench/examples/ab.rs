@@ -90,6 +90,17 @@ fn main() {
         wide8.nodes().len(),
         per_triangle(size_of_val(wide8.nodes()))
     );
+    // A batch of rays through the eight-wide tree: how many hit.
+    let batch8 = |rays: &[meshq::math::Ray]| {
+        let mut keys = vec![0u64; rays.len()];
+        let mut out = vec![None; rays.len()];
+        let options = meshq::query::RayOptions::default();
+        wide8
+            .with(&packed)
+            .raycast_batch(rays, &options, &mut keys, &mut out)
+            .expect("batch");
+        out.iter().filter(|h| h.is_some()).count()
+    };
     type Run<'a> = Box<dyn Fn() -> usize + 'a>;
     let variants: Vec<(&str, usize, Run<'_>)> = vec![
         (
@@ -159,30 +170,12 @@ fn main() {
         (
             "rays eight-wide batch",
             rays.len(),
-            Box::new(|| {
-                let mut keys = vec![0u64; rays.len()];
-                let mut out = vec![None; rays.len()];
-                let options = meshq::query::RayOptions::default();
-                wide8
-                    .with(&packed)
-                    .raycast_batch(&rays, &options, &mut keys, &mut out)
-                    .expect("batch");
-                out.iter().filter(|h| h.is_some()).count()
-            }),
+            Box::new(|| batch8(&rays)),
         ),
         (
             "camera eight-wide batch",
             camera.len(),
-            Box::new(|| {
-                let mut keys = vec![0u64; camera.len()];
-                let mut out = vec![None; camera.len()];
-                let options = meshq::query::RayOptions::default();
-                wide8
-                    .with(&packed)
-                    .raycast_batch(&camera, &options, &mut keys, &mut out)
-                    .expect("batch");
-                out.iter().filter(|h| h.is_some()).count()
-            }),
+            Box::new(|| batch8(&camera)),
         ),
         (
             "any eight-wide packed",

@@ -267,6 +267,16 @@ mod tests {
     use super::*;
     use crate::math::{Aabb, Ray};
 
+    /// Numbers in `[-1, 1)` from an xorshift generator seeded with `state` (non-zero).
+    fn uniform(mut state: u64) -> impl FnMut() -> f32 {
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+        }
+    }
+
     /// An unused lane (an empty box, `min = +∞`, `max = −∞`) is never entered by the ray
     /// lane tests, one ray or a packet, four lanes or eight, whatever the ray: directions
     /// with zero components (the padded inverse), negative `t_min`, shrunk `t_max`. The ray
@@ -274,13 +284,7 @@ mod tests {
     /// mask.
     #[test]
     fn empty_lanes_are_never_entered() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-        };
+        let mut next = uniform(0x2545_f491_4f6c_dd1d);
         let mut used_entered = 0;
         for round in 0..20_000 {
             let origin = Vec3::new(next(), next(), next()) * 3.0;
@@ -343,13 +347,7 @@ mod tests {
     /// boxes, with an empty lane, for `t_min` zero and negative.
     #[test]
     fn planes_picked_by_address_or_by_value_agree() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         let mut entered = 0;
         for round in 0..20_000 {
             let mut v = || Vec3::new(next(), next(), next());
