@@ -68,9 +68,10 @@ impl PacketLanes {
     }
 
     /// The lanes some ray of the packet may enter within `[self.t_min, t_max]` (`t_max` the
-    /// largest of the packet's, in every lane), widened by `margin` as a single ray's test is, and each lane's
-    /// entry distance less that margin: no larger than any ray's own. `planes` picks each
-    /// axis's planes: by address for stored boxes, among values for computed ones.
+    /// largest of the packet's, in every lane), widened by `margin` as a single ray's test
+    /// is, and each lane's entry distance less that margin: no larger than any ray's own.
+    /// `planes` picks each axis's planes: by address for stored boxes, among values for
+    /// computed ones.
     #[inline(always)]
     pub(super) fn enter(
         &self,

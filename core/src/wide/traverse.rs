@@ -67,17 +67,17 @@ pub(super) trait LaneNode {
 #[inline(always)]
 fn judge4<V: Visitor + ?Sized>(boxes: &Aabb4, visitor: &mut V) -> (u32, [f32; 4]) {
     let (mask, keys) = visitor.enter_lanes(boxes);
-    (mask & used_lanes(boxes, visitor) & 0xF, keys)
+    (mask & kept_lanes(visitor, boxes.used_mask()) & 0xF, keys)
 }
 
-/// The lanes a verdict of `visitor` may keep: the used ones, or all when the visitor never
-/// enters an unused lane.
+/// The lanes a verdict of `visitor` may keep: the `used` ones, or all when the visitor never
+/// enters an unused lane (the mask is then never read, and the compiler drops its loads).
 #[inline(always)]
-fn used_lanes<V: Visitor + ?Sized>(boxes: &Aabb4, visitor: &V) -> u32 {
+fn kept_lanes<V: Visitor + ?Sized>(visitor: &V, used: u32) -> u32 {
     if visitor.never_enters_empty_lanes() {
         u32::MAX
     } else {
-        boxes.used_mask()
+        used
     }
 }
 
@@ -333,12 +333,10 @@ impl LaneNode for WideNode8 {
     #[inline(always)]
     fn judge<V: Visitor + ?Sized>(&self, visitor: &mut V) -> (u32, [f32; 8]) {
         let (mask, keys) = visitor.enter_lanes8(&self.bounds);
-        let used = if visitor.never_enters_empty_lanes() {
-            u32::MAX
-        } else {
-            self.bounds.used_mask()
-        };
-        (mask & used & 0xFF, keys)
+        (
+            mask & kept_lanes(visitor, self.bounds.used_mask()) & 0xFF,
+            keys,
+        )
     }
     #[inline(always)]
     fn by_key(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
