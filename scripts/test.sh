@@ -36,9 +36,8 @@ step "tests (optimised test profile)"
 cargo test --locked --workspace --exclude meshq-bench
 
 step "the wide trees built for AVX2 (eight lanes in one instruction), against brute force"
-# The default x86-64 build runs eight lanes as two SSE halves and `MeshBvh` walks four-wide
-# nodes; an AVX2 build takes the `wide` crate's AVX path and walks eight-wide nodes by
-# default. Its answers must be the same, bit for bit: the wide-tree suites and the query
+# The default x86-64 build runs eight lanes as two SSE halves; an AVX2 build takes the `wide`
+# crate's AVX path for them. Its answers must be the same, bit for bit: the wide-tree suites and the query
 # layer's again, built for x86-64-v3 in their own target directory, where the CPU has AVX2.
 if grep -qw avx2 /proc/cpuinfo 2>/dev/null && [ "$(uname -m)" = x86_64 ]; then
   RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=target/x86-64-v3 \

@@ -11,7 +11,7 @@ For each mesh:
   1,000,000, and the 1024x1024 camera); Embree reads the same float32 files;
 - meshq: `meshq raycast MESH --rays FILE --out HITS --json --per-ray` (and `--any`), its own
   `query_seconds` (queries only, one ray per call) and `build_seconds` (MeshBvh::build:
-  the binned-SAH tree, packed triangles and the 4-wide collapse); then the same without
+  the binned-SAH tree, packed triangles and the wide collapse queries walk); then the same without
   `--per-ray` (the batch entry point: packets for the camera's rays, which share an origin),
   whose records must equal the per-ray ones byte for byte;
 - Embree: a scene with the robust flag (`RTC_SCENE_FLAG_ROBUST`), one triangle mesh; the build
@@ -26,8 +26,9 @@ The 1.1M-triangle case is the bunny subdivided twice (each triangle into four, m
 shared), written to target/peers/ as a binary PLY at run time; it is never committed.
 
 Set up once: scripts/peers-setup.sh (a virtual environment in target/peers-venv).
-Run: target/peers-venv/bin/python bench/peers/embree.py [--meshq BIN] [--rays N] [--eight-wide]
-     [--repeat K] [--json] [MESH ...]   (names of bundled meshes, paths, or `bunny-x16`)
+Run: target/peers-venv/bin/python bench/peers/embree.py [--meshq BIN] [--rays N]
+     [--eight-wide | --four-wide] [--repeat K] [--json] [MESH ...]
+     (names of bundled meshes, paths, or `bunny-x16`)
 """
 import argparse
 import json
@@ -81,7 +82,7 @@ def mesh_path(name, scratch):
     return ROOT / "assets" / f"{name}.obj"
 
 
-MESHQ_FLAGS = []  # flags every meshq raycast gets (`--eight-wide`)
+MESHQ_FLAGS = []  # flags every meshq raycast gets (`--eight-wide`, `--four-wide`)
 
 
 def meshq(binary, mesh, rays, out, *flags):
@@ -124,11 +125,16 @@ def main():
     parser.add_argument("--rays", type=int, default=1_000_000)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--json", action="store_true")
-    parser.add_argument("--eight-wide", action="store_true",
-                        help="meshq walks its eight-wide tree (`meshq raycast --eight-wide`)")
+    nodes = parser.add_mutually_exclusive_group()
+    nodes.add_argument("--eight-wide", action="store_true",
+                       help="meshq walks its eight-wide tree (`meshq raycast --eight-wide`)")
+    nodes.add_argument("--four-wide", action="store_true",
+                       help="meshq walks its four-wide tree (`meshq raycast --four-wide`)")
     args = parser.parse_args()
     if args.eight_wide:
         MESHQ_FLAGS.append("--eight-wide")
+    if args.four_wide:
+        MESHQ_FLAGS.append("--four-wide")
     os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
     say = (lambda *a: None) if args.json else print
     rows = []

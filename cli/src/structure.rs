@@ -100,12 +100,13 @@ pub struct QueryInput {
     #[arg(long)]
     pub compact_nodes: bool,
     /// Collapse the BVH eight-wide before querying: fewer node visits per ray, the same
-    /// records (BVH only; counted in the preparation time). The default in a build for AVX2.
+    /// records (BVH only; counted in the preparation time). The default on x86-64, AArch64
+    /// and WebAssembly.
     #[arg(long, conflicts_with_all = ["compact_nodes", "four_wide"])]
     pub eight_wide: bool,
     /// Collapse the BVH four-wide before querying: fewer node bytes than eight-wide, the same
-    /// records (BVH only; counted in the preparation time). The default unless the command is
-    /// built for AVX2.
+    /// records (BVH only; counted in the preparation time). The default only on targets
+    /// without 128-bit SIMD.
     #[arg(long, conflicts_with = "compact_nodes")]
     pub four_wide: bool,
 }

@@ -318,7 +318,11 @@ fn the_default_tree_is_the_targets_and_every_choice_answers_alike() {
     let four = WideBvh::build(&bvh, &mut storage4).unwrap();
     let mut storage8 = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
     let eight = WideBvh8::build(&bvh, &mut storage8).unwrap();
-    let eight_by_default = cfg!(any(target_feature = "avx2", target_arch = "wasm32"));
+    let eight_by_default = cfg!(any(
+        target_feature = "sse2",
+        target_feature = "neon",
+        target_arch = "wasm32"
+    ));
     assert_eq!(MeshBvh::EIGHT_WIDE_BY_DEFAULT, eight_by_default);
     for (what, owned) in [("built", &built), ("loaded", &loaded_blob)] {
         assert_eq!(owned.eight_wide().is_some(), eight_by_default, "{what}");

@@ -54,13 +54,16 @@ pub(super) enum WideNodes {
 impl MeshBvh {
     /// Whether queries walk the eight-wide tree ([`WideBvh8`]) unless told otherwise (by
     /// [`MeshBvh::with_four_wide_nodes`] or [`MeshBvh::with_compact_nodes`]): fixed when the
-    /// crate is compiled, true for targets with AVX2 (`-C target-cpu=x86-64-v3` or `native`
-    /// on a recent x86) and for wasm32, where eight lanes are one instruction or two cheap
-    /// ones, false elsewhere (the four-wide tree, [`WideBvh`]). Answers are the same either
-    /// way; only [`MeshBvh::wide`], [`MeshBvh::eight_wide`] and
-    /// [`MeshBvh::query_node_bytes`] tell the difference.
-    pub const EIGHT_WIDE_BY_DEFAULT: bool =
-        cfg!(any(target_feature = "avx2", target_arch = "wasm32"));
+    /// crate is compiled, true for targets with 128-bit SIMD or wider — x86 with SSE2 (every
+    /// x86-64), AArch64 and other targets with NEON, and wasm32 — where eight lanes are one
+    /// instruction or two, false elsewhere (the four-wide tree, [`WideBvh`], where lanes are
+    /// scalar). Answers are the same either way; only [`MeshBvh::wide`],
+    /// [`MeshBvh::eight_wide`] and [`MeshBvh::query_node_bytes`] tell the difference.
+    pub const EIGHT_WIDE_BY_DEFAULT: bool = cfg!(any(
+        target_feature = "sse2",
+        target_feature = "neon",
+        target_arch = "wasm32"
+    ));
 
     /// Copies `mesh` and builds its BVH with `config` (see [`Bvh::build`]), then packs its
     /// triangles and widens it. Deterministic: the same mesh and config give the same buffers
@@ -296,10 +299,8 @@ impl MeshBvh {
     /// This structure with its tree collapsed eight-wide ([`WideBvh8`]) for queries to walk
     /// instead of the four-wide (or compact) nodes: the same answers, bit for bit, with about
     /// a third fewer node visits per query, each testing eight boxes. The default where
-    /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is true; elsewhere (eight lanes as two four-lane
-    /// halves) it still takes fewer steps per ray, while closest-point queries, which enter
-    /// more of a node's lanes, may take longer than on the four-wide tree. Deterministic.
-    /// Already eight-wide: unchanged.
+    /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is true. Deterministic. Already eight-wide:
+    /// unchanged.
     ///
     /// # Errors
     /// Never for a structure built or loaded by this crate (see [`WideBvh8::build`]).

@@ -162,12 +162,14 @@ pub trait Traverse {
     }
 
     /// Runs `visitor` as [`traverse`](Self::traverse) does, if this structure walks packets
-    /// well — visitors for several rays at once, which judge four boxes together through
-    /// [`Visitor::enter_lanes`] and have no single [`ray`](Visitor::ray) — and returns `true`;
+    /// well — visitors for several rays at once, which judge a node's boxes together
+    /// ([`Visitor::enter_lanes`], [`Visitor::enter_lanes8`]) and have no single
+    /// [`ray`](Visitor::ray) — and returns `true`;
     /// otherwise does nothing and returns `false`. Ray batches
     /// ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch)) then walk runs of rays
     /// from one origin together, or one ray at a time; the answers are the same either way.
-    /// The default returns `false`; the four-wide BVHs walk packets.
+    /// The default returns `false`; the wide BVHs (four-wide, eight-wide and compact nodes)
+    /// walk packets.
     #[inline(always)]
     fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
         let _ = visitor;
