@@ -485,3 +485,29 @@ fn trees_without_spatial_splits_stay_version_3_blobs() {
     assert_eq!((h.version, h.split_ref_count), (3, 0));
     assert_eq!(h.reference_count as usize, mesh.triangle_count());
 }
+
+/// Found by the fuzz target (`fuzz/fuzz_targets/blob_parse.rs`), which compares
+/// `MeshBvh::from_blob` with the view: a blob with spatial splits whose triangle 18 had a
+/// corner moved far from both leaves its split references name (their boxes overlap the
+/// triangle's box, which was all the containment check asked of a split triangle). The view
+/// and the owned copy then walked to different closest points, and neither matched a scan of
+/// the triangles. Both loaders now refuse it: the leaves of a split triangle must hold its
+/// corners and edges.
+#[test]
+fn a_split_triangle_outside_its_leaves_is_refused() {
+    use meshq::blob::{self, BlobView};
+    use meshq::error::{BlobError, StructureError};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join("fuzz-split-uncovered.bin");
+    let input = std::fs::read(path).unwrap();
+    // The fuzz input's first byte is its mode: odd means "reseal the checksum first".
+    let (&mode, rest) = input.split_first().unwrap();
+    let mut bytes = rest.to_vec();
+    if mode & 1 == 1 {
+        blob::reseal(&mut bytes).unwrap();
+    }
+    let want = BlobError::InvalidNode(StructureError::SplitTriangleUncovered { tri: 18 });
+    assert_eq!(BlobView::parse(&bytes).unwrap_err(), want);
+    assert_eq!(MeshBvh::from_blob(&bytes).unwrap_err(), want);
+}

@@ -97,6 +97,7 @@ impl BlobSource<'_> {
             Self::Bvh(b, _) => {
                 b.check(mesh)?;
                 super::split_check::check_slots(*b, b.order().iter().copied(), n)?;
+                crate::bvh::split_coverage::check_split_coverage(*b, mesh)?;
             }
             Self::KdTree(t, _) => {
                 KdTree::from_parts(*t.bounds(), t.nodes(), t.items(), n)?;

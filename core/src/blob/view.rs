@@ -15,6 +15,7 @@ use super::structure_config::StructureConfig;
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
 use crate::bvh::TreeArrays;
 use crate::bvh::check::{CheckLevel, Extent, check};
+use crate::bvh::split_coverage::check_split_coverage;
 use crate::cells::LeWords;
 #[cfg(feature = "blob-cells")]
 use crate::error::StructureError;
@@ -331,6 +332,9 @@ fn check_structure<'a>(
             tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
             check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
             check_repeated_corners(&tree, mesh)?;
+            if let Some(mesh) = mesh {
+                check_split_coverage(&tree, mesh)?;
+            }
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
             (BlobStructure::Bvh(tree), tree.depth)

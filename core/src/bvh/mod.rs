@@ -49,6 +49,8 @@ mod spatial;
 mod spatial_bins;
 mod spatial_build;
 mod spatial_compact;
+#[cfg(feature = "blob")]
+pub(crate) mod split_coverage;
 mod stats;
 mod traverse;
 mod tree;

@@ -68,6 +68,13 @@ pub enum StructureError {
         /// The triangle index.
         tri: u32,
     },
+    /// The leaves holding a triangle that spatial splits cut leave part of it outside their
+    /// boxes: a corner, or a stretch of an edge, lies in none of them (so queries could miss
+    /// it there).
+    SplitTriangleUncovered {
+        /// The triangle index.
+        tri: u32,
+    },
     /// Wide nodes are not the ones [`WideBvh::build`](crate::wide::WideBvh::build) writes for the
     /// tree they are paired with.
     WideNodeMismatch {
@@ -126,6 +133,12 @@ impl fmt::Display for StructureError {
                 write!(
                     f,
                     "leaf {node}: triangle {tri} lies outside the leaf's bounds"
+                )
+            }
+            Self::SplitTriangleUncovered { tri } => {
+                write!(
+                    f,
+                    "triangle {tri} reaches outside the leaves its split references name"
                 )
             }
             Self::WideNodeMismatch { node } => {

@@ -6,6 +6,7 @@ use alloc::vec::Vec;
 use super::MeshBvh;
 use crate::blob::{self, BlobView, BoxesUnchecked, EncodeOptions, MeshLayout};
 use crate::bvh::check::{CheckLevel, Extent, check};
+use crate::bvh::split_coverage::check_split_coverage;
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
@@ -49,6 +50,9 @@ impl MeshBvh {
         if shape.depth != loaded.depth {
             return Err(BlobError::HeaderMismatch { field: "depth" });
         }
+        // The split references were checked against the blob's tree, whose boxes the decoded
+        // copy repeats: the last check `BlobView::parse` makes, here on the copy.
+        check_split_coverage(&loaded.bvh(), &loaded.packed())?;
         Ok(loaded)
     }
 
