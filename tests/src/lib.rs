@@ -47,6 +47,29 @@ pub fn bake(
     owned.to_blob(layout).map_err(|e| e.to_string())
 }
 
+/// The blob bytes of a fuzz finding kept in `tests/fixtures/` (`name`): the input's first byte
+/// is the `blob_parse` target's mode, and an odd mode means "reseal the checksum first", as
+/// the target does.
+///
+/// # Panics
+/// When the fixture cannot be read or is empty (a test setup error).
+#[must_use]
+pub fn fuzz_blob(name: &str) -> Vec<u8> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join(name);
+    let input = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let (&mode, rest) = input
+        .split_first()
+        .expect("a fuzz input starts with its mode byte");
+    let mut bytes = rest.to_vec();
+    if mode & 1 == 1 {
+        // A blob too short to reseal stays as it is, as the target leaves it.
+        let _ = meshq::blob::reseal(&mut bytes);
+    }
+    bytes
+}
+
 /// The arrays of a built tree copied out, for tests that corrupt or refit them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TreeParts {

@@ -192,16 +192,7 @@ fn an_empty_mesh_round_trips() {
 /// the view refuses it (the order is not a permutation), and so does the owned copy.
 #[test]
 fn an_order_naming_a_triangle_twice_is_refused() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join("fuzz-repeated-triangle.bin");
-    let input = std::fs::read(path).unwrap();
-    // The fuzz input's first byte is its mode: odd means "reseal the checksum first".
-    let (&mode, rest) = input.split_first().unwrap();
-    let mut bytes = rest.to_vec();
-    if mode & 1 == 1 {
-        blob::reseal(&mut bytes).unwrap();
-    }
+    let bytes = meshq_tests::fuzz_blob("fuzz-repeated-triangle.bin");
     assert_eq!(
         BlobView::parse(&bytes).unwrap_err(),
         BlobError::OrderNotPermutation

@@ -495,18 +495,9 @@ fn trees_without_spatial_splits_stay_version_3_blobs() {
 /// corners and edges.
 #[test]
 fn a_split_triangle_outside_its_leaves_is_refused() {
-    use meshq::blob::{self, BlobView};
+    use meshq::blob::BlobView;
     use meshq::error::{BlobError, StructureError};
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join("fuzz-split-uncovered.bin");
-    let input = std::fs::read(path).unwrap();
-    // The fuzz input's first byte is its mode: odd means "reseal the checksum first".
-    let (&mode, rest) = input.split_first().unwrap();
-    let mut bytes = rest.to_vec();
-    if mode & 1 == 1 {
-        blob::reseal(&mut bytes).unwrap();
-    }
+    let bytes = meshq_tests::fuzz_blob("fuzz-split-uncovered.bin");
     let want = BlobError::InvalidNode(StructureError::SplitTriangleUncovered { tri: 18 });
     assert_eq!(BlobView::parse(&bytes).unwrap_err(), want);
     assert_eq!(MeshBvh::from_blob(&bytes).unwrap_err(), want);
