@@ -13,6 +13,10 @@
 //! last place): the builder's boxes hold their parts exactly, and the allowance absorbs the
 //! rounding of the edge's parameters computed here. A part of the interior that no box holds
 //! while the whole boundary is held (a hole ringed by four boxes or more) is not detected.
+//!
+//! Cost: with no memory to sort into, an edge is chained across its boxes by rescanning them,
+//! so a triangle held by `k` references costs about `k²` box tests (a few for the usual two to
+//! four; a blob that holds one triangle by many thousands of references validates slowly).
 
 use super::TreeArrays;
 use crate::error::StructureError;
