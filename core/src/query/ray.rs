@@ -2,7 +2,7 @@
 
 use core::ops::ControlFlow;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::box_lanes::{LaneRay, LaneRay8, MARGIN, near_far, near_far_values};
 use super::leaf_batches::{Batch, LANES_PAY, for_each_batch};
@@ -150,6 +150,61 @@ impl Goal for Nearest {
         // The degeneracy check is only paid for a hit that would win.
         if self.0.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
             self.0 = Some(candidate);
+            kernel.shrink(h.t);
+            slab.t_max = h.t;
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// The closest hit of one ray walked alone: [`Nearest`]'s rule, with the hit kept as one
+/// vector (`t`, the triangle's bits, `u`, `v` — the order of [`RayHit`]'s fields) so that the
+/// walk hands it back in one 16-byte store. Its caller reads the hit in one load, which
+/// separate stores of each field could not forward (a stall after every walk). Packets keep
+/// [`Nearest`]: a vector per ray made their hits slower to record.
+pub(super) struct NearestOne {
+    best: Vec4,
+    found: bool,
+}
+
+impl NearestOne {
+    /// No hit yet.
+    pub(super) const NONE: Self = Self {
+        best: Vec4::ZERO,
+        found: false,
+    };
+
+    /// The hit kept, if any.
+    #[inline(always)]
+    pub(super) fn hit(&self) -> Option<RayHit> {
+        self.found.then(|| RayHit {
+            t: self.best.x,
+            tri: self.best.y.to_bits(),
+            u: self.best.z,
+            v: self.best.w,
+        })
+    }
+}
+
+impl Goal for NearestOne {
+    const PRUNES: bool = true;
+
+    #[inline(always)]
+    fn take<K: Kernel>(
+        &mut self,
+        tri: u32,
+        h: TriangleHit,
+        corners: &Triangle,
+        kernel: &mut K,
+        slab: &mut SlabRay,
+    ) -> ControlFlow<()> {
+        // `RayHit::beats` on the kept lanes.
+        let wins =
+            !self.found || h.t < self.best.x || (h.t == self.best.x && tri < self.best.y.to_bits());
+        // The degeneracy check is only paid for a hit that would win.
+        if wins && !corners.is_degenerate() {
+            self.best = Vec4::new(h.t, f32::from_bits(tri), h.u, h.v);
+            self.found = true;
             kernel.shrink(h.t);
             slab.t_max = h.t;
         }
@@ -346,7 +401,7 @@ pub(crate) fn raycast_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     if !ray.is_valid() {
         return None;
     }
-    walk(tree, source, ray, options, Nearest(None)).0
+    walk(tree, source, ray, options, NearestOne::NONE).hit()
 }
 
 /// Whether `ray` hits `source` through `tree` (see
@@ -365,7 +420,9 @@ pub(crate) fn raycast_any_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
 }
 
 /// Walks `tree` with the kernel the options name — chosen once per ray, each kernel with its
-/// own monomorphized traversal — and returns the goal.
+/// own monomorphized traversal — and returns the goal. Kept out of line: inlined into the
+/// command line's loop of one ray per call, it cost random rays 2–5%.
+#[inline(never)]
 pub(super) fn walk<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, G: Goal>(
     tree: &A,
     source: &S,
