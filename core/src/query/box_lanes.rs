@@ -229,13 +229,21 @@ pub(super) fn widened_verdict8(
 }
 
 /// One axis's (near, far) planes of eight boxes for a ray whose inverse direction is
-/// `negative` or not.
+/// `negative` or not. Without 256-bit vectors each plane is picked by its address, as
+/// [`near_far`] does (picked among loaded values, the compiler branched on the sign at every
+/// node, and a random ray's signs mispredict); with them, among the values, where LLVM
+/// already picks addresses and an explicit pick was slower.
 #[inline(always)]
 fn near_far8(negative: bool, min: &[f32; 8], max: &[f32; 8]) -> (f32x8, f32x8) {
-    if negative {
-        (f32x8::new(*max), f32x8::new(*min))
+    if cfg!(target_feature = "avx") {
+        if negative {
+            (f32x8::new(*max), f32x8::new(*min))
+        } else {
+            (f32x8::new(*min), f32x8::new(*max))
+        }
     } else {
-        (f32x8::new(*min), f32x8::new(*max))
+        let (near, far) = if negative { (max, min) } else { (min, max) };
+        (f32x8::new(*near), f32x8::new(*far))
     }
 }
 
