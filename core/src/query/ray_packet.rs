@@ -165,25 +165,41 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Packet<'_, S, K, G> {
     }
 }
 
+/// What a batch keeps of each ray: one goal for a ray in a packet, another for a ray walked
+/// alone (which may keep its answer in a form its caller reads back faster), and the answer
+/// each one gives.
+pub(super) trait BatchGoal {
+    /// What the batch's output holds per ray.
+    type Answer;
+    /// The goal of each ray of a packet.
+    type InPacket: Goal;
+    /// The goal of a ray walked alone.
+    type Alone: Goal;
+    /// An empty goal for a ray of a packet.
+    fn in_packet() -> Self::InPacket;
+    /// An empty goal for a ray alone.
+    fn alone() -> Self::Alone;
+    /// The answer of a finished packet goal.
+    fn of_packet(goal: &Self::InPacket) -> Self::Answer;
+    /// The answer of a finished goal of a ray alone.
+    fn of_alone(goal: &Self::Alone) -> Self::Answer;
+}
+
 /// Answers `rays` in the order of `order` (keys from
 /// [`given_order`](super::batch_order::given_order)): each run of [`PACKET`] (or, at the
 /// end, fewer) valid rays that share an origin and direction signs as one packet, any other
-/// ray alone. `goal` makes an empty goal, `answer` turns a finished one into what `out` holds
-/// at the ray's index.
-#[allow(clippy::too_many_arguments)] // The batch's inputs, its output and the goal's two ends.
-pub(super) fn answer_in_packets<A, S, G, T>(
+/// ray alone. `out` holds each ray's answer at the ray's index.
+pub(super) fn answer_in_packets<A, S, B>(
     tree: &A,
     source: &S,
     rays: &[Ray],
     options: &RayOptions,
     order: &[u64],
-    out: &mut [T],
-    goal: impl Fn() -> G,
-    answer: impl Fn(&G) -> T,
+    out: &mut [B::Answer],
 ) where
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
-    G: Goal,
+    B: BatchGoal,
 {
     // Cleared at the first packet the structure declines: it answers one ray at a time.
     let mut packets = true;
@@ -202,9 +218,9 @@ pub(super) fn answer_in_packets<A, S, G, T>(
                     .copied()
                     .unwrap_or(Ray::new(Vec3::ZERO, Vec3::X))
             });
-            packets = walk_packet(tree, source, &gathered, options, &goal, |k, g| {
+            packets = walk_packet(tree, source, &gathered, options, &B::in_packet, |k, g| {
                 if let Some(slot) = keys.get(k).and_then(|&key| out.get_mut(query_index(key))) {
-                    *slot = answer(g);
+                    *slot = B::of_packet(g);
                 }
             });
             if packets {
@@ -215,11 +231,11 @@ pub(super) fn answer_in_packets<A, S, G, T>(
             let i = query_index(key);
             if let (Some(ray), Some(slot)) = (rays.get(i), out.get_mut(i)) {
                 let g = if ray.is_valid() {
-                    walk(tree, source, ray, options, goal())
+                    walk(tree, source, ray, options, B::alone())
                 } else {
-                    goal()
+                    B::alone()
                 };
-                *slot = answer(&g);
+                *slot = B::of_alone(&g);
             }
         }
     }

@@ -7,8 +7,8 @@
 //! and a caller's order is usually already coherent (a camera's pixels).
 
 use super::batch_order::given_order;
-use super::ray::{Nearest, Occluded};
-use super::ray_packet::answer_in_packets;
+use super::ray::{Nearest, NearestOne, Occluded};
+use super::ray_packet::{BatchGoal, answer_in_packets};
 use super::{LeafTriangles, RayOptions, Traverse};
 use crate::error::BatchError;
 use crate::math::{Ray, RayHit};
@@ -23,16 +23,7 @@ pub(crate) fn raycast_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
     let order = given_order(rays.len(), keys, out.len())?;
-    answer_in_packets(
-        tree,
-        source,
-        rays,
-        options,
-        order,
-        out,
-        || Nearest(None),
-        |g| g.0,
-    );
+    answer_in_packets::<_, _, ClosestHits>(tree, source, rays, options, order, out);
     Ok(())
 }
 
@@ -47,15 +38,50 @@ pub(crate) fn raycast_any_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>
     out: &mut [bool],
 ) -> Result<(), BatchError> {
     let order = given_order(rays.len(), keys, out.len())?;
-    answer_in_packets(
-        tree,
-        source,
-        rays,
-        options,
-        order,
-        out,
-        || Occluded(false),
-        |g| g.0,
-    );
+    answer_in_packets::<_, _, AnyHits>(tree, source, rays, options, order, out);
     Ok(())
+}
+
+/// Each ray's closest hit: [`Nearest`] per ray of a packet, [`NearestOne`] for a ray alone
+/// (the goal a single [`raycast`](crate::query::MeshQuery::raycast) walks with, so the two
+/// share one compiled walk).
+struct ClosestHits;
+
+impl BatchGoal for ClosestHits {
+    type Answer = Option<RayHit>;
+    type InPacket = Nearest;
+    type Alone = NearestOne;
+    fn in_packet() -> Nearest {
+        Nearest(None)
+    }
+    fn alone() -> NearestOne {
+        NearestOne::NONE
+    }
+    fn of_packet(goal: &Nearest) -> Option<RayHit> {
+        goal.0
+    }
+    fn of_alone(goal: &NearestOne) -> Option<RayHit> {
+        goal.hit()
+    }
+}
+
+/// Whether each ray hits anything: [`Occluded`] both ways.
+struct AnyHits;
+
+impl BatchGoal for AnyHits {
+    type Answer = bool;
+    type InPacket = Occluded;
+    type Alone = Occluded;
+    fn in_packet() -> Occluded {
+        Occluded(false)
+    }
+    fn alone() -> Occluded {
+        Occluded(false)
+    }
+    fn of_packet(goal: &Occluded) -> bool {
+        goal.0
+    }
+    fn of_alone(goal: &Occluded) -> bool {
+        goal.0
+    }
 }
