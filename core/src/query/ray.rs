@@ -299,6 +299,12 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
         !G::PRUNES || within_reach(key, self.tester.slab.t_max)
     }
 
+    /// Only for a goal that prunes: any hit ends an any-hit walk, whichever comes first.
+    #[inline(always)]
+    fn wants_nearest_first(&self) -> bool {
+        G::PRUNES
+    }
+
     #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
         let flow = self.tester.leaf(self.source, tris);

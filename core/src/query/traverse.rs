@@ -91,6 +91,14 @@ pub trait Visitor {
         true
     }
 
+    /// Whether the order in which entered boxes are visited can change this query's answer or
+    /// its cost enough to sort them by key. When false, structures may visit a node's entered
+    /// children in lane order. The default, `true`, asks for nearest first; an any-hit ray,
+    /// whose answer is the same whichever hit ends it, returns `false`.
+    fn wants_nearest_first(&self) -> bool {
+        true
+    }
+
     /// Whether this query may skip a triangle already offered earlier in the same traversal (a
     /// ray or closest-point query, whose answer a repeat cannot change). Structures that
     /// reference a triangle from several cells then skip repeats they remember (see

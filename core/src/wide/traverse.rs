@@ -229,6 +229,16 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
                     at = lane_of(mask.trailing_zeros());
                     continue;
                 }
+                if !visitor.wants_nearest_first() {
+                    // Lane order: the lowest entered lane now, the others deferred.
+                    let mut later = rest;
+                    while later != 0 {
+                        let _ = stack.push(lane_of(later.trailing_zeros()));
+                        later &= later - 1;
+                    }
+                    at = lane_of(mask.trailing_zeros());
+                    continue;
+                }
                 if rest & (rest - 1) == 0 {
                     // Two lanes, the commonest fork: one comparison orders them (the lower
                     // lane, `first`, goes first on equal keys, as `by_key` orders them).
