@@ -162,26 +162,33 @@ impl Goal for Nearest {
 /// walk hands it back in one 16-byte store. Its caller reads the hit in one load, which
 /// separate stores of each field could not forward (a stall after every walk). Packets keep
 /// [`Nearest`]: a vector per ray made their hits slower to record.
-pub(super) struct NearestOne {
-    best: Vec4,
-    found: bool,
-}
+///
+/// No hit yet is `t = +∞` with triangle `u32::MAX`, an index no mesh reaches (a mesh holds at
+/// most `u32::MAX` triangles, numbered from 0): under the tie rule every hit beats it, so no
+/// flag (and no padding to copy) is needed.
+pub(super) struct NearestOne(Vec4);
 
 impl NearestOne {
+    /// The triangle bits of "no hit yet".
+    const NO_TRIANGLE: u32 = u32::MAX;
+
     /// No hit yet.
-    pub(super) const NONE: Self = Self {
-        best: Vec4::ZERO,
-        found: false,
-    };
+    pub(super) const NONE: Self = Self(Vec4::new(
+        f32::INFINITY,
+        f32::from_bits(Self::NO_TRIANGLE),
+        0.0,
+        0.0,
+    ));
 
     /// The hit kept, if any.
     #[inline(always)]
     pub(super) fn hit(&self) -> Option<RayHit> {
-        self.found.then(|| RayHit {
-            t: self.best.x,
-            tri: self.best.y.to_bits(),
-            u: self.best.z,
-            v: self.best.w,
+        let tri = self.0.y.to_bits();
+        (tri != Self::NO_TRIANGLE).then_some(RayHit {
+            t: self.0.x,
+            tri,
+            u: self.0.z,
+            v: self.0.w,
         })
     }
 }
@@ -199,12 +206,11 @@ impl Goal for NearestOne {
         slab: &mut SlabRay,
     ) -> ControlFlow<()> {
         // `RayHit::beats` on the kept lanes.
-        let wins =
-            !self.found || h.t < self.best.x || (h.t == self.best.x && tri < self.best.y.to_bits());
+        let (best_t, best_tri) = (self.0.x, self.0.y.to_bits());
+        let wins = h.t < best_t || (h.t == best_t && tri < best_tri);
         // The degeneracy check is only paid for a hit that would win.
         if wins && !corners.is_degenerate() {
-            self.best = Vec4::new(h.t, f32::from_bits(tri), h.u, h.v);
-            self.found = true;
+            self.0 = Vec4::new(h.t, f32::from_bits(tri), h.u, h.v);
             kernel.shrink(h.t);
             slab.t_max = h.t;
         }
