@@ -180,16 +180,22 @@ impl NearestOne {
         0.0,
     ));
 
+    /// The lanes as a hit (the "no hit yet" one included).
+    #[inline(always)]
+    fn best(&self) -> RayHit {
+        RayHit {
+            t: self.0.x,
+            tri: self.0.y.to_bits(),
+            u: self.0.z,
+            v: self.0.w,
+        }
+    }
+
     /// The hit kept, if any.
     #[inline(always)]
     pub(super) fn hit(&self) -> Option<RayHit> {
-        let tri = self.0.y.to_bits();
-        (tri != Self::NO_TRIANGLE).then_some(RayHit {
-            t: self.0.x,
-            tri,
-            u: self.0.z,
-            v: self.0.w,
-        })
+        let best = self.best();
+        (best.tri != Self::NO_TRIANGLE).then_some(best)
     }
 }
 
@@ -205,11 +211,14 @@ impl Goal for NearestOne {
         kernel: &mut K,
         slab: &mut SlabRay,
     ) -> ControlFlow<()> {
-        // `RayHit::beats` on the kept lanes.
-        let (best_t, best_tri) = (self.0.x, self.0.y.to_bits());
-        let wins = h.t < best_t || (h.t == best_t && tri < best_tri);
+        let candidate = RayHit {
+            t: h.t,
+            tri,
+            u: h.u,
+            v: h.v,
+        };
         // The degeneracy check is only paid for a hit that would win.
-        if wins && !corners.is_degenerate() {
+        if candidate.beats(&self.best()) && !corners.is_degenerate() {
             self.0 = Vec4::new(h.t, f32::from_bits(tri), h.u, h.v);
             kernel.shrink(h.t);
             slab.t_max = h.t;
