@@ -126,6 +126,17 @@ pub(super) trait Goal {
     ) -> ControlFlow<()>;
 }
 
+/// Triangle `tri`'s hit `h` as the answer a query returns.
+#[inline(always)]
+pub(super) fn ray_hit(tri: u32, h: TriangleHit) -> RayHit {
+    RayHit {
+        t: h.t,
+        tri,
+        u: h.u,
+        v: h.v,
+    }
+}
+
 /// The closest hit: the best so far, under the tie rule.
 pub(super) struct Nearest(pub(super) Option<RayHit>);
 
@@ -141,12 +152,7 @@ impl Goal for Nearest {
         kernel: &mut K,
         slab: &mut SlabRay,
     ) -> ControlFlow<()> {
-        let candidate = RayHit {
-            t: h.t,
-            tri,
-            u: h.u,
-            v: h.v,
-        };
+        let candidate = ray_hit(tri, h);
         // The degeneracy check is only paid for a hit that would win.
         if self.0.is_none_or(|b| candidate.beats(&b)) && !corners.is_degenerate() {
             self.0 = Some(candidate);
@@ -211,12 +217,7 @@ impl Goal for NearestOne {
         kernel: &mut K,
         slab: &mut SlabRay,
     ) -> ControlFlow<()> {
-        let candidate = RayHit {
-            t: h.t,
-            tri,
-            u: h.u,
-            v: h.v,
-        };
+        let candidate = ray_hit(tri, h);
         // The degeneracy check is only paid for a hit that would win.
         if candidate.beats(&self.best()) && !corners.is_degenerate() {
             self.0 = Vec4::new(h.t, f32::from_bits(tri), h.u, h.v);

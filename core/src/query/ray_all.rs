@@ -2,7 +2,7 @@
 
 use core::ops::ControlFlow;
 
-use super::ray::{Goal, Kernel, walk};
+use super::ray::{Goal, Kernel, ray_hit, walk};
 use super::{LeafTriangles, RayOptions, Traverse};
 use crate::geom::{SlabRay, TriangleHit};
 use crate::math::{Ray, RayHit, Triangle};
@@ -73,12 +73,7 @@ impl Goal for Nearest<'_> {
         if corners.is_degenerate() {
             return ControlFlow::Continue(());
         }
-        let hit = RayHit {
-            t: h.t,
-            tri,
-            u: h.u,
-            v: h.v,
-        };
+        let hit = ray_hit(tri, h);
         let Some(at) = self.position(&hit) else {
             return ControlFlow::Continue(());
         };
