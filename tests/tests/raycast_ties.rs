@@ -3,6 +3,7 @@
 //! Every hit then ties with its twin bit for bit, and the closest hit must name the lower
 //! index, as a brute-force scan does — on the four-wide, eight-wide and compact trees, with
 //! both triangle tests, one ray per call and in batches (camera packets included).
+//! A structure of one's own that names a triangle `u32::MAX` still has that triangle hit.
 
 use meshq::bvh::BuildConfig;
 use meshq::math::{Ray, RayHit};
@@ -76,4 +77,54 @@ fn random_rays_name_the_lower_twin() {
 fn camera_packets_name_the_lower_twin() {
     let mesh = load_mesh("cow");
     check("cow", &workload::camera_rays(&mesh.positions, 64, 64));
+}
+
+/// "No hit yet" is kept as triangle `u32::MAX` at `t = +∞`; a structure of one's own may still
+/// name a triangle `u32::MAX` (ids are its own), and its hit must come back as a scan's does.
+#[test]
+fn a_triangle_numbered_u32_max_is_still_hit() {
+    use glam::Vec3;
+    use meshq::Traverse;
+    use meshq::math::{Aabb, PackedTriangle};
+    use meshq::query::{LeafTriangleIds, Visitor};
+
+    struct OneLeaf<'a> {
+        ids: &'a [u32],
+        bounds: Aabb,
+    }
+    impl Traverse for OneLeaf<'_> {
+        fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
+            if visitor.enter(&self.bounds).is_some() {
+                let _ = visitor.leaf(LeafTriangleIds::new(0, self.ids));
+            }
+        }
+    }
+
+    let far = PackedTriangle {
+        a: [0.0, 0.0, -1.0],
+        b: [1.0, 0.0, -1.0],
+        c: [0.0, 1.0, -1.0],
+    };
+    let near = PackedTriangle {
+        a: [0.0, 0.0, 0.0],
+        b: [1.0, 0.0, 0.0],
+        c: [0.0, 1.0, 0.0],
+    };
+    let packed = [far, near];
+    let bounds = Aabb::new(Vec3::new(0.0, 0.0, -1.0), Vec3::new(1.0, 1.0, 0.0));
+    let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
+    for (ids, want) in [([7, u32::MAX], u32::MAX), ([u32::MAX, 7], 7)] {
+        let leaf = OneLeaf { ids: &ids, bounds };
+        let hit = leaf
+            .with(&packed[..])
+            .raycast(&ray)
+            .expect("the ray meets both");
+        assert_eq!((hit.tri, hit.t), (want, 1.0), "ids {ids:?}");
+        let mut keys = [0u64; 1];
+        let mut out = [None; 1];
+        leaf.with(&packed[..])
+            .raycast_batch(&[ray], &RayOptions::default(), &mut keys, &mut out)
+            .unwrap();
+        assert_eq!(out[0], Some(hit), "ids {ids:?}: batch");
+    }
 }

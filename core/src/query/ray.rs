@@ -169,9 +169,10 @@ impl Goal for Nearest {
 /// separate stores of each field could not forward (a stall after every walk). Packets keep
 /// [`Nearest`]: a vector per ray made their hits slower to record.
 ///
-/// No hit yet is `t = +∞` with triangle `u32::MAX`, an index no mesh reaches (a mesh holds at
-/// most `u32::MAX` triangles, numbered from 0): under the tie rule every hit beats it, so no
-/// flag (and no padding to copy) is needed.
+/// No hit yet is `t = +∞` with triangle `u32::MAX`: under the tie rule every hit beats it, so
+/// no flag (and no padding to copy) is needed. Only the two together read as no hit: no mesh
+/// numbers a triangle `u32::MAX`, and a structure of one's own that hands a query that id
+/// still has its finite hits kept.
 pub(super) struct NearestOne(Vec4);
 
 impl NearestOne {
@@ -201,7 +202,7 @@ impl NearestOne {
     #[inline(always)]
     pub(super) fn hit(&self) -> Option<RayHit> {
         let best = self.best();
-        (best.tri != Self::NO_TRIANGLE).then_some(best)
+        (best.tri != Self::NO_TRIANGLE || best.t != f32::INFINITY).then_some(best)
     }
 }
 
