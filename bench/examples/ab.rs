@@ -83,8 +83,10 @@ fn main() {
         per_triangle(compact.node_bytes()),
     );
 
-    let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; wide.nodes().len()];
-    let wide8 = meshq::wide::WideBvh8::build(&bvh, &mut nodes8).expect("wide8");
+    let mut plan8 = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
+    let plan8 = meshq::wide::CollapsePlan::<8>::new(&bvh, &mut plan8).expect("plan");
+    let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; plan8.node_count()];
+    let wide8 = meshq::wide::WideBvh8::build(&plan8, &mut nodes8).expect("wide8");
     println!(
         "eight-wide: {} nodes, {:.1} bytes per triangle",
         wide8.nodes().len(),

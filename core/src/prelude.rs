@@ -12,4 +12,4 @@ pub use crate::mesh::{MeshRef, ValidMesh};
 #[cfg(feature = "alloc")]
 pub use crate::owned::MeshBvh;
 pub use crate::query::{MeshQuery, PackedTriangles, RayOptions, Traverse};
-pub use crate::wide::{self, WideBvh, WideNode};
+pub use crate::wide::{self, CollapsePlan, PlanEntry, WideBvh, WideNode};

@@ -11,7 +11,10 @@ use meshq::bvh::BuildConfig;
 use meshq::geom::CullMode;
 use meshq::math::{Aabb, Ray, RayHit, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse, TriangleTest};
-use meshq::wide::{WideBvh, WideBvh8, WideNode8, wide_node_capacity};
+use meshq::wide::{
+    CollapsePlan, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideBvh8, WideNode8, plan_capacity,
+    wide_node_capacity,
+};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, load_mesh, workload};
 
@@ -34,9 +37,11 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
         let mesh = loaded.valid();
         let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
         let bvh = owned.bvh();
+        let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+        let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
         let mut storage = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
-        let eight = WideBvh8::build(&bvh, &mut storage).unwrap();
-        assert_eq!(eight.nodes().len(), WideBvh8::count_nodes(&bvh), "{name}");
+        let eight = WideBvh8::build(&plan, &mut storage).unwrap();
+        assert_eq!(eight.nodes().len(), plan.node_count(), "{name}");
         let owned4 = owned.clone().with_four_wide_nodes().unwrap();
         let four = owned4.wide().unwrap();
         assert!(
@@ -46,7 +51,8 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
             four.nodes().len()
         );
 
-        // The binary tree's leaves, as (first slot, count).
+        // The binary tree's leaves, as (first slot, count): a leaf lane is one of them or
+        // merges a few of them.
         let binary: BTreeSet<(u32, u32)> = bvh
             .nodes()
             .iter()
@@ -71,6 +77,10 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
                 let (child, count) = (node.child[lane], node.count[lane]);
                 if count > 0 {
                     assert!(leaves.insert((child, count)), "{name}: leaf twice");
+                    assert!(
+                        binary.contains(&(child, count)) || count <= MERGED_LEAF_MAX,
+                        "{name}: merged leaf of {count}"
+                    );
                     for slot in child..child + count {
                         let tri = bvh.order()[slot as usize];
                         let corners = mesh.triangle(tri).unwrap();
@@ -93,13 +103,26 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
                 }
             }
         }
-        assert_eq!(leaves, binary, "{name}: the same leaves as the binary tree");
+        // The leaf lanes hold every slot once, and each binary leaf lies within one of them.
+        let mut next = 0;
+        for &(first, count) in &leaves {
+            assert_eq!(first, next, "{name}: slots missing or repeated at {next}");
+            next = first + count;
+        }
+        assert_eq!(next as usize, bvh.order().len(), "{name}: trailing slots");
+        for &(first, count) in &binary {
+            let (start, len) = *leaves.range(..=(first, u32::MAX)).next_back().unwrap();
+            assert!(
+                start + len >= first + count,
+                "{name}: binary leaf {first} split"
+            );
+        }
         assert!(
             inner_seen.iter().skip(1).all(|&s| s),
             "{name}: orphan nodes"
         );
-        // Opened deeper, the root's lanes are tighter than the four-wide root's.
-        assert!(four.bounds().contains_aabb(&eight.bounds()), "{name}: root");
+        // The root's lanes lie within the binary root's box.
+        assert!(bvh.bounds().contains_aabb(&eight.bounds()), "{name}: root");
         for p in &loaded.positions {
             assert!(eight.bounds().contains_point(Vec3::from_array(*p)) || !used(&loaded, p));
         }
@@ -156,8 +179,11 @@ fn a_lone_leaf_and_a_too_small_buffer() {
     assert!(none.raycast(&ray).is_none());
     assert!(none.closest_point(Vec3::ZERO, f32::INFINITY).is_none());
     let mut no_nodes: [WideNode8; 0] = [];
+    let none_bvh = none.bvh();
+    let mut no_entries = vec![PlanEntry::EMPTY; plan_capacity(&none_bvh)];
+    let none_plan = CollapsePlan::<8>::new(&none_bvh, &mut no_entries).unwrap();
     assert_eq!(
-        WideBvh8::build(&none.bvh(), &mut no_nodes)
+        WideBvh8::build(&none_plan, &mut no_nodes)
             .unwrap()
             .nodes()
             .len(),
@@ -166,12 +192,15 @@ fn a_lone_leaf_and_a_too_small_buffer() {
 
     let loaded = load_mesh("spot");
     let big = MeshBvh::build(&loaded.valid(), &BuildConfig::default()).unwrap();
-    let needed = WideBvh8::count_nodes(&big.bvh());
+    let big_bvh = big.bvh();
+    let mut big_entries = vec![PlanEntry::EMPTY; plan_capacity(&big_bvh)];
+    let big_plan = CollapsePlan::<8>::new(&big_bvh, &mut big_entries).unwrap();
+    let needed = big_plan.node_count();
     let mut short = vec![WideNode8::EMPTY; needed - 1];
-    assert!(WideBvh8::build(&big.bvh(), &mut short).is_err());
+    assert!(WideBvh8::build(&big_plan, &mut short).is_err());
     let mut exact = vec![WideNode8::EMPTY; needed];
     assert_eq!(
-        WideBvh8::build(&big.bvh(), &mut exact)
+        WideBvh8::build(&big_plan, &mut exact)
             .unwrap()
             .nodes()
             .len(),
@@ -315,9 +344,13 @@ fn the_default_tree_is_the_targets_and_every_choice_answers_alike() {
     let bvh = built.bvh();
     let mut storage4 =
         vec![meshq::wide::WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
-    let four = WideBvh::build(&bvh, &mut storage4).unwrap();
+    let mut entries4 = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+    let plan4 = CollapsePlan::<4>::new(&bvh, &mut entries4).unwrap();
+    let four = WideBvh::build(&plan4, &mut storage4).unwrap();
+    let mut entries8 = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+    let plan8 = CollapsePlan::<8>::new(&bvh, &mut entries8).unwrap();
     let mut storage8 = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
-    let eight = WideBvh8::build(&bvh, &mut storage8).unwrap();
+    let eight = WideBvh8::build(&plan8, &mut storage8).unwrap();
     let eight_by_default = cfg!(any(
         target_feature = "sse2",
         target_feature = "neon",

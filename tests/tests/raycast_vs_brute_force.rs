@@ -39,8 +39,10 @@ fn with_trees(name: &str, check: impl FnOnce(&LoadedMesh, &MeshBvh, &Trees<'_>))
     let bvh = checked_bvh(&owned, &mesh).unwrap();
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
     let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-    let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-    let wide = WideBvh::build(&bvh, &mut wide_nodes).unwrap();
+    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
+    let plan = meshq::wide::CollapsePlan::<4>::new(&bvh, &mut plan_entries).unwrap();
+    let mut wide_nodes = vec![WideNode::EMPTY; plan.node_count()];
+    let wide = WideBvh::build(&plan, &mut wide_nodes).unwrap();
     let brute = BruteForce::new(&mesh);
     let trees = Trees {
         bvh,

@@ -456,12 +456,14 @@ fn views_accept_the_untrimmed_buffers_a_build_was_given() {
             assert_eq!(view.depth(), depth, "{name}");
         }
 
+        let mut entries = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&full)];
+        let plan = meshq::wide::CollapsePlan::<4>::new(&full, &mut entries).unwrap();
         let mut wide_nodes = vec![WideNode::EMPTY; wide_node_capacity(n) + 3];
-        let written = WideBvh::build(&full, &mut wide_nodes)
+        let written = WideBvh::build(&plan, &mut wide_nodes)
             .unwrap()
             .nodes()
             .len();
-        let wide = WideBvh::from_parts(&full, &wide_nodes).unwrap();
+        let wide = WideBvh::from_parts(&plan, &wide_nodes).unwrap();
         assert_eq!(wide.nodes().len(), written, "{name}");
         let mut packed = vec![PackedTriangle::EMPTY; n + 5];
         full.pack_triangles(&mesh, &mut packed).unwrap();

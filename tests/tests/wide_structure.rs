@@ -1,5 +1,6 @@
 //! The four-wide BVH: its structure checked against the binary tree it was collapsed from
-//! (same leaves, each exactly once; boxes nested; children after parents), its buffer and
+//! (every slot in exactly one leaf lane, each lane a binary subtree; boxes nested; children
+//! after parents), its buffer and
 //! validation errors, and its answers on the awkward meshes (one triangle, coincident
 //! centroids, degenerate triangles, tiny and huge coordinates) against brute force.
 
@@ -11,10 +12,33 @@ use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError, StructureError};
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
-use meshq::wide::{WideBvh, WideNode, wide_node_capacity};
+use meshq::wide::{
+    CollapsePlan, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideNode, plan_capacity, wide_node_capacity,
+};
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
+
+/// Every binary node's slot range `(first, count)`, mapped to its box bits and whether it is a
+/// leaf (children follow parents, so a reverse walk meets children first).
+fn subtree_ranges(bvh: &Bvh<'_>) -> BTreeMap<(u32, u32), ([u32; 6], bool)> {
+    let nodes = bvh.nodes();
+    let mut range = vec![(0u32, 0u32); nodes.len()];
+    for (i, n) in nodes.iter().enumerate().rev() {
+        range[i] = if n.is_leaf() {
+            (n.first, n.count)
+        } else {
+            let (l, r) = (range[n.first as usize], range[n.first as usize + 1]);
+            assert_eq!(l.0 + l.1, r.0, "binary subtrees hold consecutive slots");
+            (l.0, l.1 + r.1)
+        };
+    }
+    nodes
+        .iter()
+        .zip(range)
+        .map(|(n, r)| (r, (boxes_bits(&n.aabb()), n.is_leaf())))
+        .collect()
+}
 
 fn boxes_bits(b: &Aabb) -> [u32; 6] {
     [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits)
@@ -23,13 +47,10 @@ fn boxes_bits(b: &Aabb) -> [u32; 6] {
 /// Checks `wide` against `bvh` from first principles, returning the wide depth.
 fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize {
     let nodes = wide.nodes();
-    // Binary leaves by range, with their boxes: each must appear exactly once as a leaf lane.
-    let mut leaves: BTreeMap<(u32, u32), [u32; 6]> = bvh
-        .nodes()
-        .iter()
-        .filter(|n| n.is_leaf())
-        .map(|n| ((n.first, n.count), boxes_bits(&n.aabb())))
-        .collect();
+    // Every binary subtree by its slot range, with its box and whether it is a leaf: a leaf
+    // lane is one of them (a binary leaf, or a small subtree merged into one leaf).
+    let subtrees = subtree_ranges(bvh);
+    let mut covered: Vec<(u32, u32)> = Vec::new();
     let binary_boxes: Vec<[u32; 6]> = bvh.nodes().iter().map(|n| boxes_bits(&n.aabb())).collect();
     let mut referenced = vec![0usize; nodes.len()];
     let mut depth = vec![0usize; nodes.len()];
@@ -57,12 +78,15 @@ fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize 
             );
             let (child, count) = (node.child[lane], node.count[lane]);
             if count > 0 {
-                let expected = leaves.remove(&(child, count));
-                assert_eq!(
-                    expected,
-                    Some(boxes_bits(&b)),
-                    "{what}: leaf lane ({child}, {count}) of node {index} is not a binary leaf, or repeats"
+                let subtree = subtrees.get(&(child, count));
+                assert!(
+                    subtree.is_some_and(|&(bits, _)| bits == boxes_bits(&b)),
+                    "{what}: leaf lane ({child}, {count}) of node {index} is no binary subtree"
                 );
+                if subtree.is_some_and(|&(_, is_leaf)| !is_leaf) {
+                    assert!(count <= MERGED_LEAF_MAX, "{what}: merged leaf of {count}");
+                }
+                covered.push((child, count));
             } else {
                 let c = child as usize;
                 assert!(
@@ -82,10 +106,20 @@ fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize 
             }
         }
     }
-    assert!(
-        leaves.is_empty(),
-        "{what}: {} binary leaves missing",
-        leaves.len()
+    // The leaf lanes hold every slot exactly once.
+    covered.sort_unstable();
+    let mut next = 0;
+    for &(first, count) in &covered {
+        assert_eq!(
+            first, next,
+            "{what}: slots {next}..{first} missing or repeated"
+        );
+        next = first + count;
+    }
+    assert_eq!(
+        next as usize,
+        bvh.order().len(),
+        "{what}: trailing slots missing"
     );
     assert!(
         referenced.iter().skip(1).all(|&r| r == 1),
@@ -116,11 +150,13 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
         for (label, config) in &configs {
             let owned = MeshBvh::build(&mesh, config).unwrap();
             let bvh = checked_bvh(&owned, &mesh).unwrap();
-            let count = WideBvh::count_nodes(&bvh);
+            let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+            let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
+            let count = plan.node_count();
             assert!(count <= wide_node_capacity(mesh.triangle_count()));
             // Exactly sized and bound-sized buffers give the same nodes.
             let mut exact = vec![WideNode::EMPTY; count];
-            let wide = WideBvh::build(&bvh, &mut exact).unwrap();
+            let wide = WideBvh::build(&plan, &mut exact).unwrap();
             assert_eq!(wide.nodes().len(), count);
             let what = format!("{name} {label}");
             let depth = check_against_binary(&bvh, &wide, &what);
@@ -132,7 +168,7 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
             );
             assert!(depth < bvh.depth() as usize, "{what}: depth {depth}");
             let mut roomy = vec![WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
-            let again = WideBvh::build(&bvh, &mut roomy).unwrap();
+            let again = WideBvh::build(&plan, &mut roomy).unwrap();
             assert!(
                 again
                     .nodes()
@@ -150,10 +186,12 @@ fn a_short_buffer_is_an_error_and_nothing_is_written() {
     let mesh = loaded.valid();
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &mesh).unwrap();
-    let needed = WideBvh::count_nodes(&bvh);
+    let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+    let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
+    let needed = plan.node_count();
     let mut short = vec![WideNode::EMPTY; needed - 1];
     assert_eq!(
-        WideBvh::build(&bvh, &mut short).unwrap_err(),
+        WideBvh::build(&plan, &mut short).unwrap_err(),
         BuildError::BufferTooSmall {
             buffer: BufferKind::WideNodes,
             needed,
@@ -169,10 +207,12 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mesh = loaded.valid();
     let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &mesh).unwrap();
-    let mut nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-    WideBvh::build(&bvh, &mut nodes).unwrap();
+    let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+    let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
+    let mut nodes = vec![WideNode::EMPTY; plan.node_count()];
+    WideBvh::build(&plan, &mut nodes).unwrap();
     let kept = nodes.clone();
-    let view = WideBvh::from_parts(&bvh, &kept).unwrap();
+    let view = WideBvh::from_parts(&plan, &kept).unwrap();
     let ray = workload::random_rays(&loaded.positions, 1, 3)[0];
     assert_eq!(
         view.with(&mesh).raycast(&ray),
@@ -182,7 +222,7 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mismatch = |node| Err(StructureError::WideNodeMismatch { node });
     let mut shrunk = kept.clone();
     shrunk[7].bounds.max_y[1] = f32::from_bits(shrunk[7].bounds.max_y[1].to_bits() - 1);
-    assert_eq!(WideBvh::from_parts(&bvh, &shrunk).map(|_| ()), mismatch(7));
+    assert_eq!(WideBvh::from_parts(&plan, &shrunk).map(|_| ()), mismatch(7));
     // A lane pointing back at the root would loop forever: refused.
     let mut cycle = kept.clone();
     let (at, lane) = (0..cycle.len())
@@ -195,12 +235,12 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
         .unwrap();
     cycle[at].child[lane] = 0;
     assert_eq!(
-        WideBvh::from_parts(&bvh, &cycle).map(|_| ()),
+        WideBvh::from_parts(&plan, &cycle).map(|_| ()),
         mismatch(at as u32)
     );
     let last = kept.len() - 1;
     assert_eq!(
-        WideBvh::from_parts(&bvh, &kept[..last]).map(|_| ()),
+        WideBvh::from_parts(&plan, &kept[..last]).map(|_| ()),
         mismatch(last as u32)
     );
     // The untrimmed buffer a widening was given is accepted: the view covers the nodes
@@ -208,7 +248,7 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mut longer = kept.clone();
     longer.push(WideNode::EMPTY);
     longer.push(kept[0]);
-    let roomy = WideBvh::from_parts(&bvh, &longer).unwrap();
+    let roomy = WideBvh::from_parts(&plan, &longer).unwrap();
     assert_eq!(roomy.nodes().len(), kept.len());
     assert_eq!(
         roomy.with(&mesh).raycast(&ray),
@@ -221,9 +261,11 @@ fn empty_and_single_triangle_trees() {
     let empty = MeshRef::new(&[], &[]).validate().unwrap();
     let owned = MeshBvh::build(&empty, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &empty).unwrap();
-    assert_eq!(WideBvh::count_nodes(&bvh), 0);
+    let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+    let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
+    assert_eq!(plan.node_count(), 0);
     let mut none: [WideNode; 0] = [];
-    let wide = WideBvh::build(&bvh, &mut none).unwrap();
+    let wide = WideBvh::build(&plan, &mut none).unwrap();
     assert!(wide.is_empty() && wide.bounds() == Aabb::EMPTY);
     let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
     assert_eq!(wide.with(&empty).raycast(&ray), None);
@@ -237,8 +279,10 @@ fn empty_and_single_triangle_trees() {
     let one = MeshRef::new(&positions, &[[0, 1, 2]]).validate().unwrap();
     let owned = MeshBvh::build(&one, &BuildConfig::default()).unwrap();
     let bvh = checked_bvh(&owned, &one).unwrap();
+    let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+    let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
     let mut nodes = [WideNode::EMPTY; 1];
-    let wide = WideBvh::build(&bvh, &mut nodes).unwrap();
+    let wide = WideBvh::build(&plan, &mut nodes).unwrap();
     assert_eq!(wide.nodes()[0].lanes(), 1);
     assert_eq!(wide.bounds(), bvh.bounds());
     let hit = wide.with(&one).raycast(&ray).unwrap();
@@ -293,8 +337,10 @@ fn awkward_meshes_match_brute_force() {
         let mesh = MeshRef::new(positions, triangles).validate().unwrap();
         let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
         let bvh = checked_bvh(&owned, &mesh).unwrap();
-        let mut nodes = vec![WideNode::EMPTY; WideBvh::count_nodes(&bvh)];
-        let wide = WideBvh::build(&bvh, &mut nodes).unwrap();
+        let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+        let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
+        let mut nodes = vec![WideNode::EMPTY; plan.node_count()];
+        let wide = WideBvh::build(&plan, &mut nodes).unwrap();
         check_against_binary(&bvh, &wide, what);
         let brute = BruteForce::new(&mesh);
         let mut hits = 0;

@@ -14,7 +14,8 @@ pub enum BufferKind {
     Scratch,
     /// Packed triangles (one [`PackedTriangle`](crate::math::PackedTriangle) per triangle).
     Packed,
-    /// Wide nodes (size it with [`WideBvh::count_nodes`](crate::wide::WideBvh::count_nodes)).
+    /// Wide nodes (size it with
+    /// [`CollapsePlan::node_count`](crate::wide::CollapsePlan::node_count)).
     WideNodes,
     /// A grid's cell offsets (cells + 1; size it with
     /// [`Grid::measure`](crate::grid::Grid::measure)).
@@ -25,6 +26,9 @@ pub enum BufferKind {
     /// The split references of a build with spatial splits (size it with
     /// [`SpatialSplits::split_ref_capacity`](crate::bvh::SpatialSplits::split_ref_capacity)).
     SplitRefs,
+    /// The entries of a collapse plan (one per binary node; size it with
+    /// [`wide::plan_capacity`](crate::wide::plan_capacity)).
+    CollapsePlan,
 }
 
 /// Why a structure could not be built.
@@ -75,6 +79,7 @@ impl fmt::Display for BuildError {
                     BufferKind::CellOffsets => "cell offset",
                     BufferKind::References => "reference",
                     BufferKind::SplitRefs => "split reference",
+                    BufferKind::CollapsePlan => "collapse plan",
                 };
                 write!(f, "{which} buffer too small: needed {needed}, got {got}")
             }

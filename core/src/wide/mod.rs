@@ -8,8 +8,11 @@
 //! let mut buffers = BvhBuffers::<3>::new();
 //! let config = BuildConfig { max_leaf_size: 1, ..BuildConfig::default() };
 //! let bvh = buffers.build(&mesh, &config)?;
+//! // One plan entry per binary node: which binary nodes become each wide node's lanes.
+//! let mut entries = [PlanEntry::EMPTY; bvh::node_capacity(3)];
+//! let plan = CollapsePlan::<4>::new(&bvh, &mut entries)?;
 //! let mut wide_nodes = [WideNode::EMPTY; wide::wide_node_capacity(3)];
-//! let wide = WideBvh::build(&bvh, &mut wide_nodes)?;
+//! let wide = WideBvh::build(&plan, &mut wide_nodes)?;
 //! let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
 //! assert_eq!(wide.with(&mesh).raycast(&ray), bvh.with(&mesh).raycast(&ray));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -22,6 +25,7 @@ mod node;
 mod node8;
 #[cfg(feature = "parallel")]
 pub(crate) mod parallel_collapse;
+mod plan;
 mod sizing;
 mod traverse;
 mod tree;
@@ -31,6 +35,7 @@ pub use compact_node::CompactNode;
 pub use compact_tree::CompactWideBvh;
 pub use node::WideNode;
 pub use node8::WideNode8;
+pub use plan::{CollapsePlan, MERGED_LEAF_MAX, NODE_COST, PlanEntry, plan_capacity};
 pub use sizing::wide_node_capacity;
 pub use tree::WideBvh;
 pub use tree8::WideBvh8;

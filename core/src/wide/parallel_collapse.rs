@@ -14,7 +14,8 @@ use alloc::vec::Vec;
 
 use rayon::prelude::*;
 
-use super::collapse::{CollapsedNode, collapse_from, collapse_vec, open, wide_node};
+use super::collapse::{CollapsedNode, collapse_from, collapse_planned_vec, wide_node};
+use super::{CollapsePlan, PlanEntry, plan_capacity};
 use crate::bvh::{Bvh, BvhNode, TreeArrays};
 use crate::error::BuildError;
 
@@ -26,40 +27,49 @@ const PARALLEL_FROM: usize = 16 * 1024;
 enum Piece<N, const W: usize> {
     /// A subtree collapsed on one thread: its root at 0, its descendants numbered from 1.
     Local(Vec<N>),
-    /// A wide node opened here: its lanes as [`open`] gives them, and one piece per inner lane,
-    /// in lane order.
+    /// A wide node opened here: its lanes as [`CollapsePlan::lanes`] gives them, and one piece
+    /// per inner lane, in lane order.
     Open([(u32, BvhNode); W], usize, Vec<Piece<N, W>>),
 }
 
-/// [`collapse_vec`] on rayon's pool; the same nodes.
+/// [`collapse_vec`](super::collapse::collapse_vec) on rayon's pool; the same nodes. The
+/// plan is solved on this thread (one pass over the binary nodes); the collapse it guides
+/// runs on the pool.
 pub(crate) fn collapse_vec_parallel<N, const W: usize>(tree: &Bvh<'_>) -> Result<Vec<N>, BuildError>
 where
     N: CollapsedNode + Clone + Send,
 {
+    let mut entries = vec![PlanEntry::EMPTY; plan_capacity(tree)];
+    let plan = CollapsePlan::<W>::new(tree, &mut entries)?;
     match tree.node(0) {
         Some(root) if !root.is_leaf() && tree.slot_count() > PARALLEL_FROM => {
-            let piece = collapse_piece::<N, W>(tree, 0)?;
+            let piece = collapse_piece::<N, W>(&plan, 0)?;
             let mut nodes = vec![N::EMPTY; piece_len(&piece)];
             let mut next = 1;
             place(piece, 0, &mut nodes, &mut next);
             Ok(nodes)
         }
-        _ => collapse_vec::<N, W>(tree),
+        _ => collapse_planned_vec::<N, W>(&plan),
     }
 }
 
 /// The piece of the subtree under the inner binary node `binary`.
-fn collapse_piece<N, const W: usize>(tree: &Bvh<'_>, binary: u32) -> Result<Piece<N, W>, BuildError>
+fn collapse_piece<N, const W: usize>(
+    plan: &CollapsePlan<'_, '_, W>,
+    binary: u32,
+) -> Result<Piece<N, W>, BuildError>
 where
     N: CollapsedNode + Clone + Send,
 {
-    let opened = tree
-        .node(binary as usize)
-        .filter(|_| subtree_slots(tree, binary) > PARALLEL_FROM)
-        .map(|inner| open::<W>(tree, &inner));
+    let tree = plan.tree();
+    let opened = if subtree_slots(tree, binary) > PARALLEL_FROM {
+        plan.lanes(binary)
+    } else {
+        None
+    };
     let Some((children, lanes)) = opened else {
         let mut nodes = Vec::new();
-        let count = collapse_from::<N, W>(tree, binary, |index, node| {
+        let count = collapse_from::<N, W>(plan, binary, |index, node| {
             if index >= nodes.len() {
                 nodes.resize(index + 1, N::EMPTY);
             }
@@ -77,7 +87,7 @@ where
         .map(|&(index, _)| index)
         .collect::<Vec<_>>()
         .into_par_iter()
-        .map(|index| collapse_piece::<N, W>(tree, index))
+        .map(|index| collapse_piece::<N, W>(plan, index))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Piece::Open(children, lanes, pieces))
 }

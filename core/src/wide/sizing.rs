@@ -3,7 +3,8 @@
 /// Wide nodes [`WideBvh::build`](super::WideBvh::build) may write for a tree over `tri_count`
 /// triangles: one per inner binary node at most (`n − 1`), 1 for a lone leaf, 0 for none. Size
 /// a buffer with it to widen without counting first;
-/// [`WideBvh::count_nodes`](super::WideBvh::count_nodes) gives the exact count of a built tree.
+/// [`CollapsePlan::node_count`](super::CollapsePlan::node_count) gives the exact count for a
+/// planned tree.
 #[must_use]
 pub const fn wide_node_capacity(tri_count: usize) -> usize {
     if tri_count <= 1 {

@@ -1,15 +1,15 @@
+use super::CollapsePlan;
 use super::WideNode;
-use super::collapse::{collapse, collapse_into};
-use crate::bvh::Bvh;
+use super::collapse::{collapse_into, collapse_to};
 use crate::error::{BuildError, StructureError};
 use crate::math::Aabb;
 
-/// A four-wide BVH: the same leaves as the [`Bvh`] it was collapsed from, under nodes of up to
+/// A four-wide BVH: the same leaves as the [`Bvh`](crate::bvh::Bvh) it was collapsed from, under nodes of up to
 /// four children whose boxes are tested together in SIMD lanes, so a query takes fewer,
 /// fuller steps.
 ///
-/// Made by [`WideBvh::build`] into a caller buffer (sized by
-/// [`wide_node_capacity`](super::wide_node_capacity) or [`WideBvh::count_nodes`]); it
+/// Made by [`WideBvh::build`] from a [`CollapsePlan`] into a caller buffer (sized by
+/// [`wide_node_capacity`](super::wide_node_capacity) or [`CollapsePlan::node_count`]); it
 /// borrows the binary tree's triangle order, so leaves read the same
 /// [`PackedTriangles`](crate::query::PackedTriangles) slots. Queries go through
 /// [`Traverse`](crate::query::Traverse) (`wide.with(&triangles)`), and every one returns
@@ -23,23 +23,20 @@ pub struct WideBvh<'a> {
 }
 
 impl<'a> WideBvh<'a> {
-    /// Number of wide nodes [`WideBvh::build`] writes for `bvh` (0 when empty; at most one
-    /// per inner node, and 1 for a lone leaf).
-    #[must_use]
-    pub fn count_nodes(bvh: &Bvh<'_>) -> usize {
-        collapse(bvh, |_, _| {}).unwrap_or(0)
-    }
-
-    /// Collapses `bvh` into a four-wide tree in `out` (at least [`WideBvh::count_nodes`]
-    /// nodes). Deterministic. When `out` holds [`wide_node_capacity`](super::wide_node_capacity)
-    /// of the triangle count, no counting pass is needed; the view covers only the nodes
+    /// Collapses the tree `plan` was made for into a four-wide tree in `out` (at least
+    /// [`CollapsePlan::node_count`] nodes; [`wide_node_capacity`](super::wide_node_capacity)
+    /// of the triangle count always suffices). Deterministic; the view covers only the nodes
     /// written.
     ///
     /// # Errors
     /// [`BuildError::BufferTooSmall`] when `out` is too small; nothing is written then.
-    pub fn build(bvh: &Bvh<'a>, out: &'a mut [WideNode]) -> Result<Self, BuildError> {
-        let needed = collapse_into::<WideNode, 4>(bvh, out)?;
+    pub fn build(
+        plan: &CollapsePlan<'a, '_, 4>,
+        out: &'a mut [WideNode],
+    ) -> Result<Self, BuildError> {
+        let needed = collapse_into::<WideNode, 4>(plan, out)?;
         let nodes: &'a [WideNode] = out;
+        let bvh = plan.tree();
         Ok(WideBvh {
             nodes: nodes.get(..needed).unwrap_or_default(),
             order: bvh.order(),
@@ -47,17 +44,20 @@ impl<'a> WideBvh<'a> {
         })
     }
 
-    /// A view over wide nodes written earlier by [`WideBvh::build`] for this very `bvh` (and
-    /// moved since, into a struct that owns them, say), after checking that they are exactly
-    /// the nodes the collapse gives, bit for bit. The check redoes the collapse, which is cheap
-    /// next to a build, so nothing else can reach a query. `nodes` may be the untrimmed buffer
-    /// `build` was given: nodes past those it wrote are ignored.
+    /// A view over wide nodes written earlier by [`WideBvh::build`] for this very `plan`'s
+    /// tree (and moved since, into a struct that owns them, say), after checking that they are
+    /// exactly the nodes the collapse gives, bit for bit. The check redoes the collapse, which
+    /// is cheap next to a build, so nothing else can reach a query. `nodes` may be the
+    /// untrimmed buffer `build` was given: nodes past those it wrote are ignored.
     ///
     /// # Errors
     /// [`StructureError::WideNodeMismatch`] naming the first node that differs.
-    pub fn from_parts(bvh: &Bvh<'a>, nodes: &'a [WideNode]) -> Result<Self, StructureError> {
+    pub fn from_parts(
+        plan: &CollapsePlan<'a, '_, 4>,
+        nodes: &'a [WideNode],
+    ) -> Result<Self, StructureError> {
         let mut first_difference: Option<usize> = None;
-        let count = collapse(bvh, |index, node| {
+        let count = collapse_to::<WideNode, 4>(plan, |index, node| {
             let same = nodes.get(index).is_some_and(|n| n.same_bits(&node));
             if !same && first_difference.is_none_or(|d| index < d) {
                 first_difference = Some(index);
@@ -70,15 +70,14 @@ impl<'a> WideBvh<'a> {
                 node: u32::try_from(node).unwrap_or(u32::MAX),
             });
         }
+        let bvh = plan.tree();
         Ok(WideBvh {
             nodes: nodes.get(..count).unwrap_or_default(),
             order: bvh.order(),
             splits: bvh.split_refs(),
         })
     }
-}
 
-impl<'a> WideBvh<'a> {
     /// A view over nodes [`WideBvh::build`] wrote for the tree whose order is `order`, kept
     /// unchanged since (the owned type's buffers).
     #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
@@ -124,7 +123,7 @@ impl<'a> WideBvh<'a> {
     }
 
     /// The union of the root's child boxes, or [`Aabb::EMPTY`]: it holds every triangle and
-    /// lies within the binary root's box ([`Bvh::bounds`]), which is padded once more.
+    /// lies within the binary root's box ([`Bvh::bounds`](crate::bvh::Bvh::bounds)), which is padded once more.
     #[must_use]
     pub fn bounds(&self) -> Aabb {
         self.nodes

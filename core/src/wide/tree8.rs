@@ -1,17 +1,18 @@
+use super::CollapsePlan;
 use super::WideNode8;
-use super::collapse::{collapse_into, collapse_to};
-use crate::bvh::Bvh;
+use super::collapse::collapse_into;
 use crate::error::BuildError;
 use crate::math::Aabb;
 
-/// An eight-wide BVH: the same leaves as the [`Bvh`] it was collapsed from, under nodes of up
+/// An eight-wide BVH: the same leaves as the [`Bvh`](crate::bvh::Bvh) it was collapsed from, under nodes of up
 /// to eight children whose boxes are tested together ([`WideNode8`]). Next to the four-wide
 /// [`WideBvh`](super::WideBvh) a query takes about a third fewer steps, each testing twice the
 /// boxes: on x86-64 built for AVX2 (`-C target-cpu=x86-64-v3` or `native`) each coordinate of
 /// the eight boxes is one instruction, elsewhere two four-lane ones.
 ///
 /// Made by [`WideBvh8::build`] into a caller buffer (sized by
-/// [`wide_node_capacity`](super::wide_node_capacity) or [`WideBvh8::count_nodes`]); it
+/// [`wide_node_capacity`](super::wide_node_capacity) or [`CollapsePlan::node_count`]) from a
+/// [`CollapsePlan`]; it
 /// borrows the binary tree's triangle order, so leaves read the same
 /// [`PackedTriangles`](crate::query::PackedTriangles) slots. Queries go through
 /// [`Traverse`](crate::query::Traverse) and return exactly what the binary and four-wide trees
@@ -24,23 +25,20 @@ pub struct WideBvh8<'a> {
 }
 
 impl<'a> WideBvh8<'a> {
-    /// Number of nodes [`WideBvh8::build`] writes for `bvh` (0 when empty; at most one per
-    /// inner binary node, and 1 for a lone leaf).
-    #[must_use]
-    pub fn count_nodes(bvh: &Bvh<'_>) -> usize {
-        collapse_to::<WideNode8, 8>(bvh, |_, _| {}).unwrap_or(0)
-    }
-
-    /// Collapses `bvh` into an eight-wide tree in `out` (at least
-    /// [`WideBvh8::count_nodes`] nodes). Each node starts from an inner binary node's two
-    /// children and opens the inner child of largest surface area until it has eight
-    /// children or only leaves. Deterministic; the view covers only the nodes written.
+    /// Collapses the tree `plan` was made for into an eight-wide tree in `out` (at least
+    /// [`CollapsePlan::node_count`] nodes; [`wide_node_capacity`](super::wide_node_capacity)
+    /// of the triangle count always suffices). Each node covers an inner binary node's subtree
+    /// with the lanes the plan chose. Deterministic; the view covers only the nodes written.
     ///
     /// # Errors
     /// [`BuildError::BufferTooSmall`] when `out` is too small; nothing is written then.
-    pub fn build(bvh: &Bvh<'a>, out: &'a mut [WideNode8]) -> Result<Self, BuildError> {
-        let needed = collapse_into::<WideNode8, 8>(bvh, out)?;
+    pub fn build(
+        plan: &CollapsePlan<'a, '_, 8>,
+        out: &'a mut [WideNode8],
+    ) -> Result<Self, BuildError> {
+        let needed = collapse_into::<WideNode8, 8>(plan, out)?;
         let nodes: &'a [WideNode8] = out;
+        let bvh = plan.tree();
         Ok(Self {
             nodes: nodes.get(..needed).unwrap_or_default(),
             order: bvh.order(),

@@ -1,0 +1,329 @@
+//! The collapse plan: which binary nodes become the lanes of each wide node, chosen to
+//! minimise the surface-area cost of the whole wide tree.
+//!
+//! A greedy collapse (open the widest inner child until the node is full) leaves the bottom of
+//! the tree full of nodes with two or three lanes: their subtrees hold too few leaves to fill
+//! more. The plan instead solves, bottom up over the binary tree, for every node and every
+//! lane budget `i ≤ W`, the cheapest way to cover the node's subtree with at most `i` lanes,
+//! each lane a binary leaf, a leaf merged from a small subtree, or an inner lane over a wide
+//! node of its own. This is the dynamic program of Ylitie, Karras and Laine, "Efficient
+//! Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs" (HPG 2017), with this
+//! crate's own costs: leaves are tested four triangles at a time, so a leaf costs its surface
+//! area times its number of four-triangle batches.
+
+use crate::bvh::{Bvh, BvhNode, MAX_DEPTH, TreeArrays};
+use crate::error::{BufferKind, BuildError};
+
+/// Cost of visiting a wide node, in units of testing one batch of up to four triangles (the
+/// surface-area weights the plan minimises). Higher values give fewer, fuller nodes and larger
+/// merged leaves.
+pub const NODE_COST: f32 = 2.0;
+
+/// The most order slots (triangles) a leaf merged from a binary subtree may hold: two batches
+/// of four. Leaves of the binary tree keep their own size, whatever it is.
+pub const MERGED_LEAF_MAX: u32 = 8;
+
+/// One binary node's entry in a [`CollapsePlan`]: the caller-provided scratch the plan is
+/// computed in (one entry per binary node, [`plan_capacity`]). Its contents are private.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanEntry {
+    /// `cost[i]`: the least cost of the node's subtree as at most `i + 1` lanes.
+    cost: [f32; 8],
+    /// `spread[i]`: how that least cost is reached: 0 as one lane, `j ≥ 2` spread over `j`
+    /// lanes between the two children.
+    spread: [u8; 8],
+    /// `left[j - 1]`: of `j` lanes spread between the children, how many the left one takes.
+    left: [u8; 8],
+    /// The subtree's cost as an inner lane: its own wide node and everything below it.
+    inner: f32,
+    /// As one lane, whether the subtree becomes one merged leaf (else an inner lane).
+    merged: bool,
+    /// The subtree's first order slot and how many it spans.
+    first: u32,
+    slots: u32,
+}
+
+impl PlanEntry {
+    /// A placeholder for initializing plan buffers.
+    pub const EMPTY: Self = Self {
+        cost: [0.0; 8],
+        spread: [0; 8],
+        left: [1; 8],
+        inner: f32::INFINITY,
+        merged: false,
+        first: 0,
+        slots: 0,
+    };
+
+    /// The entry of a binary leaf.
+    fn leaf(node: &BvhNode) -> Self {
+        Self {
+            cost: [leaf_cost(node, node.count); 8],
+            first: node.first,
+            slots: node.count,
+            ..Self::EMPTY
+        }
+    }
+}
+
+/// Inner binary nodes waiting to become wide nodes. A wide node is no deeper than the binary
+/// node it starts from, and each one leaves at most seven siblings pending per level (eight
+/// lanes at most), so a valid tree never fills this.
+const PENDING: usize = 7 * MAX_DEPTH as usize + 1;
+
+/// Plan entries [`CollapsePlan::new`] needs for `bvh`: one per binary node.
+#[must_use]
+pub const fn plan_capacity(bvh: &Bvh<'_>) -> usize {
+    bvh.nodes().len()
+}
+
+/// The cost of a leaf over `slots` triangles in `node`'s box.
+fn leaf_cost(node: &BvhNode, slots: u32) -> f32 {
+    node.aabb().half_area() * slots.div_ceil(4) as f32
+}
+
+/// How the binary tree `tree` collapses into a wide tree of `W` lanes per node (4 or 8):
+/// computed once into caller scratch, then read by [`WideBvh::build`](super::WideBvh::build)
+/// (`W = 4`) or [`WideBvh8::build`](super::WideBvh8::build) (`W = 8`), which also learn from
+/// it how many nodes they write ([`node_count`](Self::node_count)).
+///
+/// Each wide node covers an inner binary node's subtree with at most `W` lanes, chosen to
+/// minimise the tree's surface-area cost: [`NODE_COST`] times the area of every wide node,
+/// plus the area of every leaf times its batches of four triangles. A lane is a leaf of the
+/// binary tree, a leaf merged from a binary subtree of at most [`MERGED_LEAF_MAX`] triangles
+/// (its order slots are consecutive, so the merged leaf is one slot range), or an inner node.
+/// Every triangle stays in exactly the slots it had: the same answers, bit for bit, whatever
+/// the plan.
+///
+/// Deterministic: the same tree gives the same plan and the same nodes on every target (ties
+/// go to the first choice in a fixed order: one lane before several, fewer lanes before more,
+/// fewer lanes on the left before more, an inner lane before a merged leaf).
+#[derive(Clone, Copy, Debug)]
+pub struct CollapsePlan<'a, 'p, const W: usize> {
+    tree: Bvh<'a>,
+    entries: &'p [PlanEntry],
+    nodes: usize,
+}
+
+impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
+    /// Plans the collapse of `tree` in `entries` (at least [`plan_capacity`] of them).
+    ///
+    /// # Errors
+    /// - [`BuildError::BufferTooSmall`] (buffer [`BufferKind::CollapsePlan`]) when `entries`
+    ///   is too small; nothing is written then.
+    /// - [`BuildError::InvalidConfig`] (field `lanes`) unless `W` is 2 to 8.
+    /// - [`BuildError::TooDeep`] for a tree whose children do not follow their parents or
+    ///   that is deeper than [`MAX_DEPTH`](crate::bvh::MAX_DEPTH) (no checked tree is).
+    pub fn new(tree: &Bvh<'a>, entries: &'p mut [PlanEntry]) -> Result<Self, BuildError> {
+        if !(2..=8).contains(&W) {
+            return Err(BuildError::InvalidConfig { field: "lanes" });
+        }
+        let n = plan_capacity(tree);
+        let got = entries.len();
+        let entries = entries.get_mut(..n).ok_or(BuildError::BufferTooSmall {
+            buffer: BufferKind::CollapsePlan,
+            needed: n,
+            got,
+        })?;
+        solve::<W>(tree, entries)?;
+        let mut plan = Self {
+            tree: *tree,
+            entries,
+            nodes: 0,
+        };
+        plan.nodes = match tree.node(0) {
+            None => 0,
+            Some(root) if root.is_leaf() => 1,
+            Some(_) => plan.for_each_node(0, |_, _, _| {})?,
+        };
+        Ok(plan)
+    }
+
+    /// The binary tree this plan collapses.
+    #[must_use]
+    pub const fn tree(&self) -> &Bvh<'a> {
+        &self.tree
+    }
+
+    /// How many wide nodes the collapse writes (0 for an empty tree, 1 for a lone leaf; at most
+    /// [`wide_node_capacity`](super::wide_node_capacity) of the triangle count).
+    #[must_use]
+    pub const fn node_count(&self) -> usize {
+        self.nodes
+    }
+
+    /// The planned cost of the wide tree (see the type's docs), in units of the root box's
+    /// half surface area times a batch test: the expected work of a ray through the root, as
+    /// far as surface areas predict it.
+    #[must_use]
+    pub fn cost(&self) -> f32 {
+        match (self.tree.nodes().first(), self.entries.first()) {
+            (Some(root), Some(entry)) if !root.is_leaf() => entry.inner / root.aabb().half_area(),
+            // A lone leaf still gets a wide node, of one lane.
+            (Some(root), _) => NODE_COST + root.count.div_ceil(4) as f32,
+            _ => 0.0,
+        }
+    }
+
+    /// Walks the wide nodes of the subtree under the inner binary node `root` in the
+    /// collapse's numbering, handing `each` every node's index, its lanes (from
+    /// [`lanes`](Self::lanes)) and the index its first inner lane gets; returns how many nodes
+    /// there are. `root`'s node is 0 and the others are numbered from 1, depth first: a node's
+    /// inner lanes take the next free indices in lane order, then the last one's subtree comes
+    /// first. So every subtree's nodes form one consecutive block, which the parallel collapse
+    /// relies on.
+    ///
+    /// # Errors
+    /// [`BuildError::TooDeep`] for a tree the plan cannot have come from (unreachable for a
+    /// planned tree).
+    pub(super) fn for_each_node(
+        &self,
+        root: u32,
+        mut each: impl FnMut(u32, &[(u32, BvhNode)], u32),
+    ) -> Result<usize, BuildError> {
+        let too_deep = BuildError::TooDeep {
+            max_depth: MAX_DEPTH,
+            triangles: self.tree.slot_count(),
+        };
+        let mut pending = [(root, 0u32); PENDING];
+        let mut len = 1usize;
+        let mut next = 1u32;
+        while let Some(at) = len.checked_sub(1) {
+            len = at;
+            let &(binary, wide) = pending.get(at).ok_or(too_deep)?;
+            let (lanes, count) = self.lanes(binary).ok_or(too_deep)?;
+            let lanes = lanes.get(..count).unwrap_or_default();
+            each(wide, lanes, next);
+            for &(index, lane) in lanes {
+                if !lane.is_leaf() {
+                    *pending.get_mut(len).ok_or(too_deep)? = (index, next);
+                    len += 1;
+                    next = next.checked_add(1).ok_or(too_deep)?;
+                }
+            }
+        }
+        Ok(next as usize)
+    }
+
+    /// The lanes of the wide node at the inner binary node `inner` (left to right), as
+    /// `(binary index, node)`: a merged leaf is a leaf node over its subtree's box and slots.
+    /// `None` for a node the tree does not have.
+    pub(super) fn lanes(&self, inner: u32) -> Option<([(u32, BvhNode); W], usize)> {
+        let node = self.tree.nodes().get(inner as usize)?;
+        let entry = self.entries.get(inner as usize)?;
+        let mut lanes = [(0u32, BvhNode::EMPTY); W];
+        let mut len = 0usize;
+        // (binary index, lane budget), the left child on top. Each step pops one and pushes
+        // at most two whose budgets sum to its own, so at most W + 1 wait at once.
+        let left = usize::from(*entry.left.get(W - 1)?);
+        let mut stack = [(0u32, 0usize); 9];
+        let [right_half, left_half, ..] = &mut stack;
+        *right_half = (node.first.checked_add(1)?, W.checked_sub(left)?);
+        *left_half = (node.first, left);
+        let mut depth = 2usize;
+        while let Some(top) = depth.checked_sub(1) {
+            depth = top;
+            let (at, budget) = *stack.get(top)?;
+            let child = self.tree.nodes().get(at as usize)?;
+            let plan = self.entries.get(at as usize)?;
+            let spread = usize::from(*plan.spread.get(budget.checked_sub(1)?)?);
+            if spread == 0 || child.is_leaf() {
+                let lane = if child.is_leaf() || !plan.merged {
+                    *child
+                } else {
+                    BvhNode::new(child.aabb(), plan.first, plan.slots)
+                };
+                *lanes.get_mut(len)? = (at, lane);
+                len += 1;
+            } else {
+                let left = usize::from(*plan.left.get(spread - 1)?);
+                *stack.get_mut(depth)? = (child.first.checked_add(1)?, spread.checked_sub(left)?);
+                *stack.get_mut(depth + 1)? = (child.first, left);
+                depth += 2;
+            }
+        }
+        Some((lanes, len))
+    }
+}
+
+/// Fills `entries` (one per node of `tree`) bottom up: children follow their parents in a
+/// valid tree, so a reverse walk meets both children of a node before the node.
+fn solve<const W: usize>(tree: &Bvh<'_>, entries: &mut [PlanEntry]) -> Result<(), BuildError> {
+    let malformed = BuildError::TooDeep {
+        max_depth: crate::bvh::MAX_DEPTH,
+        triangles: tree.order().len(),
+    };
+    for (index, node) in tree.nodes().iter().enumerate().rev() {
+        let entry = if node.is_leaf() {
+            PlanEntry::leaf(node)
+        } else {
+            let first = node.first as usize;
+            if first <= index {
+                return Err(malformed);
+            }
+            let (Some(&left), Some(&right)) = (entries.get(first), entries.get(first + 1)) else {
+                return Err(malformed);
+            };
+            inner_entry::<W>(node, &left, &right)
+        };
+        *entries.get_mut(index).ok_or(malformed)? = entry;
+    }
+    Ok(())
+}
+
+/// The entry of an inner node whose children's entries are `left` and `right`.
+fn inner_entry<const W: usize>(node: &BvhNode, left: &PlanEntry, right: &PlanEntry) -> PlanEntry {
+    let mut entry = PlanEntry {
+        first: left.first,
+        slots: left.slots.saturating_add(right.slots),
+        ..PlanEntry::EMPTY
+    };
+    // spread[j]: the least cost of `j` lanes or fewer shared by the two children, each taking
+    // at least one; `entry.left` records the left child's share (the first of equal costs).
+    let mut spread = [f32::INFINITY; 9];
+    for j in 2..=W {
+        for k in 1..j {
+            let cost = left.cost.get(k - 1).copied().unwrap_or(f32::INFINITY)
+                + right.cost.get(j - k - 1).copied().unwrap_or(f32::INFINITY);
+            if let (Some(best), Some(share)) = (spread.get_mut(j), entry.left.get_mut(j - 1))
+                && cost < *best
+            {
+                *best = cost;
+                *share = k as u8;
+            }
+        }
+    }
+    let full = spread.get(W).copied().unwrap_or(f32::INFINITY);
+    let area = node.aabb().half_area();
+    let as_inner = area * NODE_COST + full;
+    let consecutive = left.first.checked_add(left.slots) == Some(right.first);
+    let as_leaf = if consecutive && entry.slots <= MERGED_LEAF_MAX {
+        leaf_cost(node, entry.slots)
+    } else {
+        f32::INFINITY
+    };
+    entry.inner = as_inner;
+    entry.merged = as_leaf < as_inner;
+    let one = if entry.merged { as_leaf } else { as_inner };
+    // With infinite or NaN costs every comparison fails and each choice stays the first,
+    // always a valid one (one lane; one lane to the left).
+    let mut best = one;
+    if let Some(c) = entry.cost.first_mut() {
+        *c = best;
+    }
+    for j in 2..=W {
+        let s = spread.get(j).copied().unwrap_or(f32::INFINITY);
+        let previous = entry.spread.get(j - 2).copied().unwrap_or(0);
+        let (cost, how) = if s < best {
+            (s, j as u8)
+        } else {
+            (best, previous)
+        };
+        best = cost;
+        if let (Some(c), Some(h)) = (entry.cost.get_mut(j - 1), entry.spread.get_mut(j - 1)) {
+            *c = cost;
+            *h = how;
+        }
+    }
+    entry
+}
