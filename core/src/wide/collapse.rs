@@ -76,18 +76,28 @@ pub(crate) fn collapse_vec<N: CollapsedNode + Clone, const W: usize>(
     tree: &crate::bvh::Bvh<'_>,
 ) -> Result<alloc::vec::Vec<N>, BuildError> {
     let mut entries = alloc::vec![super::PlanEntry::EMPTY; super::plan_capacity(tree)];
-    let plan = CollapsePlan::<W>::new(tree, &mut entries)?;
+    let plan = CollapsePlan::<W>::solved(tree, &mut entries)?;
     collapse_planned_vec(&plan)
 }
 
-/// [`collapse_to`] into a vector of exactly [`CollapsePlan::node_count`] nodes.
+/// [`collapse_to`] into a vector grown as nodes come: one pass, so the plan need not have
+/// counted them.
 #[cfg(feature = "alloc")]
 pub(crate) fn collapse_planned_vec<N: CollapsedNode + Clone, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
 ) -> Result<alloc::vec::Vec<N>, BuildError> {
-    let mut nodes = alloc::vec![N::EMPTY; plan.node_count()];
-    let count = collapse_into::<N, W>(plan, &mut nodes)?;
+    let mut nodes = alloc::vec::Vec::new();
+    let count = collapse_to::<N, W>(plan, |index, node| {
+        if index >= nodes.len() {
+            nodes.resize(index + 1, N::EMPTY);
+        }
+        if let Some(slot) = nodes.get_mut(index) {
+            *slot = node;
+        }
+    })?;
+    // Every index below the count is written once, so the vector is exactly the nodes.
     nodes.truncate(count);
+    nodes.shrink_to_fit();
     Ok(nodes)
 }
 

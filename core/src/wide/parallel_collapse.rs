@@ -40,7 +40,7 @@ where
     N: CollapsedNode + Clone + Send,
 {
     let mut entries = vec![PlanEntry::EMPTY; plan_capacity(tree)];
-    let plan = CollapsePlan::<W>::new(tree, &mut entries)?;
+    let plan = CollapsePlan::<W>::solved(tree, &mut entries)?;
     match tree.node(0) {
         Some(root) if !root.is_leaf() && tree.slot_count() > PARALLEL_FROM => {
             let piece = collapse_piece::<N, W>(&plan, 0)?;

@@ -125,18 +125,28 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
             needed: n,
             got,
         })?;
-        solve::<W>(tree, entries)?;
-        let mut plan = Self {
-            tree: *tree,
-            entries,
-            nodes: 0,
-        };
+        let mut plan = Self::solved(tree, entries)?;
         plan.nodes = match tree.node(0) {
             None => 0,
             Some(root) if root.is_leaf() => 1,
             Some(_) => plan.for_each_node(0, |_, _, _| {})?,
         };
         Ok(plan)
+    }
+
+    /// The plan of `tree` solved in `entries` (exactly [`plan_capacity`] of them), without the
+    /// walk that counts its nodes: [`node_count`](Self::node_count) is 0. For collapses into
+    /// a growing vector, which need no count.
+    pub(crate) fn solved(tree: &Bvh<'a>, entries: &'p mut [PlanEntry]) -> Result<Self, BuildError> {
+        if !(2..=8).contains(&W) {
+            return Err(BuildError::InvalidConfig { field: "lanes" });
+        }
+        solve::<W>(tree, entries)?;
+        Ok(Self {
+            tree: *tree,
+            entries,
+            nodes: 0,
+        })
     }
 
     /// The binary tree this plan collapses.
@@ -272,57 +282,61 @@ fn solve<const W: usize>(tree: &Bvh<'_>, entries: &mut [PlanEntry]) -> Result<()
 }
 
 /// The entry of an inner node whose children's entries are `left` and `right`.
+///
+/// Every choice is a select on the costs, never a branch: the comparisons of one node's costs
+/// go either way at random, and mispredicted branches made planning the bunny's tree take
+/// about as long as loading its blob.
 fn inner_entry<const W: usize>(node: &BvhNode, left: &PlanEntry, right: &PlanEntry) -> PlanEntry {
     let mut entry = PlanEntry {
         first: left.first,
         slots: left.slots.saturating_add(right.slots),
         ..PlanEntry::EMPTY
     };
+    let (lc, rc) = (left.cost, right.cost);
     // spread[j]: the least cost of `j` lanes or fewer shared by the two children, each taking
-    // at least one; `entry.left` records the left child's share (the first of equal costs).
+    // at least one; `entry.left[j - 1]` records the left child's share (the first of equal
+    // costs).
     let mut spread = [f32::INFINITY; 9];
     for j in 2..=W {
+        let (mut best, mut share) = (f32::INFINITY, 1u8);
         for k in 1..j {
-            let cost = left.cost.get(k - 1).copied().unwrap_or(f32::INFINITY)
-                + right.cost.get(j - k - 1).copied().unwrap_or(f32::INFINITY);
-            if let (Some(best), Some(share)) = (spread.get_mut(j), entry.left.get_mut(j - 1))
-                && cost < *best
-            {
-                *best = cost;
-                *share = k as u8;
-            }
+            let cost = lc.get(k - 1).copied().unwrap_or(f32::INFINITY)
+                + rc.get(j - k - 1).copied().unwrap_or(f32::INFINITY);
+            let better = cost < best;
+            best = if better { cost } else { best };
+            share = if better { k as u8 } else { share };
+        }
+        if let (Some(s), Some(l)) = (spread.get_mut(j), entry.left.get_mut(j - 1)) {
+            (*s, *l) = (best, share);
         }
     }
     let full = spread.get(W).copied().unwrap_or(f32::INFINITY);
     let area = node.aabb().half_area();
     let as_inner = area * NODE_COST + full;
     let consecutive = left.first.checked_add(left.slots) == Some(right.first);
-    let as_leaf = if consecutive && entry.slots <= MERGED_LEAF_MAX {
+    let mergeable = consecutive && entry.slots <= MERGED_LEAF_MAX;
+    let as_leaf = if mergeable {
         leaf_cost(node, entry.slots)
     } else {
         f32::INFINITY
     };
     entry.inner = as_inner;
     entry.merged = as_leaf < as_inner;
-    let one = if entry.merged { as_leaf } else { as_inner };
     // With infinite or NaN costs every comparison fails and each choice stays the first,
     // always a valid one (one lane; one lane to the left).
-    let mut best = one;
-    if let Some(c) = entry.cost.first_mut() {
-        *c = best;
-    }
-    for j in 2..=W {
-        let s = spread.get(j).copied().unwrap_or(f32::INFINITY);
-        let previous = entry.spread.get(j - 2).copied().unwrap_or(0);
-        let (cost, how) = if s < best {
-            (s, j as u8)
+    let mut best = if entry.merged { as_leaf } else { as_inner };
+    let mut how = 0u8;
+    for j in 1..=W {
+        let s = if j >= 2 {
+            spread.get(j).copied().unwrap_or(f32::INFINITY)
         } else {
-            (best, previous)
+            f32::INFINITY
         };
-        best = cost;
+        let better = s < best;
+        best = if better { s } else { best };
+        how = if better { j as u8 } else { how };
         if let (Some(c), Some(h)) = (entry.cost.get_mut(j - 1), entry.spread.get_mut(j - 1)) {
-            *c = cost;
-            *h = how;
+            (*c, *h) = (best, how);
         }
     }
     entry
