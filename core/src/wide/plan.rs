@@ -38,6 +38,9 @@ pub struct PlanEntry {
     inner: f32,
     /// As one lane, whether the subtree becomes one merged leaf (else an inner lane).
     merged: bool,
+    /// How many lanes the subtree can fill: its binary leaves, at most 8. Its costs are the
+    /// same for every budget from there on.
+    reach: u8,
     /// The subtree's first order slot and how many it spans.
     first: u32,
     slots: u32,
@@ -51,6 +54,7 @@ impl PlanEntry {
         left: [1; 8],
         inner: f32::INFINITY,
         merged: false,
+        reach: 1,
         first: 0,
         slots: 0,
     };
@@ -293,13 +297,28 @@ fn inner_entry<const W: usize>(node: &BvhNode, left: &PlanEntry, right: &PlanEnt
         ..PlanEntry::EMPTY
     };
     let (lc, rc) = (left.cost, right.cost);
+    let (l_reach, r_reach) = (usize::from(left.reach), usize::from(right.reach));
+    entry.reach = (l_reach + r_reach).min(W) as u8;
     // spread[j]: the least cost of `j` lanes or fewer shared by the two children, each taking
     // at least one; `entry.left[j - 1]` records the left child's share (the first of equal
-    // costs).
+    // costs). A child's costs stop falling at its reach, so a larger share of the left one
+    // never costs less (it can only tie, later in the order), and beyond both reaches every
+    // budget repeats the last: those are not tried, and the choices are the same.
     let mut spread = [f32::INFINITY; 9];
+    let last = usize::from(entry.reach);
     for j in 2..=W {
+        if j > last {
+            let (s, l) = (
+                spread.get(last).copied().unwrap_or(f32::INFINITY),
+                entry.left.get(last.wrapping_sub(1)).copied().unwrap_or(1),
+            );
+            if let (Some(sj), Some(lj)) = (spread.get_mut(j), entry.left.get_mut(j - 1)) {
+                (*sj, *lj) = (s, l);
+            }
+            continue;
+        }
         let (mut best, mut share) = (f32::INFINITY, 1u8);
-        for k in 1..j {
+        for k in 1..j.min(l_reach + 1) {
             let cost = lc.get(k - 1).copied().unwrap_or(f32::INFINITY)
                 + rc.get(j - k - 1).copied().unwrap_or(f32::INFINITY);
             let better = cost < best;
