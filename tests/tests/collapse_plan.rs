@@ -46,26 +46,18 @@ fn evaluated_cost(bvh: &Bvh<'_>, lanes: &[Vec<(Aabb, u32, u32)>]) -> f64 {
     cost / half_area(&root)
 }
 
-fn lanes4(nodes: &[WideNode]) -> Vec<Vec<(Aabb, u32, u32)>> {
-    nodes
-        .iter()
-        .map(|n| {
-            (0..n.lanes())
-                .map(|l| (n.bounds.lane(l), n.child[l], n.count[l]))
-                .collect()
-        })
-        .collect()
-}
-
-fn lanes8(nodes: &[WideNode8]) -> Vec<Vec<(Aabb, u32, u32)>> {
-    nodes
-        .iter()
-        .map(|n| {
-            (0..n.lanes())
-                .map(|l| (n.bounds.lane(l), n.child[l], n.count[l]))
-                .collect()
-        })
-        .collect()
+/// Each node's used lanes as `(box, child, count)`, for four- or eight-wide nodes alike.
+macro_rules! lanes {
+    ($nodes:expr) => {
+        $nodes
+            .iter()
+            .map(|n| {
+                (0..n.lanes())
+                    .map(|l| (n.bounds.lane(l), n.child[l], n.count[l]))
+                    .collect::<Vec<(Aabb, u32, u32)>>()
+            })
+            .collect::<Vec<_>>()
+    };
 }
 
 /// The least cost of any collapse of `bvh` into nodes of `w` lanes, by enumerating every cut
@@ -178,7 +170,7 @@ fn no_collapse_of_a_small_tree_is_cheaper_than_the_planned_one() {
             let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
             let mut nodes = vec![WideNode::EMPTY; plan.node_count()];
             let four = WideBvh::build(&plan, &mut nodes).unwrap();
-            let written = evaluated_cost(&bvh, &lanes4(four.nodes()));
+            let written = evaluated_cost(&bvh, &lanes!(four.nodes()));
             let optimum = exhaustive_optimum(&bvh, 4);
             assert!(
                 close(written, optimum),
@@ -193,7 +185,7 @@ fn no_collapse_of_a_small_tree_is_cheaper_than_the_planned_one() {
             let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
             let mut nodes = vec![WideNode8::EMPTY; plan.node_count()];
             let eight = WideBvh8::build(&plan, &mut nodes).unwrap();
-            let written = evaluated_cost(&bvh, &lanes8(eight.nodes()));
+            let written = evaluated_cost(&bvh, &lanes!(eight.nodes()));
             let optimum = exhaustive_optimum(&bvh, 8);
             assert!(
                 close(written, optimum),
@@ -230,7 +222,7 @@ fn the_planned_collapse_of_real_meshes_costs_what_it_says_and_beats_the_trivial_
         let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
         let mut nodes = vec![WideNode8::EMPTY; plan.node_count()];
         let eight = WideBvh8::build(&plan, &mut nodes).unwrap();
-        let written = evaluated_cost(&bvh, &lanes8(eight.nodes()));
+        let written = evaluated_cost(&bvh, &lanes!(eight.nodes()));
         assert!(close(written, f64::from(plan.cost())), "{name}: {written}");
         assert!(written < trivial, "{name}: {written} vs trivial {trivial}");
         // The owned type walks the very nodes the plan gives.

@@ -206,8 +206,8 @@ impl MeshBvh {
     }
 
     /// Collapses the BVH four-wide for queries to walk instead of its eight-wide (or compact)
-    /// nodes: fewer bytes than eight-wide nodes, more node visits per ray, the same answers from
-    /// every query. Once is enough (again does nothing). Throws a `TypeError` for a k-d tree,
+    /// nodes: half the bytes per node (usually a little less memory in all), more node visits
+    /// per ray, the same answers from every query. Once is enough (again does nothing). Throws a `TypeError` for a k-d tree,
     /// octree or grid.
     #[wasm_bindgen(js_name = fourWideNodes)]
     pub fn four_wide_nodes(&mut self) -> Result<(), JsValue> {

@@ -109,8 +109,11 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   splitBack.free();
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
-  // Built or loaded, a BVH walks eight-wide nodes (256 bytes each); four-wide ones are fewer
-  // bytes, compact ones half of those; each the same blob and answers; twice is once.
+  // Built or loaded, a BVH walks eight-wide nodes (256 bytes each); four-wide ones are 128
+  // bytes each, compact ones half of those; each the same blob and answers; twice is once. The
+  // planned eight-wide tree can take fewer bytes in all than the four-wide one (here 26,880
+  // against 30,464), so only the change of tree is checked here; wasm/tests/parity.rs checks
+  // the four-wide size against the core's own collapse.
   const compact = MeshBvh.fromBlob(bvh.toBlob());
   const eightBytes = compact.queryNodeBytes;
   assert.equal(eightBytes % 256, 0, 'eight-wide nodes by default');
@@ -119,7 +122,7 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   compact.fourWideNodes();
   const fullBytes = compact.queryNodeBytes;
   assert.equal(fullBytes % 128, 0, 'four-wide nodes are 128 bytes');
-  assert.ok(fullBytes < eightBytes, `four-wide ${fullBytes} vs eight-wide ${eightBytes} bytes`);
+  assert.notEqual(fullBytes, eightBytes, 'four-wide nodes walked instead of eight-wide ones');
   assert.deepEqual(compact.raycast([0.3, -2, 0.2], [0, 1, 0]), bvh.raycast([0.3, -2, 0.2], [0, 1, 0]));
   compact.compactNodes();
   compact.compactNodes();
