@@ -15,6 +15,7 @@ use alloc::vec::Vec;
 use rayon::prelude::*;
 
 use super::collapse::{CollapsedNode, collapse_from, collapse_planned_vec, wide_node};
+use super::plan::solve_block;
 use super::{CollapsePlan, PlanEntry, plan_capacity};
 use crate::bvh::{Bvh, BvhNode, TreeArrays};
 use crate::error::BuildError;
@@ -33,14 +34,18 @@ enum Piece<N, const W: usize> {
 }
 
 /// [`collapse_vec`](super::collapse::collapse_vec) on rayon's pool; the same nodes. The
-/// plan is solved on this thread (one pass over the binary nodes); the collapse it guides
-/// runs on the pool.
+/// plan is solved on the pool too where the tree is numbered as the builders number it
+/// ([`solve_parallel`]), else on this thread.
 pub(crate) fn collapse_vec_parallel<N, const W: usize>(tree: &Bvh<'_>) -> Result<Vec<N>, BuildError>
 where
     N: CollapsedNode + Clone + Send,
 {
     let mut entries = vec![PlanEntry::EMPTY; plan_capacity(tree)];
-    let plan = CollapsePlan::<W>::solved(tree, &mut entries)?;
+    if solve_parallel::<W>(tree, &mut entries).is_err() {
+        // A numbering the blocks do not fit: the same entries, solved on this thread.
+        CollapsePlan::<W>::solved(tree, &mut entries)?;
+    }
+    let plan = CollapsePlan::<W>::from_solved(tree, &entries);
     match tree.node(0) {
         Some(root) if !root.is_leaf() && tree.slot_count() > PARALLEL_FROM => {
             let piece = collapse_piece::<N, W>(&plan, 0)?;
@@ -51,6 +56,87 @@ where
         }
         _ => collapse_planned_vec::<N, W>(&plan),
     }
+}
+
+/// Solves the plan of `tree` in `entries` (one per node) on the pool: the entries the
+/// sequential solve computes, bit for bit, as each is a function of its children's alone.
+///
+/// The builders number a split's children as the next free pair, then the left child's
+/// descendants, then the right one's, so the descendants of any node are one consecutive
+/// block of indices. Each node of more than [`PARALLEL_FROM`] triangles has its children's
+/// blocks solved concurrently and then its children's own pair; smaller subtrees are solved
+/// on one thread. Any tree numbered otherwise (a blob's may be) is refused with an error,
+/// before or while it is solved, and the caller solves it on one thread.
+fn solve_parallel<const W: usize>(
+    tree: &Bvh<'_>,
+    entries: &mut [PlanEntry],
+) -> Result<(), BuildError> {
+    let malformed = BuildError::TooDeep {
+        max_depth: crate::bvh::MAX_DEPTH,
+        triangles: tree.slot_count(),
+    };
+    let root = tree.node(0).ok_or(malformed)?;
+    if !root.is_leaf() {
+        let descendants = entries.get_mut(1..).ok_or(malformed)?;
+        solve_descendants::<W>(tree, 0, descendants, 1)?;
+    }
+    solve_block::<W>(tree, entries, 0, 0..1)
+}
+
+/// Solves the entries of the descendants of the inner node `parent`, which are `block`, the
+/// entries of nodes `offset..offset + block.len()` (see [`solve_parallel`]).
+fn solve_descendants<const W: usize>(
+    tree: &Bvh<'_>,
+    parent: u32,
+    block: &mut [PlanEntry],
+    offset: usize,
+) -> Result<(), BuildError> {
+    let malformed = BuildError::TooDeep {
+        max_depth: crate::bvh::MAX_DEPTH,
+        triangles: tree.slot_count(),
+    };
+    let end = offset + block.len();
+    let node = tree.node(parent as usize).ok_or(malformed)?;
+    if node.first as usize != offset {
+        return Err(malformed);
+    }
+    if subtree_slots(tree, parent) <= PARALLEL_FROM {
+        return solve_block::<W>(tree, block, offset, offset..end);
+    }
+    let (left, right) = (offset as u32, offset as u32 + 1);
+    let (l, r) = (
+        tree.node(offset).ok_or(malformed)?,
+        tree.node(offset + 1).ok_or(malformed)?,
+    );
+    // The left child's descendants start after the pair, the right child's after them.
+    let mid = if r.is_leaf() { end } else { r.first as usize };
+    if !(offset + 2..=end).contains(&mid) || (l.is_leaf() && mid != offset + 2) {
+        return Err(malformed);
+    }
+    let (left_block, right_block) = block
+        .get_mut(2..)
+        .and_then(|rest| rest.split_at_mut_checked(mid - offset - 2))
+        .ok_or(malformed)?;
+    let (solved_left, solved_right) = rayon::join(
+        || {
+            if l.is_leaf() {
+                Ok(())
+            } else {
+                solve_descendants::<W>(tree, left, left_block, offset + 2)
+            }
+        },
+        || {
+            if r.is_leaf() {
+                Ok(())
+            } else {
+                solve_descendants::<W>(tree, right, right_block, mid)
+            }
+        },
+    );
+    solved_left?;
+    solved_right?;
+    // The pair last: its entries need their children's, in the blocks just solved.
+    solve_block::<W>(tree, block, offset, offset..offset + 2)
 }
 
 /// The piece of the subtree under the inner binary node `binary`.
@@ -166,10 +252,11 @@ mod tests {
     use alloc::vec;
     use alloc::vec::Vec;
 
-    use super::{PARALLEL_FROM, collapse_vec_parallel};
+    use super::{PARALLEL_FROM, collapse_vec_parallel, solve_parallel};
     use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
     use crate::mesh::MeshRef;
     use crate::wide::collapse::collapse_vec;
+    use crate::wide::{CollapsePlan, PlanEntry, plan_capacity};
     use crate::wide::{WideNode, WideNode8};
 
     /// A wavy grid of `side × side` quads (two triangles each), with a pseudo-random
@@ -231,5 +318,69 @@ mod tests {
                 assert!(eight.iter().zip(&eight_p).all(|(a, b)| a.same_bits(b)));
             }
         }
+    }
+
+    /// The parallel solve takes the builder's numbering without falling back, and writes the
+    /// sequential solve's entries; the same tree numbered breadth first is refused, and the
+    /// collapse, solving it on one thread instead, still makes the sequential collapse's nodes.
+    #[test]
+    fn the_parallel_solve_is_the_sequential_solve() {
+        let (positions, triangles) = grid(150);
+        let mesh = MeshRef::new(&positions, &triangles)
+            .validate()
+            .expect("valid");
+        let n = triangles.len();
+        let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+        let (mut order, mut scratch) = (vec![0u32; n], vec![PrimRef::EMPTY; n]);
+        let bvh = Bvh::build(
+            &mesh,
+            &BuildConfig::default(),
+            &mut nodes,
+            &mut order,
+            &mut scratch,
+        )
+        .expect("build");
+        let mut sequential = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+        CollapsePlan::<8>::solved(&bvh, &mut sequential).expect("plan");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .expect("pool");
+        let mut parallel = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
+        pool.install(|| solve_parallel::<8>(&bvh, &mut parallel))
+            .expect("builder's numbering");
+        assert!(sequential == parallel);
+
+        // Breadth-first renumbering: each inner node's children are still a pair after it,
+        // but the descendants of a node are no longer one block.
+        let tree = bvh.nodes();
+        let mut renumbered = vec![tree[0]];
+        let mut new_index = vec![0usize; tree.len()];
+        let mut queue = std::collections::VecDeque::from([0usize]);
+        while let Some(old) = queue.pop_front() {
+            let node = tree[old];
+            if !node.is_leaf() {
+                renumbered[new_index[old]].first = renumbered.len() as u32;
+                for child in [node.first as usize, node.first as usize + 1] {
+                    new_index[child] = renumbered.len();
+                    renumbered.push(tree[child]);
+                    queue.push_back(child);
+                }
+            }
+        }
+        let order = bvh.order().to_vec();
+        let bfs = Bvh::from_parts(&renumbered, &order, &mesh).expect("a valid tree");
+        let mut refused = vec![PlanEntry::EMPTY; plan_capacity(&bfs)];
+        assert!(
+            pool.install(|| solve_parallel::<8>(&bfs, &mut refused))
+                .is_err()
+        );
+        // The collapse still gives the sequential collapse's nodes, solved on one thread.
+        let eight = collapse_vec::<WideNode8, 8>(&bfs).expect("collapse");
+        let eight_p = pool
+            .install(|| collapse_vec_parallel::<WideNode8, 8>(&bfs))
+            .expect("collapse");
+        assert_eq!(eight.len(), eight_p.len());
+        assert!(eight.iter().zip(&eight_p).all(|(a, b)| a.same_bits(b)));
     }
 }

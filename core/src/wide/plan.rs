@@ -153,6 +153,16 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
         })
     }
 
+    /// A plan over `entries` already solved for `tree` (by the parallel solve).
+    #[cfg(feature = "parallel")]
+    pub(super) fn from_solved(tree: &Bvh<'a>, entries: &'p [PlanEntry]) -> Self {
+        Self {
+            tree: *tree,
+            entries,
+            nodes: 0,
+        }
+    }
+
     /// The binary tree this plan collapses.
     #[must_use]
     pub const fn tree(&self) -> &Bvh<'a> {
@@ -263,11 +273,28 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
 /// Fills `entries` (one per node of `tree`) bottom up: children follow their parents in a
 /// valid tree, so a reverse walk meets both children of a node before the node.
 fn solve<const W: usize>(tree: &Bvh<'_>, entries: &mut [PlanEntry]) -> Result<(), BuildError> {
+    solve_block::<W>(tree, entries, 0, 0..entries.len())
+}
+
+/// Fills the entries of nodes `range` bottom up, in `block`, which holds the entries of nodes
+/// `offset..offset + block.len()`: every inner node of `range` must have its children's
+/// entries in the block, at higher indices (solved here, or before). The parallel solve hands
+/// each task the block of one subtree's descendants.
+///
+/// # Errors
+/// [`BuildError::TooDeep`] when a child does not follow its parent or lies outside the block.
+pub(super) fn solve_block<const W: usize>(
+    tree: &Bvh<'_>,
+    block: &mut [PlanEntry],
+    offset: usize,
+    range: core::ops::Range<usize>,
+) -> Result<(), BuildError> {
     let malformed = BuildError::TooDeep {
         max_depth: crate::bvh::MAX_DEPTH,
         triangles: tree.order().len(),
     };
-    for (index, node) in tree.nodes().iter().enumerate().rev() {
+    let nodes = tree.nodes().get(range.clone()).ok_or(malformed)?;
+    for (index, node) in range.zip(nodes).rev() {
         let entry = if node.is_leaf() {
             PlanEntry::leaf(node)
         } else {
@@ -275,12 +302,16 @@ fn solve<const W: usize>(tree: &Bvh<'_>, entries: &mut [PlanEntry]) -> Result<()
             if first <= index {
                 return Err(malformed);
             }
-            let (Some(&left), Some(&right)) = (entries.get(first), entries.get(first + 1)) else {
+            let at = first.checked_sub(offset).ok_or(malformed)?;
+            let (Some(&left), Some(&right)) = (block.get(at), block.get(at + 1)) else {
                 return Err(malformed);
             };
             inner_entry::<W>(node, &left, &right)
         };
-        *entries.get_mut(index).ok_or(malformed)? = entry;
+        *index
+            .checked_sub(offset)
+            .and_then(|at| block.get_mut(at))
+            .ok_or(malformed)? = entry;
     }
     Ok(())
 }
