@@ -501,6 +501,12 @@ fn closest_point(c: &mut Criterion) {
         .with_four_wide_nodes()
         .expect("four-wide nodes");
     let (packed, wide) = (owned.packed(), owned4.wide().expect("wide nodes"));
+    // The tree `MeshBvh` walks on SIMD targets.
+    let eight_owned = owned
+        .clone()
+        .with_eight_wide_nodes()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let eight = eight_owned.eight_wide().expect("eight-wide nodes");
     let mut group = c.benchmark_group("closest_point");
     configure(&mut group, s.points.len());
     group.bench_function("meshq", |b| {
@@ -545,6 +551,32 @@ fn closest_point(c: &mut Criterion) {
             let mut keys = vec![0u64; s.points.len()];
             let mut out = vec![None; s.points.len()];
             wide.with(&packed)
+                .closest_points(&s.points, f32::INFINITY, &mut keys, &mut out)
+                .unwrap_or_else(|e| panic!("{e}"));
+            out.iter()
+                .map(|c| c.map_or(0.0, |c| c.distance_squared))
+                .sum::<f32>()
+        })
+    });
+    group.bench_function("meshq_eight_wide_packed", |b| {
+        b.iter(|| {
+            s.points
+                .iter()
+                .map(|&p| {
+                    eight
+                        .with(&packed)
+                        .closest_point(p, f32::INFINITY)
+                        .map_or(0.0, |c| c.distance_squared)
+                })
+                .sum::<f32>()
+        })
+    });
+    group.bench_function("meshq_eight_wide_packed_batch", |b| {
+        b.iter(|| {
+            let mut keys = vec![0u64; s.points.len()];
+            let mut out = vec![None; s.points.len()];
+            eight
+                .with(&packed)
                 .closest_points(&s.points, f32::INFINITY, &mut keys, &mut out)
                 .unwrap_or_else(|e| panic!("{e}"));
             out.iter()

@@ -40,7 +40,11 @@ pub(crate) fn collapse_vec_parallel<N, const W: usize>(tree: &Bvh<'_>) -> Result
 where
     N: CollapsedNode + Clone + Send,
 {
-    let mut entries = vec![PlanEntry::EMPTY; plan_capacity(tree)];
+    // Filled on the pool, as the owned build's other large buffers are: for 1.1M triangles
+    // this is 36 MB of fresh pages, whose first writes took 20 ms on one thread here, more
+    // than solving the plan.
+    let mut entries: Vec<PlanEntry> =
+        rayon::iter::repeat_n(PlanEntry::EMPTY, plan_capacity(tree)).collect();
     if solve_parallel::<W>(tree, &mut entries).is_err() {
         // A numbering the blocks do not fit: the same entries, solved on this thread.
         CollapsePlan::<W>::solved(tree, &mut entries)?;
@@ -58,85 +62,90 @@ where
     }
 }
 
-/// Solves the plan of `tree` in `entries` (one per node) on the pool: the entries the
-/// sequential solve computes, bit for bit, as each is a function of its children's alone.
+/// Solves the plan of `tree` in `entries` ([`plan_capacity`] of them) on the pool: the entries
+/// the sequential solve computes, bit for bit, as each is a function of its children's alone.
 ///
 /// The builders number a split's children as the next free pair, then the left child's
-/// descendants, then the right one's, so the descendants of any node are one consecutive
-/// block of indices. Each node of more than [`PARALLEL_FROM`] triangles has its children's
-/// blocks solved concurrently and then its children's own pair; smaller subtrees are solved
-/// on one thread. Any tree numbered otherwise (a blob's may be) is refused with an error,
-/// before or while it is solved, and the caller solves it on one thread.
+/// descendants, then the right one's. So the descendants of any node are one consecutive
+/// block of nodes, and as an inner node's entry is kept at the place of its children's pair,
+/// the entries of a subtree's inner nodes are one consecutive block of entries too: the
+/// subtree's root's, then its left child's subtree's, then its right child's. Each node of
+/// more than [`PARALLEL_FROM`] triangles has its children's subtrees solved concurrently, then
+/// its own entry; smaller subtrees are solved on one thread. Any tree numbered otherwise (a
+/// blob's may be) is refused with an error, before or while it is solved, and the caller
+/// solves it on one thread.
 fn solve_parallel<const W: usize>(
     tree: &Bvh<'_>,
     entries: &mut [PlanEntry],
 ) -> Result<(), BuildError> {
-    let malformed = BuildError::TooDeep {
-        max_depth: crate::bvh::MAX_DEPTH,
-        triangles: tree.slot_count(),
-    };
-    let root = tree.node(0).ok_or(malformed)?;
-    if !root.is_leaf() {
-        let descendants = entries.get_mut(1..).ok_or(malformed)?;
-        solve_descendants::<W>(tree, 0, descendants, 1)?;
+    match tree.node(0) {
+        Some(root) if !root.is_leaf() => {
+            solve_subtree::<W>(tree, 0, entries, 0, 1..tree.nodes().len())
+        }
+        _ => Ok(()),
     }
-    solve_block::<W>(tree, entries, 0, 0..1)
 }
 
-/// Solves the entries of the descendants of the inner node `parent`, which are `block`, the
-/// entries of nodes `offset..offset + block.len()` (see [`solve_parallel`]).
-fn solve_descendants<const W: usize>(
+/// Solves the entries of the inner node `root` and its inner descendants, which are `block`
+/// (entries `offset..offset + block.len()`), when its descendants are the nodes `descendants`
+/// (see [`solve_parallel`]).
+fn solve_subtree<const W: usize>(
     tree: &Bvh<'_>,
-    parent: u32,
+    root: usize,
     block: &mut [PlanEntry],
     offset: usize,
+    descendants: core::ops::Range<usize>,
 ) -> Result<(), BuildError> {
     let malformed = BuildError::TooDeep {
         max_depth: crate::bvh::MAX_DEPTH,
         triangles: tree.slot_count(),
     };
-    let end = offset + block.len();
-    let node = tree.node(parent as usize).ok_or(malformed)?;
-    if node.first as usize != offset {
+    let (first, end) = (descendants.start, descendants.end);
+    let node = tree.node(root).ok_or(malformed)?;
+    // The root's entry opens the block; its children's pair opens its descendants.
+    if node.first as usize != first || first / 2 != offset {
         return Err(malformed);
     }
-    if subtree_slots(tree, parent) <= PARALLEL_FROM {
-        return solve_block::<W>(tree, block, offset, offset..end);
+    if subtree_slots(tree, root as u32) > PARALLEL_FROM {
+        let (l, r) = (
+            tree.node(first).ok_or(malformed)?,
+            tree.node(first + 1).ok_or(malformed)?,
+        );
+        // The left child's descendants start after the pair, the right child's after them.
+        let mid = if r.is_leaf() { end } else { r.first as usize };
+        if !(first + 2..=end).contains(&mid) || (l.is_leaf() && mid != first + 2) {
+            return Err(malformed);
+        }
+        // After the root's entry: the left subtree's entries, one per pair in its
+        // descendants, then the right one's.
+        let (left_block, right_block) = block
+            .get_mut(1..)
+            .and_then(|rest| rest.split_at_mut_checked((mid - first - 2) / 2))
+            .ok_or(malformed)?;
+        let (solved_left, solved_right) = rayon::join(
+            || {
+                if l.is_leaf() {
+                    Ok(())
+                } else {
+                    solve_subtree::<W>(tree, first, left_block, offset + 1, first + 2..mid)
+                }
+            },
+            || {
+                if r.is_leaf() {
+                    Ok(())
+                } else {
+                    let right_offset = offset + 1 + (mid - first - 2) / 2;
+                    solve_subtree::<W>(tree, first + 1, right_block, right_offset, mid..end)
+                }
+            },
+        );
+        solved_left?;
+        solved_right?;
+    } else {
+        solve_block::<W>(tree, block, offset, descendants)?;
     }
-    let (left, right) = (offset as u32, offset as u32 + 1);
-    let (l, r) = (
-        tree.node(offset).ok_or(malformed)?,
-        tree.node(offset + 1).ok_or(malformed)?,
-    );
-    // The left child's descendants start after the pair, the right child's after them.
-    let mid = if r.is_leaf() { end } else { r.first as usize };
-    if !(offset + 2..=end).contains(&mid) || (l.is_leaf() && mid != offset + 2) {
-        return Err(malformed);
-    }
-    let (left_block, right_block) = block
-        .get_mut(2..)
-        .and_then(|rest| rest.split_at_mut_checked(mid - offset - 2))
-        .ok_or(malformed)?;
-    let (solved_left, solved_right) = rayon::join(
-        || {
-            if l.is_leaf() {
-                Ok(())
-            } else {
-                solve_descendants::<W>(tree, left, left_block, offset + 2)
-            }
-        },
-        || {
-            if r.is_leaf() {
-                Ok(())
-            } else {
-                solve_descendants::<W>(tree, right, right_block, mid)
-            }
-        },
-    );
-    solved_left?;
-    solved_right?;
-    // The pair last: its entries need their children's, in the blocks just solved.
-    solve_block::<W>(tree, block, offset, offset..offset + 2)
+    // The root last: its entry needs its children's, in the block just solved.
+    solve_block::<W>(tree, block, offset, root..root + 1)
 }
 
 /// The piece of the subtree under the inner binary node `binary`.

@@ -23,8 +23,9 @@ pub const NODE_COST: f32 = 2.0;
 /// of four. Leaves of the binary tree keep their own size, whatever it is.
 pub const MERGED_LEAF_MAX: u32 = 8;
 
-/// One binary node's entry in a [`CollapsePlan`]: the caller-provided scratch the plan is
-/// computed in (one entry per binary node, [`plan_capacity`]). Its contents are private.
+/// One inner binary node's entry in a [`CollapsePlan`]: the caller-provided scratch the plan
+/// is computed in (one entry per inner binary node, [`plan_capacity`]). Its contents are
+/// private.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanEntry {
     /// `cost[i]`: the least cost of the node's subtree as at most `i + 1` lanes.
@@ -75,10 +76,23 @@ impl PlanEntry {
 /// lanes at most), so a valid tree never fills this.
 const PENDING: usize = 7 * MAX_DEPTH as usize + 1;
 
-/// Plan entries [`CollapsePlan::new`] needs for `bvh`: one per binary node.
+/// Plan entries [`CollapsePlan::new`] needs for `bvh`: one per inner binary node, half the
+/// nodes rounded down (none for an empty tree or a lone leaf).
+///
+/// A leaf's entry follows from the leaf alone and is never stored. An inner node's is kept at
+/// the place of its children's pair among the pairs that follow the root: children pairs
+/// tile a valid tree's nodes after the root, so inner node `i` with children `first` and
+/// `first + 1` has entry `(first − 1) / 2`, one each.
 #[must_use]
 pub const fn plan_capacity(bvh: &Bvh<'_>) -> usize {
-    bvh.nodes().len()
+    bvh.nodes().len() / 2
+}
+
+/// Where the entry of the inner node `node` is kept (see [`plan_capacity`]): `None` for a
+/// node whose children's pair does not start at an odd index, which no valid tree has.
+fn entry_slot(node: &BvhNode) -> Option<usize> {
+    let first = node.first as usize;
+    (first % 2 == 1).then_some(first / 2)
 }
 
 /// The cost of a leaf over `slots` triangles in `node`'s box.
@@ -181,7 +195,11 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     /// far as surface areas predict it.
     #[must_use]
     pub fn cost(&self) -> f32 {
-        match (self.tree.nodes().first(), self.entries.first()) {
+        let root = self.tree.nodes().first();
+        let entry = root
+            .and_then(entry_slot)
+            .and_then(|at| self.entries.get(at));
+        match (root, entry) {
             (Some(root), Some(entry)) if !root.is_leaf() => entry.inner / root.aabb().half_area(),
             // A lone leaf still gets a wide node, of one lane.
             (Some(root), _) => NODE_COST + root.count.div_ceil(4) as f32,
@@ -234,7 +252,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     /// `None` for a node the tree does not have.
     pub(super) fn lanes(&self, inner: u32) -> Option<([(u32, BvhNode); W], usize)> {
         let node = self.tree.nodes().get(inner as usize)?;
-        let entry = self.entries.get(inner as usize)?;
+        let entry = self.entries.get(entry_slot(node)?)?;
         let mut lanes = [(0u32, BvhNode::EMPTY); W];
         let mut len = 0usize;
         // (binary index, lane budget), the left child on top. Each step pops one and pushes
@@ -249,13 +267,18 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
             depth = top;
             let (at, budget) = *stack.get(top)?;
             let child = self.tree.nodes().get(at as usize)?;
-            let plan = self.entries.get(at as usize)?;
+            if child.is_leaf() {
+                *lanes.get_mut(len)? = (at, *child);
+                len += 1;
+                continue;
+            }
+            let plan = self.entries.get(entry_slot(child)?)?;
             let spread = usize::from(*plan.spread.get(budget.checked_sub(1)?)?);
-            if spread == 0 || child.is_leaf() {
-                let lane = if child.is_leaf() || !plan.merged {
-                    *child
-                } else {
+            if spread == 0 {
+                let lane = if plan.merged {
                     BvhNode::new(child.aabb(), plan.first, plan.slots)
+                } else {
+                    *child
                 };
                 *lanes.get_mut(len)? = (at, lane);
                 len += 1;
@@ -270,19 +293,21 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     }
 }
 
-/// Fills `entries` (one per node of `tree`) bottom up: children follow their parents in a
-/// valid tree, so a reverse walk meets both children of a node before the node.
+/// Fills `entries` (one per inner node of `tree`, [`plan_capacity`]) bottom up: children
+/// follow their parents in a valid tree, so a reverse walk meets both children of a node
+/// before the node.
 fn solve<const W: usize>(tree: &Bvh<'_>, entries: &mut [PlanEntry]) -> Result<(), BuildError> {
-    solve_block::<W>(tree, entries, 0, 0..entries.len())
+    solve_block::<W>(tree, entries, 0, 0..tree.nodes().len())
 }
 
-/// Fills the entries of nodes `range` bottom up, in `block`, which holds the entries of nodes
-/// `offset..offset + block.len()`: every inner node of `range` must have its children's
-/// entries in the block, at higher indices (solved here, or before). The parallel solve hands
-/// each task the block of one subtree's descendants.
+/// Fills the entries of the inner nodes of `range` bottom up, in `block`, which holds entries
+/// `offset..offset + block.len()` (see [`plan_capacity`]): the children of every inner node of
+/// `range` must be leaves or have their entries in the block, solved here (they follow their
+/// parents) or before. The parallel solve hands each task the block of one subtree.
 ///
 /// # Errors
-/// [`BuildError::TooDeep`] when a child does not follow its parent or lies outside the block.
+/// [`BuildError::TooDeep`] when a child does not follow its parent or an entry lies outside
+/// the block.
 pub(super) fn solve_block<const W: usize>(
     tree: &Bvh<'_>,
     block: &mut [PlanEntry],
@@ -293,25 +318,30 @@ pub(super) fn solve_block<const W: usize>(
         max_depth: crate::bvh::MAX_DEPTH,
         triangles: tree.order().len(),
     };
-    let nodes = tree.nodes().get(range.clone()).ok_or(malformed)?;
-    for (index, node) in range.zip(nodes).rev() {
-        let entry = if node.is_leaf() {
-            PlanEntry::leaf(node)
+    let nodes = tree.nodes();
+    let in_block = |node: &BvhNode| entry_slot(node)?.checked_sub(offset);
+    let entry_of = |block: &[PlanEntry], at: usize| -> Option<PlanEntry> {
+        let node = nodes.get(at)?;
+        if node.is_leaf() {
+            Some(PlanEntry::leaf(node))
         } else {
-            let first = node.first as usize;
-            if first <= index {
-                return Err(malformed);
-            }
-            let at = first.checked_sub(offset).ok_or(malformed)?;
-            let (Some(&left), Some(&right)) = (block.get(at), block.get(at + 1)) else {
-                return Err(malformed);
-            };
-            inner_entry::<W>(node, &left, &right)
+            block.get(in_block(node)?).copied()
+        }
+    };
+    for (index, node) in range.clone().zip(nodes.get(range).ok_or(malformed)?).rev() {
+        if node.is_leaf() {
+            continue;
+        }
+        let first = node.first as usize;
+        if first <= index {
+            return Err(malformed);
+        }
+        let (Some(left), Some(right)) = (entry_of(block, first), entry_of(block, first + 1)) else {
+            return Err(malformed);
         };
-        *index
-            .checked_sub(offset)
+        *in_block(node)
             .and_then(|at| block.get_mut(at))
-            .ok_or(malformed)? = entry;
+            .ok_or(malformed)? = inner_entry::<W>(node, &left, &right);
     }
     Ok(())
 }
