@@ -80,6 +80,8 @@ struct Bytes {
     nodes: usize,
     order: usize,
     split_refs: usize,
+    /// The collapse roles (version 5: two bits per node; 0 before).
+    collapse_plan: usize,
     mesh: usize,
     per_triangle: f64,
 }
@@ -113,6 +115,7 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
     let nodes = 32 * h.node_count as usize;
     let order = 4 * h.reference_count as usize;
     let split_refs = meshq::query::SPLIT_REF_BYTES * h.split_ref_count as usize;
+    let collapse_plan = tree.collapse_roles().map_or(0, |r| r.bytes().len());
     let leaf_sizes = (0..LEAF_HISTOGRAM_LEN)
         .filter_map(|k| {
             let n = *stats.leaf_sizes.get(k)?;
@@ -148,8 +151,9 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
             nodes,
             order,
             split_refs,
+            collapse_plan,
             // Everything else, with the varint lengths of the sequences.
-            mesh: total.saturating_sub(h.header_len + nodes + order + split_refs),
+            mesh: total.saturating_sub(h.header_len + nodes + order + split_refs + collapse_plan),
             per_triangle: if h.triangle_count > 0 {
                 total as f64 / f64::from(h.triangle_count)
             } else {
@@ -210,7 +214,7 @@ fn print(r: &Report) -> Result<()> {
     say!("  leaf sizes (triangles: leaves) {}", sizes.join(", "));
     let b = &r.bytes;
     say!(
-        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, {}mesh {}",
+        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, {}{}mesh {}",
         b.total,
         b.per_triangle,
         b.header,
@@ -218,6 +222,11 @@ fn print(r: &Report) -> Result<()> {
         b.order,
         if b.split_refs > 0 {
             format!("split references {}, ", b.split_refs)
+        } else {
+            String::new()
+        },
+        if b.collapse_plan > 0 {
+            format!("collapse plan {}, ", b.collapse_plan)
         } else {
             String::new()
         },

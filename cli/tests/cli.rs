@@ -1024,7 +1024,7 @@ fn threads_give_the_same_records() {
 }
 
 #[test]
-fn spatial_splits_bake_a_version_4_blob_that_answers_as_brute_force() {
+fn spatial_splits_bake_a_version_5_blob_that_answers_as_brute_force() {
     let dir = tempfile::tempdir().unwrap();
     let loaded = load_mesh("fandisk");
     let mesh = loaded.valid();
@@ -1058,7 +1058,7 @@ fn spatial_splits_bake_a_version_4_blob_that_answers_as_brute_force() {
     );
     let inspect: serde_json::Value =
         serde_json::from_str(&ok(&[&"inspect", &blob, &"--json"])).unwrap();
-    assert_eq!(inspect["format_version"], 4);
+    assert_eq!(inspect["format_version"], 5);
     assert_eq!(inspect["references"], references);
     assert!(inspect["split_refs"].as_u64().unwrap() > 0);
     assert!(ok(&[&"inspect", &blob]).contains("spatial splits"));

@@ -99,19 +99,20 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
     let bytes = bake(&mesh, &BuildConfig::default(), MeshLayout::Indexed).unwrap();
 
     let mut future = bytes.clone();
-    assert_eq!(future[4], 3, "the version varint follows the magic");
-    future[4] = 5;
-    blob::reseal(&mut future).unwrap_err(); // the header of version 5 is not read at all
+    // A BVH blob with its collapse roles: version 5.
+    assert_eq!(future[4], 5, "the version varint follows the magic");
+    future[4] = 6;
+    blob::reseal(&mut future).unwrap_err(); // the header of version 6 is not read at all
     let err = BlobView::parse(&future).unwrap_err();
     assert_eq!(
         err,
         BlobError::UnsupportedVersion {
-            found: 5,
+            found: 6,
             oldest: 1,
-            newest: 4
+            newest: 5
         }
     );
-    assert!(err.to_string().contains("versions 1 to 4"), "{err}");
+    assert!(err.to_string().contains("versions 1 to 5"), "{err}");
     let mut past = bytes.clone();
     past[4] = 0;
     assert!(matches!(

@@ -53,8 +53,8 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
                 _ => BlobView::parse(&bytes).unwrap(),
             };
             let h = view.header();
-            // Version 4 is written only for trees with spatial splits.
-            assert_eq!((h.version, FORMAT_VERSION), (3, 4));
+            // `MeshBvh::to_blob` stores the collapse roles: version 5.
+            assert_eq!((h.version, FORMAT_VERSION), (5, 5));
             assert_eq!(h.kind, StructureKind::Bvh);
             assert_eq!(h.mesh, layout);
             assert_eq!(h.triangle_count as usize, mesh.triangle_count());
@@ -207,7 +207,8 @@ fn blobs_are_deterministic_and_sized_exactly() {
     let omitted = owned.to_blob(MeshLayout::Omitted).unwrap().len();
     let indexed = owned.to_blob(MeshLayout::Indexed).unwrap().len();
     let packed = owned.to_blob(MeshLayout::Packed).unwrap().len();
-    let arrays = 32 * n + 4 * t;
+    // Nodes, order, and the collapse roles: two bits per node.
+    let arrays = 32 * n + 4 * t + n.div_ceil(4);
     assert!(
         omitted > arrays && omitted < arrays + 128,
         "{omitted} vs {arrays}"
@@ -230,6 +231,8 @@ struct WholeBlob {
     bounds_min: [f32; 3],
     bounds_max: [f32; 3],
     config: ConfigMirror,
+    slots: u32,
+    split_ref_count: u32,
     #[serde(with = "postcard::fixint::le")]
     mesh_checksum: u32,
     #[serde(with = "postcard::fixint::le")]
@@ -238,6 +241,8 @@ struct WholeBlob {
     checksum: u32,
     nodes: Vec<NodeMirror>,
     order: Vec<Fixed>,
+    split_refs: Vec<[u8; 32]>,
+    roles: Vec<u8>,
     section: SectionMirror,
 }
 
@@ -290,7 +295,7 @@ fn a_blob_is_one_postcard_message() {
         let (_, rest) = postcard::take_from_bytes::<WholeBlob>(&bytes).unwrap();
         assert!(rest.is_empty(), "{layout:?}");
         assert_eq!(&whole.magic, b"MSHQ");
-        assert_eq!(whole.version + 1, FORMAT_VERSION);
+        assert_eq!(whole.version, FORMAT_VERSION);
         assert_eq!((whole.kind, whole.mesh), (0, layout.tag()));
         assert_eq!(whole.triangle_count as usize, mesh.triangle_count());
         assert_eq!(whole.vertex_count as usize, mesh.vertex_count());
@@ -336,6 +341,14 @@ fn a_blob_is_one_postcard_message() {
                 .map(|&i| Fixed(i))
                 .collect::<Vec<_>>()
         );
+        // A tree without spatial splits: as many slots as triangles, no split references.
+        assert_eq!(whole.slots as usize, mesh.triangle_count());
+        assert_eq!(whole.split_ref_count, 0);
+        assert!(whole.split_refs.is_empty());
+        // Two bits per node, the root (inner) starting a wide node (`tests/collapse_roles.rs`
+        // decodes them in full).
+        assert_eq!(whole.roles.len(), whole.nodes.len().div_ceil(4));
+        assert_eq!(whole.roles[0] & 3, 1);
         match (layout, whole.section) {
             (MeshLayout::Indexed, SectionMirror::Indexed(p, t)) => {
                 assert_eq!(p, mesh.positions());

@@ -3,7 +3,7 @@
 //! independent serde mirror); damage is refused or harmless, never a panic.
 
 use meshq::MeshBvh;
-use meshq::blob::{self, BlobStructure, BlobView, FORMAT_VERSION, MeshLayout, mesh_checksum};
+use meshq::blob::{self, BlobStructure, BlobView, MeshLayout, mesh_checksum};
 use meshq::error::BlobError;
 use meshq::math::Aabb;
 use meshq::mesh::{MeshRef, ValidMesh};
@@ -50,11 +50,9 @@ fn check_mesh(loaded: &LoadedMesh) {
             );
             let v = view(&bytes, mesh, layout);
             let h = v.header();
-            // Cell structures need nothing of version 4 (BVH spatial splits).
-            assert_eq!(
-                (h.version + 1, h.kind, h.mesh),
-                (FORMAT_VERSION, kind, layout)
-            );
+            // Cell structures need nothing of versions 4 and 5 (a BVH's spatial splits and
+            // collapse roles).
+            assert_eq!((h.version, h.kind, h.mesh), (3, kind, layout));
             assert_eq!(h.reference_count as usize, stats.references, "{what}");
             assert_eq!(h.depth as usize, stats.max_depth, "{what}");
             assert_eq!(h.mesh_checksum, mesh_checksum(&mesh));
@@ -147,7 +145,7 @@ fn a_cell_blob_is_one_postcard_message() {
             let bytes = built.to_blob(layout).unwrap();
             let mut rest = &bytes[..];
             assert_eq!(take::<[u8; 4]>(&mut rest), *b"MSHQ");
-            assert_eq!(take::<u16>(&mut rest) + 1, FORMAT_VERSION);
+            assert_eq!(take::<u16>(&mut rest), 3);
             let c: CountsMirror = take(&mut rest);
             assert_eq!((c.kind, c.mesh), (kind.tag(), layout.tag()));
             assert_eq!(c.triangle_count as usize, mesh.triangle_count());
@@ -336,7 +334,10 @@ fn version_2_bvh_blobs_still_load() {
     let loaded = load_mesh("cow");
     let mesh = loaded.valid();
     let owned = MeshBvh::build(&mesh, &meshq::BuildConfig::default()).unwrap();
-    let mut bytes = owned.to_blob(MeshLayout::Indexed).unwrap();
+    // Without collapse roles a BVH blob is written as version 3.
+    let options = blob::EncodeOptions::default();
+    let mut bytes = vec![0; blob::encoded_len(&owned.bvh(), &mesh, &options).unwrap()];
+    blob::encode_into(&owned.bvh(), &mesh, &options, &mut bytes).unwrap();
     assert_eq!(bytes[4], 3);
     bytes[4] = 2;
     blob::reseal(&mut bytes).unwrap();

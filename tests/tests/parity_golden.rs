@@ -219,8 +219,9 @@ const BLOBS_HEADER: &str = "\
 # bundled mesh's blob with the indexed mesh layout, built with the default config (binned SAH)
 # and, as `<mesh>-fast`, with the fast preset (centre splits); `<mesh>-kdtree`, `-octree` and
 # `-grid` hold the other structures with their default configs; `<mesh>-spatial` the BVH with
-# spatial splits (default config and room, format version 4). Builds are deterministic, so
-# the WebAssembly build must produce these exact bytes too.
+# spatial splits (default config and room). BVH blobs are format version 5, with the roles of
+# their nodes in the eight-wide collapse; the others version 3. Builds and plans are
+# deterministic, so the WebAssembly build must produce these exact bytes too.
 ";
 
 fn blobs_path() -> PathBuf {

@@ -369,8 +369,9 @@ fn spatial_split_trees_round_trip_through_blobs() {
             BlobView::parse(&bytes).unwrap()
         };
         let h = view.header();
+        // With the collapse roles `MeshBvh::to_blob` stores: version 5.
         assert_eq!(h.version, FORMAT_VERSION);
-        assert_eq!(h.version, 4);
+        assert_eq!(h.version, 5);
         assert_eq!(h.reference_count as usize, slots);
         assert_eq!(h.split_ref_count as usize, scene.split_refs().len());
         let what = format!("blob {layout:?}");
@@ -444,7 +445,10 @@ fn spatial_split_trees_round_trip_through_blobs() {
     let corners_at = {
         let order_at = hp.header_len + varint(hp.node_count) + 32 * hp.node_count as usize;
         let table_at = order_at + varint(hp.reference_count) + 4 * hp.reference_count as usize;
-        let mesh_at = table_at + varint(hp.split_ref_count) + 32 * hp.split_ref_count as usize;
+        let roles_at = table_at + varint(hp.split_ref_count) + 32 * hp.split_ref_count as usize;
+        // The collapse roles (version 5): two bits per node.
+        let roles = (hp.node_count as usize).div_ceil(4);
+        let mesh_at = roles_at + varint(roles as u32) + roles;
         // The layout tag, then the corner triples' count.
         mesh_at + 1 + varint(hp.reference_count)
     };
@@ -476,14 +480,43 @@ fn spatial_split_trees_round_trip_through_blobs() {
 }
 
 #[test]
-fn trees_without_spatial_splits_stay_version_3_blobs() {
+fn blob_versions_follow_what_the_tree_needs() {
+    use meshq::blob::{self, BlobHeader, BlobView, EncodeOptions, MeshLayout};
     let loaded = load_mesh("spot");
     let mesh = loaded.valid();
+    let brute = BruteForce::new(&mesh);
     let plain = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let bytes = plain.to_blob(meshq::blob::MeshLayout::Indexed).unwrap();
-    let h = meshq::blob::BlobHeader::read(&bytes).unwrap();
-    assert_eq!((h.version, h.split_ref_count), (3, 0));
+    let split =
+        MeshBvh::build_spatial(&mesh, &BuildConfig::default(), &SpatialSplits::DEFAULT).unwrap();
+    // With collapse roles (`MeshBvh::to_blob`): version 5, which counts slots and split
+    // references whether or not there are any.
+    let bytes = plain.to_blob(MeshLayout::Indexed).unwrap();
+    let h = BlobHeader::read(&bytes).unwrap();
+    assert_eq!((h.version, h.split_ref_count), (5, 0));
     assert_eq!(h.reference_count as usize, mesh.triangle_count());
+    // Without them (`encode_into` with the default options): version 3 for a tree without
+    // spatial splits, 4 for one with them, and each answers as brute force.
+    for (tree, version) in [(&plain, 3), (&split, 4)] {
+        let options = EncodeOptions::default();
+        let mut bytes = vec![0; blob::encoded_len(&tree.bvh(), &mesh, &options).unwrap()];
+        blob::encode_into(&tree.bvh(), &mesh, &options, &mut bytes).unwrap();
+        let view = BlobView::parse(&bytes).unwrap();
+        assert_eq!(view.header().version, version);
+        assert!(view.tree().unwrap().collapse_roles().is_none());
+        check_all(
+            &view,
+            &brute,
+            &loaded,
+            &format!("version {version}, in place"),
+        );
+        let owned = MeshBvh::from_blob(&bytes).unwrap();
+        check_all(
+            &owned,
+            &brute,
+            &loaded,
+            &format!("version {version}, loaded"),
+        );
+    }
 }
 
 /// Found by the fuzz target (`fuzz/fuzz_targets/blob_parse.rs`), which compares

@@ -19,8 +19,9 @@ use crate::math::{Aabb, Triangle};
 use crate::query::LeafTriangles;
 use crate::structure_kind::StructureKind;
 
-/// A self-contained BVH blob whose every check has passed except the boxes: finite, nested,
-/// holding their triangles. Only for decoding into buffers that are then checked in full.
+/// A self-contained BVH blob whose every check has passed except the boxes (finite, nested,
+/// holding their triangles) and the collapse roles, which the collapse of the decoded tree
+/// checks as it walks them. Only for decoding into buffers that are then checked in full.
 pub(crate) struct BoxesUnchecked<'a>(BlobView<'a>);
 
 impl<'a> BoxesUnchecked<'a> {

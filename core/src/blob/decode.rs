@@ -6,7 +6,6 @@ use crate::bvh::{Bvh, BvhNode, TreeArrays};
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::{MeshRef, ValidMesh};
-use crate::query::SplitRefs;
 use crate::query::{LeafTriangles, PackedTriangles};
 
 /// The BVH of a BVH view; other kinds have no order to decode.
@@ -64,7 +63,7 @@ impl<'a> BlobView<'a> {
             order.get(..m).unwrap_or_default(),
             tree.depth,
         )
-        .with_split_refs(SplitRefs::from_records(tree.splits)))
+        .with_split_refs(tree.split_table()))
     }
 
     /// Copies an indexed mesh (stored, or the caller's) into `positions` and `triangles` and

@@ -5,8 +5,8 @@ use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
 
 use super::checksum::{digest, mesh_checksum};
 use super::format::{
-    BASE_VERSION, CHECKSUM_BYTES, FORMAT_VERSION, FixedU32, HeaderCounts, HeaderSeal, MAGIC,
-    MeshLayout, NodeRecord, TriangleRecord,
+    BASE_VERSION, CHECKSUM_BYTES, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
+    NodeRecord, PLANNED_VERSION, SPATIAL_VERSION, TriangleRecord,
 };
 use super::source::BlobSource;
 use super::structure_config::WireConfig;
@@ -16,16 +16,23 @@ use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::SplitRefs;
+use crate::wide::CollapseRoles;
 
 /// What to put in a blob besides the tree.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct EncodeOptions {
+pub struct EncodeOptions<'r> {
     /// How to store the mesh (indexed by default; packed for the fastest in-place queries;
     /// omitted when the reader already has the mesh).
     pub mesh: MeshLayout,
     /// The config the tree was built with, recorded in the header for tools to show. It does not
     /// affect queries.
     pub config: BuildConfig,
+    /// The roles of the tree's nodes in its eight-wide collapse
+    /// ([`CollapsePlan::write_roles`](crate::wide::CollapsePlan::write_roles) of a
+    /// `CollapsePlan::<8>`), stored (format version 5) so that loaders collapse the tree without
+    /// planning it. `None` (the default) writes the blob at an older version, whose loaders plan
+    /// the collapse themselves. Queries answer the same either way.
+    pub collapse_roles: Option<CollapseRoles<'r>>,
 }
 
 /// The exact number of bytes [`encode_into`] writes for this tree, mesh and options.
@@ -37,7 +44,11 @@ pub fn encoded_len(
     mesh: &ValidMesh<'_>,
     options: &EncodeOptions,
 ) -> Result<usize, BlobError> {
-    structure_encoded_len(&BlobSource::Bvh(bvh, options.config), mesh, options.mesh)
+    structure_encoded_len(
+        &BlobSource::Bvh(bvh, options.config, options.collapse_roles),
+        mesh,
+        options.mesh,
+    )
 }
 
 /// Encodes `bvh`, built from `mesh`, into the front of `out` and returns the number of bytes
@@ -52,7 +63,7 @@ pub fn encode_into(
     out: &mut [u8],
 ) -> Result<usize, BlobError> {
     encode_structure_into(
-        &BlobSource::Bvh(bvh, options.config),
+        &BlobSource::Bvh(bvh, options.config, options.collapse_roles),
         mesh,
         options.mesh,
         out,
@@ -173,17 +184,15 @@ fn header(
 ) -> Result<Header, BlobError> {
     let count = |n: usize| u32::try_from(n).map_err(|_| BlobError::TooLarge);
     let bounds = source.bounds();
-    let split_refs = match spatial_table(source, mesh) {
-        Some(table) => Some(count(table.len())?),
-        None => None,
+    let version = version_of(source, mesh);
+    let split_refs = if version >= SPATIAL_VERSION {
+        Some(count(spatial_table(source, mesh).map_or(0, |t| t.len()))?)
+    } else {
+        None
     };
     Ok(Header {
         magic: MAGIC,
-        version: if split_refs.is_some() {
-            FORMAT_VERSION
-        } else {
-            BASE_VERSION
-        },
+        version,
         counts: HeaderCounts {
             kind: source.kind().tag(),
             mesh: layout.tag(),
@@ -207,11 +216,20 @@ fn header(
     })
 }
 
+/// The version a blob of `source` is written at: the oldest that holds it.
+fn version_of(source: &BlobSource<'_>, mesh: &ValidMesh<'_>) -> u16 {
+    match source {
+        BlobSource::Bvh(_, _, Some(_)) => PLANNED_VERSION,
+        _ if spatial_table(source, mesh).is_some() => SPATIAL_VERSION,
+        _ => BASE_VERSION,
+    }
+}
+
 /// The split references of a BVH with spatial splits (more slots than triangles, or split
-/// references), which makes its blob a version 4 one; `None` for every other structure.
+/// references), which need version 4 at least; `None` for every other structure.
 fn spatial_table<'s>(source: &'s BlobSource<'_>, mesh: &ValidMesh<'_>) -> Option<SplitRefs<'s>> {
     match source {
-        BlobSource::Bvh(bvh, _) => {
+        BlobSource::Bvh(bvh, ..) => {
             let table = bvh.split_refs();
             (!table.is_empty() || bvh.order().len() != mesh.triangle_count()).then_some(table)
         }
@@ -219,8 +237,9 @@ fn spatial_table<'s>(source: &'s BlobSource<'_>, mesh: &ValidMesh<'_>) -> Option
     }
 }
 
-/// Everything after the header: a BVH's nodes and order (and split references, version 4), or
-/// a cell structure's words and references; then the mesh section.
+/// Everything after the header: a BVH's nodes and order (then, from version 4, its split
+/// references, and from version 5 its collapse roles), or a cell structure's words and
+/// references; then the mesh section.
 struct Payload<'q, 'a> {
     source: &'q BlobSource<'q>,
     mesh: &'q ValidMesh<'a>,
@@ -230,10 +249,15 @@ struct Payload<'q, 'a> {
 impl Serialize for Payload<'_, '_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeTuple;
-        let spatial = spatial_table(self.source, self.mesh).is_some();
-        let mut t = s.serialize_tuple(3 + usize::from(spatial))?;
+        let version = version_of(self.source, self.mesh);
+        let splits = version >= SPATIAL_VERSION;
+        let roles = match self.source {
+            BlobSource::Bvh(_, _, Some(roles)) => Some(roles.bytes()),
+            _ => None,
+        };
+        let mut t = s.serialize_tuple(3 + usize::from(splits) + usize::from(roles.is_some()))?;
         match self.source {
-            BlobSource::Bvh(bvh, _) => {
+            BlobSource::Bvh(bvh, ..) => {
                 t.serialize_element(&Seq(bvh.nodes().iter().map(NodeRecord::from)))?;
             }
             BlobSource::KdTree(tree, _) => t.serialize_element(&node_words(tree.nodes()))?,
@@ -244,8 +268,12 @@ impl Serialize for Payload<'_, '_> {
         }
         let order = self.source.order();
         t.serialize_element(&Seq(order.iter().map(|&i| FixedU32(i))))?;
-        if let Some(table) = spatial_table(self.source, self.mesh) {
+        if splits {
+            let table = spatial_table(self.source, self.mesh).unwrap_or(SplitRefs::NONE);
             t.serialize_element(&Seq(table.iter().map(|r| r.to_le_bytes())))?;
+        }
+        if let Some(roles) = roles {
+            t.serialize_element(&Seq(roles.iter()))?;
         }
         t.serialize_element(&MeshSection {
             order,

@@ -13,24 +13,32 @@ pub use crate::structure_kind::StructureKind;
 /// The first four bytes of every blob.
 pub const MAGIC: [u8; 4] = *b"MSHQ";
 
-/// The newest format version this build writes and reads. Version 4 added BVHs built with
-/// spatial splits (more leaf slots than triangles, and the table of split references); version
-/// 3 the k-d tree, octree and grid kinds (a BVH blob is laid out as in version 2); version 2
-/// the split strategy to the config. Blobs are written at the oldest version that can hold
-/// them: version 4 only for trees with spatial splits, version 3 otherwise, byte for byte as
-/// before version 4 existed. Version 1 and 2 blobs (always a BVH) are still read.
-pub const FORMAT_VERSION: u16 = 4;
+/// The newest format version this build writes and reads. Version 5 added a BVH's collapse
+/// plan (the role of every node in its eight-wide collapse, so that a loader need not plan it
+/// again), and its BVH header always counts leaf slots and split references; version 4 BVHs
+/// built with spatial splits (more leaf slots than triangles, and the table of split
+/// references); version 3 the k-d tree, octree and grid kinds (a BVH blob is laid out as in
+/// version 2); version 2 the split strategy to the config. Blobs are written at the oldest
+/// version that can hold what they are given: version 5 for a BVH with its collapse roles,
+/// version 4 for a BVH with spatial splits without them, version 3 otherwise, byte for byte as
+/// before versions 4 and 5 existed. Version 1 and 2 blobs (always a BVH) are still read.
+pub const FORMAT_VERSION: u16 = 5;
 
-/// The version of blobs that need nothing newer: every blob but a BVH with spatial splits.
+/// The first version whose BVH header counts slots and split references (version 4: spatial
+/// splits), and whose payload has the split references after the order.
+pub(crate) const SPATIAL_VERSION: u16 = 4;
+
+/// The first version whose BVH payload holds the collapse roles, after the split references.
+pub(crate) const PLANNED_VERSION: u16 = 5;
+
+/// The version of blobs that need nothing newer: every blob but a BVH with spatial splits or
+/// collapse roles.
 pub(crate) const BASE_VERSION: u16 = 3;
 
-/// The newest format version this build reads: [`FORMAT_VERSION`] with the `blob-spatial`
-/// feature (BVHs with spatial splits), 3 without it.
-pub const NEWEST_READABLE_VERSION: u16 = if cfg!(feature = "blob-spatial") {
-    FORMAT_VERSION
-} else {
-    BASE_VERSION
-};
+/// The newest format version this build reads: [`FORMAT_VERSION`]. A build without the
+/// `blob-spatial` feature refuses a BVH with spatial splits (versions 4 and 5) as a structure it
+/// cannot query ([`BlobError::UnsupportedStructure`](crate::error::BlobError::UnsupportedStructure)).
+pub const NEWEST_READABLE_VERSION: u16 = FORMAT_VERSION;
 
 /// The oldest format version this build reads.
 pub const OLDEST_READABLE_VERSION: u16 = 1;

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use super::format::{
     ConfigCosts, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout, NEWEST_READABLE_VERSION,
-    OLDEST_READABLE_VERSION, StructureKind,
+    OLDEST_READABLE_VERSION, SPATIAL_VERSION, StructureKind,
 };
 #[cfg(feature = "blob-cells")]
 use super::format::{GridWire, KdWire, OctreeWire};
@@ -18,8 +18,9 @@ use crate::math::Aabb;
 /// it; [`BlobView::parse`](super::BlobView::parse) checks that everything agrees with it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlobHeader {
-    /// The format version ([`FORMAT_VERSION`](super::FORMAT_VERSION) for a BVH with spatial
-    /// splits, 3 for every other blob this build writes).
+    /// The format version ([`FORMAT_VERSION`](super::FORMAT_VERSION) for a BVH with its
+    /// collapse roles, 4 for one with spatial splits without them, 3 for every other blob this
+    /// build writes).
     pub version: u16,
     /// The structure.
     pub kind: StructureKind,
@@ -36,7 +37,7 @@ pub struct BlobHeader {
     /// triangle in several cells counts once per cell).
     pub reference_count: u32,
     /// Entries of a BVH's split references ([`SplitRefs`](crate::query::SplitRefs)): 0 unless
-    /// it was built with spatial splits (version 4).
+    /// it was built with spatial splits (version 4 or 5).
     pub split_ref_count: u32,
     /// A BVH's levels (0 when empty, 1 for a lone leaf); the depth of the deepest leaf of a
     /// k-d tree or octree (the root is depth 0); 0 for a grid.
@@ -135,15 +136,24 @@ fn read_config(
                 r.value(BlobSection::Header)?
             };
             let costs: ConfigCosts = r.value(BlobSection::Header)?;
-            // Version 4 (only written for trees with spatial splits) counts slots and splits.
-            #[cfg(feature = "blob-spatial")]
-            let spatial = if version >= 4 {
-                Some(r.value::<super::format::SpatialWire>(BlobSection::Header)?)
+            // Versions 4 and 5 count slots and split references (both plain for a tree
+            // without spatial splits, which version 5 may hold too).
+            // Two varints, read as the other counts are (one decoder in the firmware).
+            let spatial = if version >= SPATIAL_VERSION {
+                let references: u32 = r.value(BlobSection::Header)?;
+                let split_refs: u32 = r.value(BlobSection::Header)?;
+                Some(super::format::SpatialWire {
+                    references,
+                    split_refs,
+                })
             } else {
                 None
             };
             #[cfg(not(feature = "blob-spatial"))]
-            let spatial: Option<super::format::SpatialWire> = None;
+            if spatial.is_some_and(|s| s.split_refs != 0 || s.references != triangle_count) {
+                // A tree with spatial splits: this build cannot check or query one.
+                return Err(BlobError::UnsupportedStructure { kind: kind.tag() });
+            }
             WireConfig {
                 config: bvh_config(split, costs),
                 references: spatial.map_or(triangle_count, |s| s.references),

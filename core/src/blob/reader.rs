@@ -67,11 +67,25 @@ impl<'a> Reader<'a> {
 
     /// A postcard sequence of `N`-byte records whose length must be `expected`, returned in
     /// place.
+    #[inline(always)]
     pub(crate) fn records<const N: usize>(
         &mut self,
         expected: u32,
         section: BlobSection,
     ) -> Result<&'a [[u8; N]], BlobError> {
+        let (records, _) = self.record_bytes(expected, N, section)?.as_chunks::<N>();
+        Ok(records)
+    }
+
+    /// The bytes of [`records`](Self::records) (`expected` records of `size` bytes): one body
+    /// for every record size, which keeps the firmware's code small.
+    #[inline(never)]
+    fn record_bytes(
+        &mut self,
+        expected: u32,
+        size: usize,
+        section: BlobSection,
+    ) -> Result<&'a [u8], BlobError> {
         let found: u32 = self.value(section)?;
         if found != expected {
             return Err(BlobError::CountMismatch {
@@ -82,9 +96,8 @@ impl<'a> Reader<'a> {
         }
         let len = usize::try_from(found)
             .ok()
-            .and_then(|n| n.checked_mul(N))
+            .and_then(|n| n.checked_mul(size))
             .ok_or(BlobError::TooLarge)?;
-        let (records, _) = self.bytes(len, section)?.as_chunks::<N>();
-        Ok(records)
+        self.bytes(len, section)
     }
 }

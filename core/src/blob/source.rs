@@ -9,13 +9,16 @@ use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 use crate::octree::{Octree, OctreeConfig, OctreeNode};
 use crate::structure_kind::StructureKind;
+use crate::wide::CollapseRoles;
 
 /// A structure built in memory, with the config it was built with, as
 /// [`encode_structure_into`](super::encode_structure_into) writes it.
 #[derive(Clone, Copy, Debug)]
 pub enum BlobSource<'q> {
-    /// A BVH.
-    Bvh(&'q Bvh<'q>, BuildConfig),
+    /// A BVH, with the roles of its nodes in its eight-wide collapse to store (format version
+    /// 5, see [`EncodeOptions::collapse_roles`](super::EncodeOptions::collapse_roles)) or
+    /// `None`.
+    Bvh(&'q Bvh<'q>, BuildConfig, Option<CollapseRoles<'q>>),
     /// A k-d tree.
     KdTree(&'q KdTree<&'q [KdNode], &'q [u32]>, KdConfig),
     /// An octree.
@@ -39,7 +42,7 @@ impl BlobSource<'_> {
     /// The config the header records.
     pub(super) fn config(&self) -> StructureConfig {
         match self {
-            Self::Bvh(_, c) => StructureConfig::Bvh(*c),
+            Self::Bvh(_, c, _) => StructureConfig::Bvh(*c),
             Self::KdTree(_, c) => StructureConfig::KdTree(*c),
             Self::Octree(_, c) => StructureConfig::Octree(*c),
             Self::Grid(g, c) => StructureConfig::Grid {
@@ -52,7 +55,7 @@ impl BlobSource<'_> {
     /// The box the header records (see [`BlobHeader::bounds`](super::BlobHeader::bounds)).
     pub(super) fn bounds(&self) -> Aabb {
         match self {
-            Self::Bvh(b, _) => b.bounds(),
+            Self::Bvh(b, ..) => b.bounds(),
             Self::KdTree(t, _) => *t.bounds(),
             Self::Octree(t, _) => *t.root(),
             Self::Grid(g, _) => g.layout().bounds,
@@ -62,7 +65,7 @@ impl BlobSource<'_> {
     /// Nodes of a tree; cells of a grid.
     pub(super) fn node_count(&self) -> usize {
         match self {
-            Self::Bvh(b, _) => b.nodes().len(),
+            Self::Bvh(b, ..) => b.nodes().len(),
             Self::KdTree(t, _) => t.node_count(),
             Self::Octree(t, _) => t.node_count(),
             Self::Grid(g, _) => g.offsets().len().saturating_sub(1),
@@ -73,7 +76,7 @@ impl BlobSource<'_> {
     pub(super) fn depth(&self, triangles: usize) -> u32 {
         let deepest = |d: usize| u32::try_from(d).unwrap_or(u32::MAX);
         match self {
-            Self::Bvh(b, _) => b.depth(),
+            Self::Bvh(b, ..) => b.depth(),
             Self::KdTree(t, _) => deepest(t.stats(triangles).max_depth),
             Self::Octree(t, _) => deepest(t.stats(triangles).max_depth),
             Self::Grid(..) => 0,
@@ -83,7 +86,7 @@ impl BlobSource<'_> {
     /// The leaf-slot → triangle array: a BVH's order, a cell structure's references.
     pub(super) fn order(&self) -> &[u32] {
         match self {
-            Self::Bvh(b, _) => b.order(),
+            Self::Bvh(b, ..) => b.order(),
             Self::KdTree(t, _) => t.items(),
             Self::Octree(t, _) => t.items(),
             Self::Grid(g, _) => g.items(),
@@ -94,8 +97,13 @@ impl BlobSource<'_> {
     pub(super) fn check(&self, mesh: &ValidMesh<'_>) -> Result<(), BlobError> {
         let n = mesh.triangle_count();
         match self {
-            Self::Bvh(b, _) => {
+            Self::Bvh(b, _, roles) => {
                 b.check(mesh)?;
+                if let Some(roles) = roles {
+                    roles
+                        .check::<_, 8>(*b)
+                        .map_err(|()| BlobError::BadCollapsePlan)?;
+                }
                 super::split_check::check_slots(*b, b.order().iter().copied(), n)?;
                 crate::bvh::split_coverage::check_split_coverage(*b, mesh)?;
             }

@@ -3,7 +3,10 @@
 use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::query::LeafTriangleIds;
-use crate::query::{SPLIT_REF_BYTES, SplitRefs};
+#[cfg(feature = "blob-spatial")]
+use crate::query::SPLIT_REF_BYTES;
+use crate::query::SplitRefs;
+use crate::wide::CollapseRoles;
 
 /// A BVH whose nodes and order are read straight out of a validated blob's bytes (in RAM or in
 /// flash): no copy, 32 bytes decoded per node visited.
@@ -15,15 +18,37 @@ pub struct BlobTree<'a> {
     pub(super) nodes: &'a [[u8; NODE_BYTES]],
     pub(super) order: &'a [[u8; ORDER_BYTES]],
     pub(super) depth: u32,
-    /// Split reference records (a tree with spatial splits; empty otherwise).
+    /// Split reference records (a tree with spatial splits; empty otherwise). Not kept
+    /// without the feature, where no blob read has any.
+    #[cfg(feature = "blob-spatial")]
     pub(super) splits: &'a [[u8; SPLIT_REF_BYTES]],
+    /// The collapse roles (version 5; empty before).
+    pub(super) roles: &'a [u8],
 }
 
-impl BlobTree<'_> {
+impl<'a> BlobTree<'a> {
     /// Levels in the tree (0 when empty).
     #[must_use]
     pub const fn depth(&self) -> u32 {
         self.depth
+    }
+
+    /// The roles of the tree's nodes in its eight-wide collapse, checked against the tree
+    /// (format version 5; `None` for an older blob, whose loaders plan the collapse
+    /// themselves): [`CollapsePlan::from_roles`](crate::wide::CollapsePlan::from_roles)
+    /// collapses the tree with them.
+    #[must_use]
+    pub fn collapse_roles(&self) -> Option<CollapseRoles<'a>> {
+        (!self.roles.is_empty()).then_some(CollapseRoles::new(self.roles))
+    }
+
+    /// The split references, for as long as the bytes live.
+    pub(super) fn split_table(&self) -> SplitRefs<'a> {
+        #[cfg(feature = "blob-spatial")]
+        return SplitRefs::from_records(self.splits);
+        // Without the feature no blob read has any: the constant lets checks fold away.
+        #[cfg(not(feature = "blob-spatial"))]
+        SplitRefs::NONE
     }
 
     /// The order's entries (triangle indices, one per leaf slot).
@@ -64,11 +89,6 @@ impl TreeArrays for BlobTree<'_> {
 
     #[inline(always)]
     fn split_refs(&self) -> SplitRefs<'_> {
-        // Without the feature no blob read has any: the constant lets checks fold away.
-        if cfg!(feature = "blob-spatial") {
-            SplitRefs::from_records(self.splits)
-        } else {
-            SplitRefs::NONE
-        }
+        self.split_table()
     }
 }

@@ -5,7 +5,8 @@ use glam::Vec3;
 use super::checksum::mesh_checksum;
 use super::encode::blob_checksum;
 use super::format::{
-    MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, POSITION_BYTES, TRIANGLE_BYTES,
+    MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, PLANNED_VERSION, POSITION_BYTES,
+    SPATIAL_VERSION, TRIANGLE_BYTES,
 };
 use super::mesh::{check_indexed, check_packed};
 use super::reader::Reader;
@@ -31,6 +32,7 @@ use crate::octree::Octree;
 use crate::query::SPLIT_REF_BYTES;
 use crate::query::{LeafTriangles, Traverse, Visitor};
 use crate::structure_kind::StructureKind;
+use crate::wide::CollapseRoles;
 
 /// A validated blob of any structure kind, queried in place: nodes, references and (unless
 /// omitted) the mesh are read from the byte slice on demand — a blob in flash is never copied
@@ -199,11 +201,18 @@ fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
     let mut r = Reader::new(bytes);
     r.bytes(header.header_len, BlobSection::Header)?;
     let structure = if header.kind == StructureKind::Bvh {
+        let nodes = r.records::<NODE_BYTES>(header.node_count, BlobSection::Nodes)?;
+        let order = r.records::<ORDER_BYTES>(header.reference_count, BlobSection::Order)?;
+        // Read (and, without the feature, found empty by the header reader) either way.
+        #[cfg_attr(not(feature = "blob-spatial"), allow(unused_variables))]
+        let splits = split_records(&header, &mut r)?;
         RawStructure::Bvh(BlobTree {
-            nodes: r.records::<NODE_BYTES>(header.node_count, BlobSection::Nodes)?,
-            order: r.records::<ORDER_BYTES>(header.reference_count, BlobSection::Order)?,
+            nodes,
+            order,
             depth: 0,
-            splits: split_records(&header, &mut r)?,
+            #[cfg(feature = "blob-spatial")]
+            splits,
+            roles: role_bytes(&header, &mut r)?,
         })
     } else {
         cell_arrays(&header, &mut r)?
@@ -238,28 +247,32 @@ fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
     })
 }
 
-/// A BVH's split references: version 4 (a tree with spatial splits) has them after the order.
-#[cfg(feature = "blob-spatial")]
+/// A BVH's split references, after the order from version 4 on (empty for a tree without
+/// spatial splits; without the `blob-spatial` feature the header reader makes sure of that).
 #[inline(always)]
 fn split_records<'a>(
     header: &BlobHeader,
     r: &mut Reader<'a>,
 ) -> Result<&'a [[u8; SPLIT_REF_BYTES]], BlobError> {
-    if header.version >= 4 {
+    if header.version >= SPATIAL_VERSION {
         r.records::<SPLIT_REF_BYTES>(header.split_ref_count, BlobSection::SplitRefs)
     } else {
         Ok(&[])
     }
 }
 
-/// Without the feature the header reader refuses version 4: no blob has split references.
-#[cfg(not(feature = "blob-spatial"))]
+/// A BVH's collapse roles, after the split references from version 5 on: one byte per four
+/// nodes ([`CollapseRoles`](crate::wide::CollapseRoles)). Empty before version 5.
 #[inline(always)]
-fn split_records<'a>(
-    _: &BlobHeader,
-    _: &mut Reader<'a>,
-) -> Result<&'a [[u8; SPLIT_REF_BYTES]], BlobError> {
-    Ok(&[])
+fn role_bytes<'a>(header: &BlobHeader, r: &mut Reader<'a>) -> Result<&'a [u8], BlobError> {
+    if header.version >= PLANNED_VERSION {
+        let len = CollapseRoles::len_for(header.node_count as usize);
+        let len = u32::try_from(len).map_err(|_| BlobError::TooLarge)?;
+        Ok(r.records::<1>(len, BlobSection::CollapsePlan)?
+            .as_flattened())
+    } else {
+        Ok(&[])
+    }
 }
 
 /// A cell structure's node words (or cell offsets) and references, cut out of the bytes.
@@ -308,6 +321,12 @@ fn finish<'a>(
 ) -> Result<BlobView<'a>, BlobError> {
     check_mesh(&mesh)?;
     let structure = check_structure(&header, raw, Some(&mesh))?;
+    // Checked here rather than inside `check_structure`: the firmware's view is then built in
+    // place, without linking a memcpy. (The only kind without `blob-cells`.)
+    #[allow(irrefutable_let_patterns)]
+    if let BlobStructure::Bvh(tree) = &structure {
+        check_roles(tree)?;
+    }
     Ok(BlobView {
         header,
         structure,
@@ -393,6 +412,18 @@ fn check_cells<'a>(
     Ok((structure, u32::try_from(deepest).unwrap_or(u32::MAX)))
 }
 
+/// Refuses collapse roles (version 5) that do not describe an eight-wide collapse of the tree,
+/// whose topology was checked.
+pub(super) fn check_roles(tree: &BlobTree<'_>) -> Result<(), BlobError> {
+    match tree.collapse_roles() {
+        Some(roles) => roles
+            .check::<_, 8>(tree)
+            .map(|_| ())
+            .map_err(|()| BlobError::BadCollapsePlan),
+        None => Ok(()),
+    }
+}
+
 /// Refuses a header box that differs from the structure's, bit for bit.
 pub(super) fn same_bounds(found: &Aabb, header: &Aabb) -> Result<(), BlobError> {
     let bits = |v: Vec3| v.to_array().map(f32::to_bits);
@@ -422,6 +453,10 @@ impl<'a> BlobStructure<'a> {
             }
         }
         let structure = check_structure(&s.header, s.structure, None)?;
+        #[allow(irrefutable_let_patterns)]
+        if let Self::Bvh(tree) = &structure {
+            check_roles(tree)?;
+        }
         Ok((s.header, structure))
     }
 }

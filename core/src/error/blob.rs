@@ -27,6 +27,8 @@ pub enum BlobSection {
     References,
     /// The split references of a BVH built with spatial splits (version 4).
     SplitRefs,
+    /// A BVH's collapse roles (version 5).
+    CollapsePlan,
 }
 
 impl fmt::Display for BlobSection {
@@ -41,6 +43,7 @@ impl fmt::Display for BlobSection {
             Self::MeshLayout => "mesh layout",
             Self::References => "references",
             Self::SplitRefs => "split references",
+            Self::CollapsePlan => "collapse plan",
         })
     }
 }
@@ -76,7 +79,8 @@ pub enum BlobError {
         /// Newest version this build reads.
         newest: u16,
     },
-    /// The structure kind is not one this build can query.
+    /// The structure kind is not one this build can query (also a BVH with spatial splits, in
+    /// a build without the `blob-spatial` feature).
     UnsupportedStructure {
         /// The kind tag in the blob.
         kind: u32,
@@ -140,6 +144,10 @@ pub enum BlobError {
         /// Index of the entry.
         entry: u32,
     },
+    /// A BVH's collapse roles (version 5) do not describe an eight-wide collapse of its tree
+    /// (see [`CollapseRoles::check`](crate::wide::CollapseRoles::check)). No encoder writes
+    /// that. Fix: bake again.
+    BadCollapsePlan,
     /// The stored mesh fails validation; the payload names the vertex or triangle.
     InvalidMesh(MeshError),
     /// The blob was baked without its mesh. Fix: use
@@ -217,6 +225,9 @@ impl fmt::Display for BlobError {
             ),
             Self::BadSplitRef { entry } => {
                 write!(f, "split reference {entry} disagrees with the tree")
+            }
+            Self::BadCollapsePlan => {
+                f.write_str("the collapse plan does not describe an eight-wide collapse of the tree")
             }
             Self::InvalidMesh(e) => write!(f, "invalid stored mesh: {e}"),
             Self::MeshNotIncluded => f.write_str(

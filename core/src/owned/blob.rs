@@ -12,6 +12,8 @@ use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::{SplitRef, SplitRefs};
+use crate::wide::CollapseRoles;
+use crate::wide::collapse::eight_wide_roles;
 
 impl MeshBvh {
     /// Validates a self-contained blob with every check of [`BlobView::parse`] and decodes it
@@ -94,9 +96,13 @@ impl MeshBvh {
             view.decode_mesh(&mut positions, &mut triangles)?;
             (positions, triangles)
         };
-        let mut loaded = Self::assemble(positions, triangles, nodes, order, depth, config, false)
-            .map_err(|_| {
-            // Unreachable: the buffers are sized from the validated blob's own counts.
+        let roles = view.tree().and_then(|t| t.collapse_roles());
+        let mut loaded = Self::assemble(
+            positions, triangles, nodes, order, depth, config, false, roles,
+        )
+        .map_err(|_| {
+            // Unreachable: the buffers are sized from the validated blob's own counts, and
+            // the roles were checked against this very tree.
             BlobError::BufferTooSmall {
                 section: BlobSection::PackedTriangles,
                 needed: slots,
@@ -112,28 +118,36 @@ impl MeshBvh {
     /// # Errors
     /// [`BlobError::TooLarge`] when a count does not fit the format.
     pub fn encoded_len(&self, layout: MeshLayout) -> Result<usize, BlobError> {
-        blob::encoded_len(&self.bvh(), &self.mesh(), &self.encode_options(layout))
+        // Only the roles' length counts here, not their values.
+        let roles = vec![0u8; CollapseRoles::len_for(self.nodes.len())];
+        let options = self.encode_options(layout, &roles);
+        blob::encoded_len(&self.bvh(), &self.mesh(), &options)
     }
 
-    /// Encodes the tree and (as `layout` says) the mesh as a blob, with this tree's config in
-    /// its header: the bytes [`blob::encode_into`] writes, which depend only on the mesh, the
-    /// tree and the layout, on every target.
+    /// Encodes the tree, the roles of its nodes in its eight-wide collapse (planned here, as
+    /// every build plans it: format version 5, so loaders collapse it without planning) and (as
+    /// `layout` says) the mesh as a blob, with this tree's config in its header: the bytes
+    /// [`blob::encode_into`] writes, which depend only on the mesh, the tree and the layout, on
+    /// every target.
     ///
     /// # Errors
     /// What [`blob::encode_into`] reports.
     pub fn to_blob(&self, layout: MeshLayout) -> Result<Vec<u8>, BlobError> {
-        let options = self.encode_options(layout);
-        let (bvh, mesh) = (self.bvh(), self.mesh());
+        let bvh = self.bvh();
+        let roles = eight_wide_roles(&bvh).map_err(|_| BlobError::BadCollapsePlan)?;
+        let options = self.encode_options(layout, &roles);
+        let mesh = self.mesh();
         let mut out = vec![0u8; blob::encoded_len(&bvh, &mesh, &options)?];
         let n = blob::encode_into(&bvh, &mesh, &options, &mut out)?;
         out.truncate(n);
         Ok(out)
     }
 
-    fn encode_options(&self, layout: MeshLayout) -> EncodeOptions {
+    fn encode_options<'r>(&self, layout: MeshLayout, roles: &'r [u8]) -> EncodeOptions<'r> {
         EncodeOptions {
             mesh: layout,
             config: self.config,
+            collapse_roles: Some(CollapseRoles::new(roles)),
         }
     }
 }

@@ -96,7 +96,10 @@ impl MeshIndex {
     /// # Errors
     /// [`BlobError::TooLarge`] when a count does not fit the format.
     pub fn encoded_len(&self, layout: MeshLayout) -> Result<usize, BlobError> {
-        self.with_source(|source, mesh| structure_encoded_len(source, mesh, layout))
+        match self {
+            Self::Bvh(s) => s.encoded_len(layout),
+            _ => self.with_source(|source, mesh| structure_encoded_len(source, mesh, layout)),
+        }
     }
 
     /// Encodes the structure and (as `layout` says) the mesh as a blob, with the structure's
@@ -107,16 +110,21 @@ impl MeshIndex {
     /// # Errors
     /// What [`encode_structure_into`] reports.
     pub fn to_blob(&self, layout: MeshLayout) -> Result<Vec<u8>, BlobError> {
-        self.with_source(|source, mesh| encode(source, mesh, layout))
+        match self {
+            // With its collapse roles ([`MeshBvh::to_blob`]).
+            Self::Bvh(s) => s.to_blob(layout),
+            _ => self.with_source(|source, mesh| encode(source, mesh, layout)),
+        }
     }
 
-    /// Runs `f` on the structure as a [`BlobSource`] and the mesh.
+    /// Runs `f` on the structure as a [`BlobSource`] and the mesh (a BVH without its collapse
+    /// roles: [`MeshBvh::to_blob`] adds them).
     fn with_source<T>(
         &self,
         f: impl FnOnce(&BlobSource<'_>, &ValidMesh<'_>) -> Result<T, BlobError>,
     ) -> Result<T, BlobError> {
         match self {
-            Self::Bvh(s) => f(&BlobSource::Bvh(&s.bvh(), *s.config()), &s.mesh()),
+            Self::Bvh(s) => f(&BlobSource::Bvh(&s.bvh(), *s.config(), None), &s.mesh()),
             Self::KdTree(s) => f(&BlobSource::KdTree(&s.tree(), s.config), &s.mesh()),
             Self::Octree(s) => f(&BlobSource::Octree(&s.tree(), s.config), &s.mesh()),
             Self::Grid(s) => f(&BlobSource::Grid(&s.grid(), s.config), &s.mesh()),

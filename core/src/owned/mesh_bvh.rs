@@ -8,10 +8,13 @@ use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::query::{LeafTriangles, PackedTriangles, SplitRef, SplitRefs, Traverse, Visitor};
-use crate::wide::collapse::collapse_vec;
+use crate::wide::collapse::{collapse_planned_vec, collapse_vec};
 #[cfg(feature = "parallel")]
 use crate::wide::parallel_collapse::collapse_vec_parallel;
-use crate::wide::{CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode, WideNode8};
+use crate::wide::{
+    CollapsePlan, CollapseRoles, CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode,
+    WideNode8,
+};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
 /// (nodes and order), the triangles packed in leaf order, and the tree collapsed for queries
@@ -173,8 +176,9 @@ impl MeshBvh {
         order.shrink_to_fit();
         splits.truncate(split_count);
         splits.shrink_to_fit();
-        let mut built =
-            Self::assemble(positions, triangles, nodes, order, depth, *config, parallel)?;
+        let mut built = Self::assemble(
+            positions, triangles, nodes, order, depth, *config, parallel, None,
+        )?;
         built.splits = splits;
         Ok(built)
     }
@@ -211,10 +215,15 @@ impl MeshBvh {
             depth
         };
         drop(scratch);
-        Self::assemble(positions, triangles, nodes, order, depth, *config, parallel)
+        Self::assemble(
+            positions, triangles, nodes, order, depth, *config, parallel, None,
+        )
     }
 
-    /// Packs and widens a built (or decoded) tree and keeps it all, trimmed.
+    /// Packs and widens a built (or decoded) tree and keeps it all, trimmed. A decoded tree's
+    /// collapse `roles` (a blob's, checked against the tree) spare the sequential collapse
+    /// planning it.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn assemble(
         positions: Vec<[f32; 3]>,
         triangles: Vec<[u32; 3]>,
@@ -223,6 +232,7 @@ impl MeshBvh {
         depth: u32,
         config: BuildConfig,
         parallel: bool,
+        roles: Option<CollapseRoles<'_>>,
     ) -> Result<Self, BuildError> {
         nodes.shrink_to_fit();
         let n = order.len();
@@ -242,12 +252,12 @@ impl MeshBvh {
                     WideNodes::Full(collapse_vec_parallel::<WideNode, 4>(&bvh)?)
                 }
             } else {
-                sequential_wide(&bvh, &mesh, &mut packed)?
+                sequential_wide(&bvh, &mesh, &mut packed, roles)?
             }
             #[cfg(not(feature = "parallel"))]
             {
                 let _ = parallel;
-                sequential_wide(&bvh, &mesh, &mut packed)?
+                sequential_wide(&bvh, &mesh, &mut packed, roles)?
             }
         };
         Ok(Self {
@@ -503,15 +513,22 @@ fn filled<T: Clone + Send + Sync>(value: T, len: usize, parallel: bool) -> Vec<T
 }
 
 /// Packs `mesh` for `bvh` into `packed` and collapses `bvh` into the default wide nodes, on
-/// this thread.
+/// this thread: eight-wide as its collapse `roles` say when given, else planned here.
 fn sequential_wide(
     bvh: &Bvh<'_>,
     mesh: &ValidMesh<'_>,
     packed: &mut [PackedTriangle],
+    roles: Option<CollapseRoles<'_>>,
 ) -> Result<WideNodes, BuildError> {
     bvh.pack_triangles(mesh, packed)?;
     Ok(if MeshBvh::EIGHT_WIDE_BY_DEFAULT {
-        WideNodes::Eight(eight_wide_of(bvh)?)
+        WideNodes::Eight(match roles {
+            // Checked as the collapse walks them.
+            Some(roles) => {
+                collapse_planned_vec(&CollapsePlan::<8>::from_roles_unchecked(bvh, roles))?
+            }
+            None => eight_wide_of(bvh)?,
+        })
     } else {
         WideNodes::Full(four_wide_of(bvh)?)
     })

@@ -80,13 +80,26 @@ pub(crate) fn collapse_vec<N: CollapsedNode + Clone, const W: usize>(
     collapse_planned_vec(&plan)
 }
 
-/// [`collapse_to`] into a vector grown as nodes come: one pass, so the plan need not have
-/// counted them.
+/// The roles of `tree`'s nodes in its eight-wide collapse, planned here
+/// ([`CollapsePlan::write_roles`]), for a blob to store.
+#[cfg(feature = "alloc")]
+pub(crate) fn eight_wide_roles(
+    tree: &crate::bvh::Bvh<'_>,
+) -> Result<alloc::vec::Vec<u8>, BuildError> {
+    let mut entries = alloc::vec![super::PlanEntry::EMPTY; super::plan_capacity(tree)];
+    let plan = CollapsePlan::<8>::solved(tree, &mut entries)?;
+    let mut roles = alloc::vec![0u8; super::CollapseRoles::len_for(tree.nodes().len())];
+    plan.write_roles(&mut roles)?;
+    Ok(roles)
+}
+
+/// [`collapse_to`] into a vector grown as nodes come (reserved up front when the plan bounds
+/// their count): one pass.
 #[cfg(feature = "alloc")]
 pub(crate) fn collapse_planned_vec<N: CollapsedNode + Clone, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
 ) -> Result<alloc::vec::Vec<N>, BuildError> {
-    let mut nodes = alloc::vec::Vec::new();
+    let mut nodes = alloc::vec::Vec::with_capacity(plan.node_bound());
     let count = collapse_to::<N, W>(plan, |index, node| {
         if index >= nodes.len() {
             nodes.resize(index + 1, N::EMPTY);
@@ -111,6 +124,10 @@ pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
     mut sink: impl FnMut(usize, N),
 ) -> Result<usize, BuildError> {
+    if plan.is_stored() {
+        // The walk of stored roles checks them, an empty tree's and a lone leaf's included.
+        return collapse_from::<N, W>(plan, 0, sink);
+    }
     let tree = plan.tree();
     let Some(root) = tree.node(0) else {
         return Ok(0);

@@ -26,16 +26,19 @@ mod node8;
 #[cfg(feature = "parallel")]
 pub(crate) mod parallel_collapse;
 mod plan;
+mod roles;
 mod sizing;
 mod traverse;
 mod tree;
 mod tree8;
+mod walk;
 
 pub use compact_node::CompactNode;
 pub use compact_tree::CompactWideBvh;
 pub use node::WideNode;
 pub use node8::WideNode8;
-pub use plan::{CollapsePlan, MERGED_LEAF_MAX, NODE_COST, PlanEntry, plan_capacity};
+pub use plan::{CollapsePlan, NODE_COST, PlanEntry, plan_capacity};
+pub use roles::{CollapseRoles, MERGED_LEAF_MAX};
 pub use sizing::wide_node_capacity;
 pub use tree::WideBvh;
 pub use tree8::WideBvh8;

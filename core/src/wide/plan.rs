@@ -11,6 +11,8 @@
 //! crate's own costs: leaves are tested four triangles at a time, so a leaf costs its surface
 //! area times its number of four-triangle batches.
 
+use super::roles::{self, CollapseRoles, MERGED_LEAF_MAX};
+use super::walk::{Lanes, walk_wide_nodes};
 use crate::bvh::{Bvh, BvhNode, MAX_DEPTH, TreeArrays};
 use crate::error::{BufferKind, BuildError};
 
@@ -18,10 +20,6 @@ use crate::error::{BufferKind, BuildError};
 /// surface-area weights the plan minimises). Higher values give fewer, fuller nodes and larger
 /// merged leaves.
 pub const NODE_COST: f32 = 2.0;
-
-/// The most order slots (triangles) a leaf merged from a binary subtree may hold: two batches
-/// of four. Leaves of the binary tree keep their own size, whatever it is.
-pub const MERGED_LEAF_MAX: u32 = 8;
 
 /// One inner binary node's entry in a [`CollapsePlan`]: the caller-provided scratch the plan
 /// is computed in (one entry per inner binary node, [`plan_capacity`]). Its contents are
@@ -71,11 +69,6 @@ impl PlanEntry {
     }
 }
 
-/// Inner binary nodes waiting to become wide nodes. A wide node is no deeper than the binary
-/// node it starts from, and each one leaves at most seven siblings pending per level (eight
-/// lanes at most), so a valid tree never fills this.
-const PENDING: usize = 7 * MAX_DEPTH as usize + 1;
-
 /// Plan entries [`CollapsePlan::new`] needs for `bvh`: one per inner binary node, half the
 /// nodes rounded down (none for an empty tree or a lone leaf).
 ///
@@ -119,8 +112,17 @@ fn leaf_cost(node: &BvhNode, slots: u32) -> f32 {
 #[derive(Clone, Copy, Debug)]
 pub struct CollapsePlan<'a, 'p, const W: usize> {
     tree: Bvh<'a>,
-    entries: &'p [PlanEntry],
+    choices: Choices<'p>,
     nodes: usize,
+}
+
+/// Where a plan's choices come from.
+#[derive(Clone, Copy, Debug)]
+enum Choices<'p> {
+    /// Solved here: one entry per inner node.
+    Solved(&'p [PlanEntry]),
+    /// Read from roles checked against the tree (a blob's).
+    Stored(CollapseRoles<'p>),
 }
 
 impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
@@ -162,9 +164,69 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
         solve::<W>(tree, entries)?;
         Ok(Self {
             tree: *tree,
-            entries,
+            choices: Choices::Solved(entries),
             nodes: 0,
         })
+    }
+
+    /// The plan `roles` describe for `tree` (as [`write_roles`](Self::write_roles) wrote them,
+    /// typically for a blob), checked with [`CollapseRoles::check`], which also counts the
+    /// nodes: no solving. Any roles that pass give a valid wide tree with the same answers as
+    /// every other plan.
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidConfig`] (field `roles`) when the roles do not describe a collapse
+    /// of `tree` into nodes of `W` lanes.
+    pub fn from_roles(tree: &Bvh<'a>, roles: CollapseRoles<'p>) -> Result<Self, BuildError> {
+        let nodes = roles
+            .check::<_, W>(tree)
+            .map_err(|()| BuildError::InvalidConfig { field: "roles" })?;
+        Ok(Self {
+            tree: *tree,
+            choices: Choices::Stored(roles),
+            nodes,
+        })
+    }
+
+    /// Writes the role of every node of the tree in this plan into `out`
+    /// ([`CollapseRoles::len_for`] the node count, exactly; the format is
+    /// [`CollapseRoles`]'), for [`from_roles`](Self::from_roles) to collapse with later.
+    ///
+    /// # Errors
+    /// [`BuildError::BufferTooSmall`] (buffer [`BufferKind::CollapsePlan`]) when `out` has
+    /// another length; [`BuildError::TooDeep`] as [`CollapsePlan::new`].
+    pub fn write_roles(&self, out: &mut [u8]) -> Result<(), BuildError> {
+        let needed = CollapseRoles::len_for(self.tree.nodes().len());
+        if out.len() != needed {
+            return Err(BuildError::BufferTooSmall {
+                buffer: BufferKind::CollapsePlan,
+                needed,
+                got: out.len(),
+            });
+        }
+        out.fill(0);
+        let mut mark = |node: u32, role: u8| {
+            let node = node as usize;
+            if let Some(byte) = out.get_mut(node / 4) {
+                *byte |= role << (2 * (node % 4));
+            }
+        };
+        match self.tree.node(0) {
+            Some(root) if !root.is_leaf() => mark(0, roles::WIDE),
+            _ => return Ok(()),
+        }
+        let nodes = self.tree.nodes();
+        self.for_each_node(0, |_, lanes, _| {
+            for &(index, lane) in lanes {
+                let inner = nodes.get(index as usize).is_some_and(|n| !n.is_leaf());
+                match (inner, lane.is_leaf()) {
+                    (true, false) => mark(index, roles::WIDE),
+                    (true, true) => mark(index, roles::MERGED),
+                    _ => {}
+                }
+            }
+        })?;
+        Ok(())
     }
 
     /// A plan over `entries` already solved for `tree` (by the parallel solve).
@@ -172,7 +234,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     pub(super) fn from_solved(tree: &Bvh<'a>, entries: &'p [PlanEntry]) -> Self {
         Self {
             tree: *tree,
-            entries,
+            choices: Choices::Solved(entries),
             nodes: 0,
         }
     }
@@ -190,15 +252,45 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
         self.nodes
     }
 
+    #[cfg(feature = "alloc")]
+    /// The plan `roles` describe for `tree`, to be checked by the collapse that walks it: its
+    /// [`for_each_node`](Self::for_each_node) from the root fails unless the roles pass
+    /// [`CollapseRoles::check`]. One walk instead of two; [`node_count`](Self::node_count) is
+    /// 0.
+    pub(crate) fn from_roles_unchecked(tree: &Bvh<'a>, roles: CollapseRoles<'p>) -> Self {
+        Self {
+            tree: *tree,
+            choices: Choices::Stored(roles),
+            nodes: 0,
+        }
+    }
+
+    /// Whether the plan was read from roles (whose walk from the root checks them).
+    pub(super) const fn is_stored(&self) -> bool {
+        matches!(self.choices, Choices::Stored(_))
+    }
+
+    #[cfg(feature = "alloc")]
+    /// At least as many as the nodes the collapse writes, for reserving room: the count when
+    /// known.
+    pub(super) fn node_bound(&self) -> usize {
+        match self.choices {
+            Choices::Stored(roles) if self.nodes == 0 => roles.node_bound(),
+            _ => self.nodes,
+        }
+    }
+
     /// The planned cost of the wide tree (see the type's docs), in units of the root box's
     /// half surface area times a batch test: the expected work of a ray through the root, as
-    /// far as surface areas predict it.
+    /// far as surface areas predict it. NaN for a plan read from roles
+    /// ([`from_roles`](Self::from_roles)), which do not keep it.
     #[must_use]
     pub fn cost(&self) -> f32 {
+        let Choices::Solved(entries) = self.choices else {
+            return f32::NAN;
+        };
         let root = self.tree.nodes().first();
-        let entry = root
-            .and_then(entry_slot)
-            .and_then(|at| self.entries.get(at));
+        let entry = root.and_then(entry_slot).and_then(|at| entries.get(at));
         match (root, entry) {
             (Some(root), Some(entry)) if !root.is_leaf() => entry.inner / root.aabb().half_area(),
             // A lone leaf still gets a wide node, of one lane.
@@ -217,42 +309,40 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     ///
     /// # Errors
     /// [`BuildError::TooDeep`] for a tree the plan cannot have come from (unreachable for a
-    /// planned tree).
+    /// planned tree); [`BuildError::InvalidConfig`] (field `roles`) for a walk from the root of
+    /// roles that fail [`CollapseRoles::check`].
     pub(super) fn for_each_node(
         &self,
         root: u32,
-        mut each: impl FnMut(u32, &[(u32, BvhNode)], u32),
+        each: impl FnMut(u32, &[(u32, BvhNode)], u32),
     ) -> Result<usize, BuildError> {
         let too_deep = BuildError::TooDeep {
             max_depth: MAX_DEPTH,
             triangles: self.tree.slot_count(),
         };
-        let mut pending = [(root, 0u32); PENDING];
-        let mut len = 1usize;
-        let mut next = 1u32;
-        while let Some(at) = len.checked_sub(1) {
-            len = at;
-            let &(binary, wide) = pending.get(at).ok_or(too_deep)?;
-            let (lanes, count) = self.lanes(binary).ok_or(too_deep)?;
-            let lanes = lanes.get(..count).unwrap_or_default();
-            each(wide, lanes, next);
-            for &(index, lane) in lanes {
-                if !lane.is_leaf() {
-                    *pending.get_mut(len).ok_or(too_deep)? = (index, next);
-                    len += 1;
-                    next = next.checked_add(1).ok_or(too_deep)?;
-                }
-            }
+        match self.choices {
+            // The whole walk checks the roles as it goes.
+            Choices::Stored(roles) if root == 0 => roles
+                .walk::<_, W>(&self.tree, each)
+                .map_err(|()| BuildError::InvalidConfig { field: "roles" }),
+            _ => walk_wide_nodes::<W>(root, |binary| self.lanes(binary), each).ok_or(too_deep),
         }
-        Ok(next as usize)
     }
 
     /// The lanes of the wide node at the inner binary node `inner` (left to right), as
     /// `(binary index, node)`: a merged leaf is a leaf node over its subtree's box and slots.
     /// `None` for a node the tree does not have.
-    pub(super) fn lanes(&self, inner: u32) -> Option<([(u32, BvhNode); W], usize)> {
+    pub(super) fn lanes(&self, inner: u32) -> Option<Lanes<W>> {
+        let entries = match self.choices {
+            Choices::Solved(entries) => entries,
+            Choices::Stored(roles) => {
+                return roles
+                    .lanes::<_, W>(&self.tree, inner)
+                    .map(|(lanes, _)| lanes);
+            }
+        };
         let node = self.tree.nodes().get(inner as usize)?;
-        let entry = self.entries.get(entry_slot(node)?)?;
+        let entry = entries.get(entry_slot(node)?)?;
         let mut lanes = [(0u32, BvhNode::EMPTY); W];
         let mut len = 0usize;
         // (binary index, lane budget), the left child on top. Each step pops one and pushes
@@ -272,7 +362,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
                 len += 1;
                 continue;
             }
-            let plan = self.entries.get(entry_slot(child)?)?;
+            let plan = entries.get(entry_slot(child)?)?;
             let spread = usize::from(*plan.spread.get(budget.checked_sub(1)?)?);
             if spread == 0 {
                 let lane = if plan.merged {
