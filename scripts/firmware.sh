@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The firmware check: bake the bunny and spot blobs (a BVH, and an octree; and spot's BVH with
-# spatial splits, a version 4 blob) with the meshq command, build the Cortex-M4F firmware
+# spatial splits) with the meshq command, build the Cortex-M4F firmware
 # around each, run all five in QEMU (each exits 0 only when its digest equals the golden
 # file's), prove the query path panic-free, and print the
 # memory each part needs. Then the same for remeshing: the UV sphere's blob in flash,
@@ -77,7 +77,7 @@ octree_code=$(code_size "$(stat -c %s "$blobs/spot-octree.meshq")")
 echo "linked and exited 0 in QEMU: $octree_code bytes of code"
 octree_stack=$(high_water ../target/firmware-bunny-octree.log)
 
-echo; echo "== panic-free proof with the spatial-split blob (format version 4 readable)"
+echo; echo "== panic-free proof with the spatial-split blob (blob-spatial readable)"
 cargo build --locked --release --no-default-features --features panic-free,spot,spatial
 timeout 300 "${qemu[@]}" "$elf" </dev/null
 spatial_code=$(code_size "$(stat -c %s "$blobs/spot-spatial.meshq")")

@@ -21,7 +21,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! # Format (version 3)
+//! # Format (version 5)
 //!
 //! One [postcard](https://docs.rs/postcard) message, fields back to back. *varint* is postcard's
 //! LEB128-style unsigned varint; *fixed* integers are little-endian of the stated width; every
@@ -31,7 +31,7 @@
 //! | field | encoding | meaning |
 //! |---|---|---|
 //! | magic | 4 bytes | `MSHQ` |
-//! | version | varint `u16` | 4 ([`FORMAT_VERSION`]) for a BVH with spatial splits, 3 for every other blob; read before anything else |
+//! | version | varint `u16` | 5 ([`FORMAT_VERSION`]) for a BVH with its collapse roles (what [`MeshBvh::to_blob`](crate::MeshBvh::to_blob) and the tools write), 4 for a BVH with spatial splits without them, 3 for every other blob; read before anything else |
 //! | kind | varint `u32` | [`StructureKind`] tag: 0 BVH, 1 k-d tree, 2 octree, 3 grid |
 //! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
 //! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and structure (node_count: a grid's cells; depth: see [`BlobHeader::depth`]) |
@@ -42,12 +42,14 @@
 //! | checksum | fixed `u32` | CRC-32/ISO-HDLC of every blob byte except these four |
 //! | nodes | BVH: sequence of 32-byte records; others: sequence of fixed `u32` | BVH: [`BvhNode`](crate::bvh::BvhNode) (min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32`); k-d tree and octree: two words per node ([`KdNode`](crate::kdtree::KdNode), [`OctreeNode`](crate::octree::OctreeNode) `a`, `b`); grid: the cell offsets (cells + 1) |
 //! | order | sequence of fixed `u32` | leaf slot → input triangle index: a BVH's order (one per triangle; with spatial splits, the header's slot count), the references of the others (header `config`'s count) |
-//! | split references | version 4 only: sequence of 32-byte records | a BVH with spatial splits: [`SplitRef`](crate::query::SplitRef)s sorted by triangle then slot (triangle and slot fixed `u32`, the leaf's box `f32`×6) |
+//! | split references | versions 4 and 5: sequence of 32-byte records | a BVH with spatial splits: [`SplitRef`](crate::query::SplitRef)s sorted by triangle then slot (triangle and slot fixed `u32`, the leaf's box `f32`×6); empty without spatial splits |
+//! | collapse roles | version 5: sequence of bytes, one per four nodes | a BVH's eight-wide collapse ([`CollapseRoles`](crate::wide::CollapseRoles)): node `i`'s role in bits `2 (i mod 4)` and up of byte `i / 4`: 0 none, 1 starts a wide node, 2 a leaf merged from its subtree |
 //! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples, one per order entry; omitted: nothing |
 //!
 //! The config by kind: BVH: split tag (0 SAH, 1 centre), then varint `u32` × 3 (bins,
-//! max_leaf_size, max_depth) and `f32` × 2 (traversal_cost, triangle_cost); version 4 then
-//! adds varint `u32` × 2 (leaf slots, split references). k-d tree:
+//! max_leaf_size, max_depth) and `f32` × 2 (traversal_cost, triangle_cost); versions 4 and 5
+//! then add varint `u32` × 2 (leaf slots, split references: the triangle count and 0 for a tree
+//! without spatial splits). k-d tree:
 //! varint max_depth, leaf_size, `f32` traversal_cost, triangle_cost, empty_bonus, varint
 //! reference count. Octree: varint max_depth, max_items, reference count. Grid: `f32`
 //! cells_per_triangle, varint max_resolution, resolution × 3, reference count.
@@ -60,10 +62,14 @@
 //! record increments [`FORMAT_VERSION`]; a reader refuses versions outside
 //! [`OLDEST_READABLE_VERSION`]`..=`[`NEWEST_READABLE_VERSION`] with
 //! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
-//! Blobs are written at the oldest version that holds them. Version 4 added BVHs built with
-//! spatial splits (read with the `blob-spatial` feature); every other blob is written as
-//! version 3, byte for byte as before version 4. Version 3 added the k-d tree, octree and grid kinds; its BVH blobs are laid out as in
-//! version 2. Version 1 differs from 2 only in the config, which lacks the split tag (it was
+//! Blobs are written at the oldest version that holds them. Version 5 added a BVH's collapse
+//! roles, so that loaders collapse its tree eight-wide with one checked walk instead of planning
+//! it ([`EncodeOptions::collapse_roles`]; every BVH blob [`MeshBvh::to_blob`](crate::MeshBvh::to_blob)
+//! writes). Version 4 added BVHs built with spatial splits (read with the `blob-spatial`
+//! feature; without it a version 4 or 5 blob with spatial splits is refused as
+//! [`BlobError::UnsupportedStructure`](crate::error::BlobError::UnsupportedStructure)); every
+//! other blob is written as version 3, byte for byte as before version 4. Version 3 added the
+//! k-d tree, octree and grid kinds; its BVH blobs are laid out as in version 2. Version 1 differs from 2 only in the config, which lacks the split tag (it was
 //! always SAH); this build reads it as SAH. Versions 1 and 2 hold BVHs only.
 //!
 //! Within a version the bytes are stable: the same mesh and config give the same blob on every

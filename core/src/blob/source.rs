@@ -100,9 +100,7 @@ impl BlobSource<'_> {
             Self::Bvh(b, _, roles) => {
                 b.check(mesh)?;
                 if let Some(roles) = roles {
-                    roles
-                        .check::<_, 8>(*b)
-                        .map_err(|()| BlobError::BadCollapsePlan)?;
+                    roles.check(*b).map_err(|()| BlobError::BadCollapsePlan)?;
                 }
                 super::split_check::check_slots(*b, b.order().iter().copied(), n)?;
                 crate::bvh::split_coverage::check_split_coverage(*b, mesh)?;

@@ -417,7 +417,7 @@ fn check_cells<'a>(
 pub(super) fn check_roles(tree: &BlobTree<'_>) -> Result<(), BlobError> {
     match tree.collapse_roles() {
         Some(roles) => roles
-            .check::<_, 8>(tree)
+            .check(tree)
             .map(|_| ())
             .map_err(|()| BlobError::BadCollapsePlan),
         None => Ok(()),

@@ -12,7 +12,9 @@
 //! area times its number of four-triangle batches.
 
 use super::roles::{self, CollapseRoles, MERGED_LEAF_MAX};
-use super::walk::{Lanes, walk_wide_nodes};
+#[cfg(feature = "parallel")]
+use super::walk::Lanes;
+use super::walk::{LaneSlots, walk_wide_nodes};
 use crate::bvh::{Bvh, BvhNode, MAX_DEPTH, TreeArrays};
 use crate::error::{BufferKind, BuildError};
 
@@ -170,16 +172,16 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     }
 
     /// The plan `roles` describe for `tree` (as [`write_roles`](Self::write_roles) wrote them,
-    /// typically for a blob), checked with [`CollapseRoles::check`], which also counts the
-    /// nodes: no solving. Any roles that pass give a valid wide tree with the same answers as
+    /// typically for a blob), checked as [`CollapseRoles::check`] checks them but with at most
+    /// `W` lanes per node, and its nodes counted: no solving. Any roles that pass give a valid wide tree with the same answers as
     /// every other plan.
     ///
     /// # Errors
     /// [`BuildError::InvalidConfig`] (field `roles`) when the roles do not describe a collapse
-    /// of `tree` into nodes of `W` lanes.
+    /// of `tree` into nodes of at most `W` lanes.
     pub fn from_roles(tree: &Bvh<'a>, roles: CollapseRoles<'p>) -> Result<Self, BuildError> {
         let nodes = roles
-            .check::<_, W>(tree)
+            .walk::<_, W>(tree, |_, _, _| {})
             .map_err(|()| BuildError::InvalidConfig { field: "roles" })?;
         Ok(Self {
             tree: *tree,
@@ -325,25 +327,33 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
             Choices::Stored(roles) if root == 0 => roles
                 .walk::<_, W>(&self.tree, each)
                 .map_err(|()| BuildError::InvalidConfig { field: "roles" }),
-            _ => walk_wide_nodes::<W>(root, |binary| self.lanes(binary), each).ok_or(too_deep),
+            _ => walk_wide_nodes::<W>(root, |binary, slots| self.lanes_into(binary, slots), each)
+                .ok_or(too_deep),
         }
     }
 
     /// The lanes of the wide node at the inner binary node `inner` (left to right), as
     /// `(binary index, node)`: a merged leaf is a leaf node over its subtree's box and slots.
     /// `None` for a node the tree does not have.
+    #[cfg(feature = "parallel")]
     pub(super) fn lanes(&self, inner: u32) -> Option<Lanes<W>> {
+        let mut slots = [(0u32, BvhNode::EMPTY); W];
+        let len = self.lanes_into(inner, &mut slots)?;
+        Some((slots, len))
+    }
+
+    /// [`lanes`](Self::lanes) written into `slots`; returns how many.
+    fn lanes_into(&self, inner: u32, slots: &mut LaneSlots<W>) -> Option<usize> {
         let entries = match self.choices {
             Choices::Solved(entries) => entries,
             Choices::Stored(roles) => {
                 return roles
-                    .lanes::<_, W>(&self.tree, inner)
-                    .map(|(lanes, _)| lanes);
+                    .lanes::<_, W>(&self.tree, inner, slots)
+                    .map(|(len, _)| len);
             }
         };
         let node = self.tree.nodes().get(inner as usize)?;
         let entry = entries.get(entry_slot(node)?)?;
-        let mut lanes = [(0u32, BvhNode::EMPTY); W];
         let mut len = 0usize;
         // (binary index, lane budget), the left child on top. Each step pops one and pushes
         // at most two whose budgets sum to its own, so at most W + 1 wait at once.
@@ -358,7 +368,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
             let (at, budget) = *stack.get(top)?;
             let child = self.tree.nodes().get(at as usize)?;
             if child.is_leaf() {
-                *lanes.get_mut(len)? = (at, *child);
+                *slots.get_mut(len)? = (at, *child);
                 len += 1;
                 continue;
             }
@@ -370,7 +380,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
                 } else {
                     *child
                 };
-                *lanes.get_mut(len)? = (at, lane);
+                *slots.get_mut(len)? = (at, lane);
                 len += 1;
             } else {
                 let left = usize::from(*plan.left.get(spread - 1)?);
@@ -379,7 +389,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
                 depth += 2;
             }
         }
-        Some((lanes, len))
+        Some(len)
     }
 }
 

@@ -9,7 +9,7 @@
 //! merged leaf) and every binary leaf has role `OPEN`, and so do the padding bits of the last
 //! byte: one tree and one plan give exactly one byte string.
 
-use super::walk::{Lanes, walk_wide_nodes};
+use super::walk::{LaneSlots, walk_wide_nodes};
 use crate::bvh::{BvhNode, MAX_DEPTH, TreeArrays};
 
 /// The most order slots (triangles) a leaf merged from a binary subtree may hold: two batches
@@ -52,7 +52,7 @@ impl<'a> CollapseRoles<'a> {
     }
 
     /// Node `node`'s role; 3 (no role) past the end.
-    fn role(&self, node: usize) -> u8 {
+    pub(super) fn role(&self, node: usize) -> u8 {
         self.bytes
             .get(node / 4)
             .map_or(3, |byte| (byte >> (2 * (node % 4))) & 3)
@@ -66,9 +66,9 @@ impl<'a> CollapseRoles<'a> {
             .sum()
     }
 
-    /// Checks that these roles describe a collapse of `tree` into nodes of at most `W` lanes,
-    /// exactly as the module's docs lay it out: as many bytes as the tree needs, the root
-    /// `WIDE` (when inner), every wide node ending within `W` lanes, no role on a leaf, merged
+    /// Checks that these roles describe a collapse of `tree` into nodes of at most eight lanes
+    /// (the collapse blobs store), exactly as the module's docs lay it out: as many bytes as
+    /// the tree needs, the root `WIDE` (when inner), no wide node of more than eight lanes, no role on a leaf, merged
     /// leaves over at most [`MERGED_LEAF_MAX`] consecutive slots, and no role below a merged
     /// leaf or in the padding. Returns how many wide nodes the collapse has (0 for an empty
     /// tree, 1 for a lone leaf).
@@ -81,9 +81,10 @@ impl<'a> CollapseRoles<'a> {
     /// `Err(())` when any of that fails, or when a child does not follow its parent or the
     /// tree is deeper than [`MAX_DEPTH`] (no checked tree is).
     #[allow(clippy::result_unit_err)]
-    pub fn check<T: TreeArrays, const W: usize>(&self, tree: &T) -> Result<usize, ()> {
+    pub fn check<T: TreeArrays>(&self, tree: &T) -> Result<usize, ()> {
+        const W: usize = 8;
         let n = tree.node_count();
-        if self.bytes.len() != Self::len_for(n) || !(2..=8).contains(&W) {
+        if self.bytes.len() != Self::len_for(n) {
             return Err(());
         }
         if (n..4 * self.bytes.len()).any(|i| self.role(i) != OPEN) {
@@ -177,10 +178,10 @@ impl<'a> CollapseRoles<'a> {
         let mut merged = 0usize;
         let nodes = walk_wide_nodes::<W>(
             0,
-            |inner| {
-                let (lanes, merged_here) = self.lanes::<T, W>(tree, inner)?;
+            |inner, slots| {
+                let (len, merged_here) = self.lanes::<T, W>(tree, inner, slots)?;
                 merged += merged_here;
-                Some(lanes)
+                Some(len)
             },
             each,
         )
@@ -198,20 +199,20 @@ impl<'a> CollapseRoles<'a> {
         self.marked().max(1)
     }
 
-    /// The lanes of the wide node at the inner node `inner` (left to right, as
-    /// [`CollapsePlan::lanes`](super::CollapsePlan) gives them: a merged leaf as a leaf node over
-    /// its subtree's box and slots), how many, and how many of them are merged leaves. `None`
-    /// when the roles break a rule of the module's docs on the way.
+    /// Writes the lanes of the wide node at the inner node `inner` into `slots` (left to
+    /// right, as [`CollapsePlan::lanes`](super::CollapsePlan) gives them: a merged leaf as a
+    /// leaf node over its subtree's box and slots) and returns how many, and how many of them
+    /// are merged leaves. `None` when the roles break a rule of the module's docs on the way.
     pub(super) fn lanes<T: TreeArrays, const W: usize>(
         &self,
         tree: &T,
         inner: u32,
-    ) -> Option<(Lanes<W>, usize)> {
+        slots: &mut LaneSlots<W>,
+    ) -> Option<(usize, usize)> {
         let node = tree.node(inner as usize)?;
         if node.is_leaf() {
             return None;
         }
-        let mut lanes = [(0u32, BvhNode::EMPTY); W];
         let (mut len, mut merged) = (0usize, 0usize);
         // Nodes still to walk, the leftmost on top: each lane taken or still waiting needs a
         // place of its own, so more than W at once is already too many.
@@ -240,10 +241,10 @@ impl<'a> CollapseRoles<'a> {
                 }
                 _ => return None,
             };
-            *lanes.get_mut(len)? = (at, lane);
+            *slots.get_mut(len)? = (at, lane);
             len += 1;
         }
-        Some(((lanes, len), merged))
+        Some((len, merged))
     }
 }
 
