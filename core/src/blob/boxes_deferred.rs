@@ -20,8 +20,10 @@ use crate::query::LeafTriangles;
 use crate::structure_kind::StructureKind;
 
 /// A self-contained BVH blob whose every check has passed except the boxes (finite, nested,
-/// holding their triangles) and the collapse roles, which the collapse of the decoded tree
-/// checks as it walks them. Only for decoding into buffers that are then checked in full.
+/// holding their triangles), the collapse roles, which the collapse of the decoded tree checks
+/// as it walks them, and (without split references) the fingerprint of the order, which the
+/// decoded order's exact count replaces. Only for decoding into buffers that are then checked
+/// in full.
 pub(crate) struct BoxesUnchecked<'a>(BlobView<'a>);
 
 impl<'a> BoxesUnchecked<'a> {
@@ -47,7 +49,12 @@ impl<'a> BoxesUnchecked<'a> {
         }
         let in_range = InRange::of(&mesh);
         tree.depth = check(&tree, Some(&in_range), CheckLevel::Topology, Extent::Exact)?.depth;
-        check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
+        // Without split references the loader's exact count of every triangle's slots
+        // (`RepeatedTriangle`) comes next and covers this fingerprint of the order; with them
+        // this also checks the table itself.
+        if !tree.split_refs().is_empty() {
+            check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
+        }
         check_repeated_corners(&tree, Some(&mesh))?;
         same_bounds(
             &tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb()),

@@ -77,6 +77,23 @@ impl<'a> BlobView<'a> {
         positions: &'m mut [[f32; 3]],
         triangles: &'m mut [[u32; 3]],
     ) -> Result<ValidMesh<'m>, BlobError> {
+        let (nv, nt) = self.copy_mesh(positions, triangles)?;
+        let positions: &'m [[f32; 3]] = positions;
+        let triangles: &'m [[u32; 3]] = triangles;
+        Ok(MeshRef::new(
+            positions.get(..nv).unwrap_or_default(),
+            triangles.get(..nt).unwrap_or_default(),
+        )
+        .validate()?)
+    }
+
+    /// [`decode_mesh`](Self::decode_mesh)'s copy alone, for a loader that keeps the arrays:
+    /// the view checked the mesh already. Returns the vertex and triangle counts.
+    pub(crate) fn copy_mesh(
+        &self,
+        positions: &mut [[f32; 3]],
+        triangles: &mut [[u32; 3]],
+    ) -> Result<(usize, usize), BlobError> {
         let (nv, nt) = (
             self.header.vertex_count as usize,
             self.header.triangle_count as usize,
@@ -112,13 +129,7 @@ impl<'a> BlobView<'a> {
             }
             BlobMesh::Packed { .. } => return Err(BlobError::MeshNotIncluded),
         }
-        let positions: &'m [[f32; 3]] = positions;
-        let triangles: &'m [[u32; 3]] = triangles;
-        Ok(MeshRef::new(
-            positions.get(..nv).unwrap_or_default(),
-            triangles.get(..nt).unwrap_or_default(),
-        )
-        .validate()?)
+        Ok((nv, nt))
     }
 
     /// Copies every triangle's corners in leaf order into `out` (from the packed copy, or

@@ -93,7 +93,8 @@ impl MeshBvh {
         } else {
             let mut positions = vec![[0.0f32; 3]; v];
             let mut triangles = vec![[0u32; 3]; n];
-            view.decode_mesh(&mut positions, &mut triangles)?;
+            // Checked by the view already: copied, not validated again.
+            view.copy_mesh(&mut positions, &mut triangles)?;
             (positions, triangles)
         };
         let roles = view.tree().and_then(|t| t.collapse_roles());
