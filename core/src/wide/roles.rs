@@ -15,6 +15,7 @@ use crate::bvh::{BvhNode, MAX_DEPTH, TreeArrays};
 /// The most order slots (triangles) a leaf merged from a binary subtree may hold: two batches
 /// of four. Leaves of the binary tree keep their own size, whatever it is.
 pub const MERGED_LEAF_MAX: u32 = 8;
+
 /// The role of a node that is not a lane: opened, a binary leaf, the padding, or unreached.
 pub(super) const OPEN: u8 = 0;
 /// The role of an inner node that starts a wide node (the root, and every inner lane).
@@ -24,7 +25,14 @@ pub(super) const MERGED: u8 = 2;
 
 /// The roles of a binary tree's nodes in a collapse ([`CollapsePlan::write_roles`](
 /// super::CollapsePlan::write_roles)): node `i`'s role is bits `2 (i mod 4)` and `2 (i mod 4) + 1`
-/// of byte `i / 4`, [`CollapseRoles::len_for`] bytes in all. Read by
+/// of byte `i / 4`, [`CollapseRoles::len_for`] bytes in all.
+///
+/// A role is 1 for an inner node that starts a wide node (the root, and every inner lane), 2
+/// for an inner node whose subtree becomes one leaf lane (its consecutive slots, at most
+/// [`MERGED_LEAF_MAX`]), and 0 for every other node: one opened in its parent's wide node (its
+/// children are walked in its place), a binary leaf (always a leaf lane), a node below a
+/// merged leaf, and the padding of the last byte. So one tree and one plan give exactly one
+/// byte string. Read by
 /// [`CollapsePlan::from_roles`](super::CollapsePlan::from_roles), which collapses a tree with
 /// them without solving the plan, and checked against a tree by [`CollapseRoles::check`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
