@@ -172,9 +172,9 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     }
 
     /// The plan `roles` describe for `tree` (as [`write_roles`](Self::write_roles) wrote them,
-    /// typically for a blob), checked as [`CollapseRoles::check`] checks them but with at most
-    /// `W` lanes per node, and its nodes counted: no solving. Any roles that pass give a valid wide tree with the same answers as
-    /// every other plan.
+    /// typically for a blob), checked as [`CollapseRoles::check`] checks them but with at most `W`
+    /// lanes per node, and its nodes counted: no solving. Any roles that pass give a valid wide
+    /// tree with the same answers as every other plan.
     ///
     /// # Errors
     /// [`BuildError::InvalidConfig`] (field `roles`) when the roles do not describe a collapse

@@ -74,11 +74,11 @@ impl<'a> CollapseRoles<'a> {
             .sum()
     }
 
-    /// Checks that these roles describe a collapse of `tree` into nodes of at most eight lanes
-    /// (the collapse blobs store), exactly as the module's docs lay it out: as many bytes as
-    /// the tree needs, the root `WIDE` (when inner), no wide node of more than eight lanes, no role on a leaf, merged
-    /// leaves over at most [`MERGED_LEAF_MAX`] consecutive slots, and no role below a merged
-    /// leaf or in the padding. Returns how many wide nodes the collapse has (0 for an empty
+    /// Checks that these roles describe a collapse of `tree` into nodes of at most eight lanes (the
+    /// collapse blobs store), exactly as the module's docs lay it out: as many bytes as the tree
+    /// needs, the root `WIDE` (when inner), no wide node of more than eight lanes, no role on a
+    /// leaf, merged leaves over at most [`MERGED_LEAF_MAX`] consecutive slots, and no role below a
+    /// merged leaf or in the padding. Returns how many wide nodes the collapse has (0 for an empty
     /// tree, 1 for a lone leaf).
     ///
     /// One pass over the binary nodes with a stack of [`MAX_DEPTH`] entries and a counter per
@@ -161,7 +161,9 @@ impl<'a> CollapseRoles<'a> {
         Ok(wide)
     }
 
-    /// [`check`](Self::check), handing every wide node on the way to `each` as
+    /// The rules of [`check`](Self::check) with at most `W` lanes per node, checked along the
+    /// walk a collapse makes (each node's lanes, then that the marked nodes are exactly the
+    /// wide nodes and the merged leaves), handing every wide node on the way to `each` as
     /// [`CollapsePlan::for_each_node`](super::CollapsePlan) does (a lone leaf's node too, as
     /// one leaf lane), so that a collapse checks the roles as it goes. After an error `each`
     /// may have seen some nodes.

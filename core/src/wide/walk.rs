@@ -17,11 +17,11 @@ pub(super) type Lanes<const W: usize> = ([(u32, BvhNode); W], usize);
 pub(super) type LaneSlots<const W: usize> = [(u32, BvhNode); W];
 
 /// Walks the wide nodes of the subtree under the inner binary node `root` in a collapse's
-/// numbering, with each node's lanes written by `lanes_of` (which returns how many), handing `each` every node's index, its
-/// lanes and the index its first inner lane gets; returns how many nodes there are, or `None`
-/// when `lanes_of` fails or the walk grows deeper than a valid tree can. `root`'s node is 0 and
-/// the others are numbered from 1, depth first: a node's inner lanes take the next free
-/// indices in lane order, then the last one's subtree comes first.
+/// numbering, with each node's lanes written by `lanes_of` (which returns how many), handing `each`
+/// every node's index, its lanes and the index its first inner lane gets; returns how many nodes
+/// there are, or `None` when `lanes_of` fails or the walk grows deeper than a valid tree can.
+/// `root`'s node is 0 and the others are numbered from 1, depth first: a node's inner lanes take
+/// the next free indices in lane order, then the last one's subtree comes first.
 pub(super) fn walk_wide_nodes<const W: usize>(
     root: u32,
     mut lanes_of: impl FnMut(u32, &mut LaneSlots<W>) -> Option<usize>,
