@@ -14,7 +14,6 @@ use std::time::Duration;
 use criterion::{
     BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main, measurement::WallTime,
 };
-use meshq::MeshQuery;
 use meshq::owned::{MeshIndex, StructureKind};
 use meshq_tests::{LoadedMesh, in_stadium, load_mesh, load_obj, workload};
 

@@ -5,7 +5,6 @@ use std::time::Instant;
 
 use anyhow::Result;
 use clap::Args;
-use meshq::MeshQuery;
 use meshq::math::Vec3;
 use serde::Serialize;
 

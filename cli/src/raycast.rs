@@ -5,7 +5,6 @@ use std::time::Instant;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
-use meshq::MeshQuery;
 use meshq::math::{Ray, RayHit, Vec3};
 use meshq::owned::MeshIndex;
 use meshq::parallel;

@@ -1,7 +1,6 @@
 //! What a [`crate::MeshBvh`] holds: the core's owned [`MeshIndex`] (mesh, structure of any kind,
 //! packed triangles) and, for a loaded blob, its bytes.
 
-use meshq::MeshQuery;
 use meshq::math::{ClosestPoint, Ray, RayHit, Triangle};
 use meshq::owned::MeshIndex;
 use meshq::query::RayOptions;

@@ -21,6 +21,7 @@ mod index_blob;
 mod mesh_bvh;
 mod mesh_grid;
 mod mesh_index;
+mod mesh_index_queries;
 mod mesh_kdtree;
 mod mesh_octree;
 mod remeshed;

@@ -477,7 +477,9 @@ fn by_network8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
         (3, 4),
         (5, 6),
     ];
-    for (a, b) in NETWORK {
+    // By reference: iterating the array by value copied all 19 pairs (a call to `memcpy`) at
+    // every node.
+    for &(a, b) in &NETWORK {
         if let (Some(&x), Some(&y)) = (v.get(a), v.get(b)) {
             let (lo, hi) = (x.min(y), x.max(y));
             if let Some(p) = v.get_mut(a) {
