@@ -5,64 +5,62 @@ use glam::{BVec4A, Mat4, Vec3, Vec4};
 
 use crate::math::{PackedTriangle, Triangle};
 
-/// One coordinate axis of four points, a lane each.
+/// Four points, a lane each: the x, y and z rows.
 #[derive(Clone, Copy)]
 pub(crate) struct Lanes3 {
-    pub(crate) x: Vec4,
-    pub(crate) y: Vec4,
-    pub(crate) z: Vec4,
+    pub(crate) rows: [Vec4; 3],
 }
 
 impl Lanes3 {
     #[inline(always)]
     pub(crate) fn splat(p: Vec3) -> Self {
         Self {
-            x: Vec4::splat(p.x),
-            y: Vec4::splat(p.y),
-            z: Vec4::splat(p.z),
+            rows: [Vec4::splat(p.x), Vec4::splat(p.y), Vec4::splat(p.z)],
         }
     }
 
     /// Coordinate `k` (0 = x, 1 = y, anything else z) of the four points, read where it is
-    /// stored: the row is chosen by address (a conditional move), not by a branch per axis
-    /// that a new ray's frame would mispredict.
+    /// stored: the row is found by its offset (`k` clamped, so no bounds check), not by a
+    /// branch per axis that a new ray's frame would mispredict.
     #[inline(always)]
     pub(crate) fn axis_ref(&self, k: usize) -> &Vec4 {
-        let (x_or_y, z) = (if k == 0 { &self.x } else { &self.y }, &self.z);
-        if k >= 2 { z } else { x_or_y }
+        let [.., z] = &self.rows;
+        self.rows.get(k.min(2)).unwrap_or(z)
     }
 
     #[inline(always)]
     pub(crate) fn sub(self, o: Self) -> Self {
+        let ([x, y, z], [ox, oy, oz]) = (self.rows, o.rows);
         Self {
-            x: self.x - o.x,
-            y: self.y - o.y,
-            z: self.z - o.z,
+            rows: [x - ox, y - oy, z - oz],
         }
     }
 
     /// `self + d·s`, per component, as the scalar `a + ab * s`.
     #[inline(always)]
     pub(crate) fn add_scaled(self, d: Self, s: Vec4) -> Self {
+        let ([x, y, z], [dx, dy, dz]) = (self.rows, d.rows);
         Self {
-            x: self.x + d.x * s,
-            y: self.y + d.y * s,
-            z: self.z + d.z * s,
+            rows: [x + dx * s, y + dy * s, z + dz * s],
         }
     }
 
     /// `x·x' + y·y' + z·z'`, left to right, as [`dot`](crate::math::dot).
     #[inline(always)]
     pub(crate) fn dot(self, o: Self) -> Vec4 {
-        self.x * o.x + self.y * o.y + self.z * o.z
+        let ([x, y, z], [ox, oy, oz]) = (self.rows, o.rows);
+        x * ox + y * oy + z * oz
     }
 
     #[inline(always)]
     pub(crate) fn select(mask: BVec4A, yes: Self, no: Self) -> Self {
+        let ([yx, yy, yz], [nx, ny, nz]) = (yes.rows, no.rows);
         Self {
-            x: Vec4::select(mask, yes.x, no.x),
-            y: Vec4::select(mask, yes.y, no.y),
-            z: Vec4::select(mask, yes.z, no.z),
+            rows: [
+                Vec4::select(mask, yx, nx),
+                Vec4::select(mask, yy, ny),
+                Vec4::select(mask, yz, nz),
+            ],
         }
     }
 }
@@ -83,9 +81,11 @@ impl TriangleLanes {
         let axis = |f: fn(&Triangle) -> Vec3| {
             let (p0, p1, p2, p3) = (f(t0), f(t1), f(t2), f(t3));
             Lanes3 {
-                x: Vec4::new(p0.x, p1.x, p2.x, p3.x),
-                y: Vec4::new(p0.y, p1.y, p2.y, p3.y),
-                z: Vec4::new(p0.z, p1.z, p2.z, p3.z),
+                rows: [
+                    Vec4::new(p0.x, p1.x, p2.x, p3.x),
+                    Vec4::new(p0.y, p1.y, p2.y, p3.y),
+                    Vec4::new(p0.z, p1.z, p2.z, p3.z),
+                ],
             }
         };
         Self {
@@ -109,19 +109,17 @@ impl TriangleLanes {
         let m = Mat4::from_cols(mid(t0), mid(t1), mid(t2), mid(t3)).transpose();
         Some(Self {
             a: Lanes3 {
-                x: h.x_axis,
-                y: h.y_axis,
-                z: h.z_axis,
+                rows: [h.x_axis, h.y_axis, h.z_axis],
             },
             b: Lanes3 {
-                x: h.w_axis,
-                y: m.x_axis,
-                z: m.y_axis,
+                rows: [h.w_axis, m.x_axis, m.y_axis],
             },
             c: Lanes3 {
-                x: m.z_axis,
-                y: m.w_axis,
-                z: Vec4::new(t0.c[2], t1.c[2], t2.c[2], t3.c[2]),
+                rows: [
+                    m.z_axis,
+                    m.w_axis,
+                    Vec4::new(t0.c[2], t1.c[2], t2.c[2], t3.c[2]),
+                ],
             },
         })
     }
