@@ -3,7 +3,7 @@
 //! Like the one-box tests these only decide what a query visits, with the query's margin of
 //! slack, so lane-wise rounding (or a target without SIMD) never changes an answer.
 
-use glam::{Vec3, Vec4};
+use glam::{Vec3, Vec3A, Vec4};
 use wide::f32x8;
 
 use crate::geom::SlabRay;
@@ -16,32 +16,73 @@ use crate::math::{Aabb4, Aabb8};
 pub(super) const MARGIN: f32 = 1.0 / 65_536.0;
 
 /// A ray's origin and padded inverse direction (from its [`SlabRay`]) spread over four lanes,
-/// computed once per ray, and its interval.
+/// computed once per ray, and its interval, with the [`MARGIN`] folded in where it can be.
+///
+/// For `t_min ≥ 0` no entry distance is negative, and widening `[entry, exit]` by the margin
+/// is scaling the entry by `1 − MARGIN` and the exit by `1 + MARGIN`. Scaling by a positive
+/// constant commutes with `max` and `min`, so it moves into the terms: each near plane's
+/// distance is taken with the inverse direction scaled by `1 − MARGIN`, each far plane's with
+/// it scaled by `1 + MARGIN`, and the interval's ends are stored scaled. The same real
+/// numbers as scaling the entry and exit, rounded differently by an ulp or two, far inside the
+/// margin; one product fewer on each node's path to its verdict. For a negative `t_min` the
+/// ends are widened after, as `x ∓ |x|·MARGIN`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LaneRay {
     origin: [Vec4; 3],
-    inv_dir: [Vec4; 3],
-    /// `t_min` and `t_max` in every lane. Kept here as whole vectors, written whole when a hit
-    /// shrinks `t_max`: a splat of the scalar read next to other fields is compiled to one wide
-    /// load, which waits for a just-stored scalar instead of forwarding it.
+    /// The inverse direction for near planes: times `1 − MARGIN` when `t_min ≥ 0`.
+    inv_near: [Vec4; 3],
+    /// The inverse direction for far planes: times `1 + MARGIN` when `t_min ≥ 0` (kept finite).
+    inv_far: [Vec4; 3],
+    /// `t_min` and `t_max` in every lane, scaled as the inverse directions are. Kept here as
+    /// whole vectors, written whole when a hit shrinks `t_max`: a splat of the scalar read next
+    /// to other fields is compiled to one wide load, which waits for a just-stored scalar
+    /// instead of forwarding it.
     t_min: Vec4,
     t_max: Vec4,
-    /// Whether `t_min ≥ 0` (no entry distance is negative then).
+    /// Whether `t_min ≥ 0` (the margin is folded in).
     from_zero: bool,
     /// Per axis, whether the inverse direction is negative (the near plane is `max`).
     negative: [bool; 3],
+}
+
+/// The factors [`LaneRay`] scales near and far distances by: `(1 − MARGIN, 1 + MARGIN)` when
+/// the margin is folded in (`from_zero`), else `(1, 1)`.
+#[inline(always)]
+fn fold_factors(from_zero: bool) -> (f32, f32) {
+    if from_zero {
+        (1.0 - MARGIN, 1.0 + MARGIN)
+    } else {
+        (1.0, 1.0)
+    }
 }
 
 impl LaneRay {
     #[inline(always)]
     pub(crate) fn new(ray: &SlabRay) -> Self {
         let (o, inv) = (ray.origin, ray.inv_dir);
+        let from_zero = ray.t_min >= 0.0;
+        let (near, far) = fold_factors(from_zero);
+        // The padded inverse is at most `f32::MAX` in size: scaled up it stays finite, so a
+        // far plane through the origin still gives `0`, never `0 · ∞`.
+        let far_inv = (inv * far)
+            .max(Vec3A::splat(-f32::MAX))
+            .min(Vec3A::splat(f32::MAX));
+        let near_inv = inv * near;
         Self {
             origin: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
-            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
-            t_min: Vec4::splat(ray.t_min),
-            t_max: Vec4::splat(ray.t_max),
-            from_zero: ray.t_min >= 0.0,
+            inv_near: [
+                Vec4::splat(near_inv.x),
+                Vec4::splat(near_inv.y),
+                Vec4::splat(near_inv.z),
+            ],
+            inv_far: [
+                Vec4::splat(far_inv.x),
+                Vec4::splat(far_inv.y),
+                Vec4::splat(far_inv.z),
+            ],
+            t_min: Vec4::splat(ray.t_min * near),
+            t_max: Vec4::splat(ray.t_max * far),
+            from_zero,
             negative: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
         }
     }
@@ -49,10 +90,10 @@ impl LaneRay {
     /// Lowers the interval's end to `t_max` (a hit was found).
     #[inline(always)]
     pub(crate) fn set_t_max(&mut self, t_max: f32) {
-        self.t_max = Vec4::splat(t_max);
+        self.t_max = Vec4::splat(t_max * fold_factors(self.from_zero).1);
     }
 
-    /// The lanes this ray enters within its interval, widened by `margin` (relative), and
+    /// The lanes this ray enters within its interval, widened by [`MARGIN`] (relative), and
     /// each lane's entry distance less that margin.
     ///
     /// Each axis reads its near plane first (`min` for a positive inverse direction), which
@@ -60,42 +101,34 @@ impl LaneRay {
     /// empty box to an empty interval. `planes` picks them: [`near_far`] for boxes read where
     /// they are stored, [`near_far_values`] for boxes just computed.
     #[inline(always)]
-    pub(crate) fn enter(&self, node: &Aabb4, margin: f32, planes: Planes) -> (u32, [f32; 4]) {
+    pub(crate) fn enter(&self, node: &Aabb4, planes: Planes) -> (u32, [f32; 4]) {
         let [neg_x, neg_y, neg_z] = self.negative;
         let planes = [
             planes(neg_x, &node.min_x, &node.max_x),
             planes(neg_y, &node.min_y, &node.max_y),
             planes(neg_z, &node.min_z, &node.max_z),
         ];
-        self.verdict(planes, margin)
+        self.verdict(planes)
     }
 
     /// The verdict and keys from each axis's (near, far) planes.
     #[inline(always)]
-    fn verdict(
-        &self,
-        [(nx, fx), (ny, fy), (nz, fz)]: [(Vec4, Vec4); 3],
-        margin: f32,
-    ) -> (u32, [f32; 4]) {
+    fn verdict(&self, [(nx, fx), (ny, fy), (nz, fz)]: [(Vec4, Vec4); 3]) -> (u32, [f32; 4]) {
         let [ox, oy, oz] = self.origin;
-        let [ix, iy, iz] = self.inv_dir;
+        let [ix, iy, iz] = self.inv_near;
+        let [jx, jy, jz] = self.inv_far;
         let entry = ((nx - ox) * ix)
             .max((ny - oy) * iy)
             .max((nz - oz) * iz)
             .max(self.t_min);
-        let exit = ((fx - ox) * ix)
-            .min((fy - oy) * iy)
-            .min((fz - oz) * iz)
+        let exit = ((fx - ox) * jx)
+            .min((fy - oy) * jy)
+            .min((fz - oz) * jz)
             .min(self.t_max);
-        // For `t_min ≥ 0` the entry is never negative, and a negative exit leaves the interval
-        // empty whichever way it is widened, so `x ∓ |x|·margin` is `x·(1 ∓ margin)`: one
-        // product, the same real number. Rounded once instead of twice, it can differ by an ulp
-        // where `x·margin` is subnormal (|x| below about 1e-33), still widening by the margin
-        // to within that ulp, far more than the slab arithmetic's own rounding.
         let (lo, hi) = if self.from_zero {
-            (entry * (1.0 - margin), exit * (1.0 + margin))
+            (entry, exit)
         } else {
-            (entry - entry.abs() * margin, exit + exit.abs() * margin)
+            (entry - entry.abs() * MARGIN, exit + exit.abs() * MARGIN)
         };
         // Unused lanes need no mask here: their empty boxes give an empty interval (or NaN),
         // and the structure ignores their verdict anyway.
@@ -153,7 +186,8 @@ pub(crate) fn enter_point(node: &Aabb4, point: Vec3, limit: f32, margin: f32) ->
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LaneRay8 {
     origin: [f32x8; 3],
-    inv_dir: [f32x8; 3],
+    inv_near: [f32x8; 3],
+    inv_far: [f32x8; 3],
     t_min: f32x8,
     t_max: f32x8,
     /// Whether `t_min ≥ 0`.
@@ -172,7 +206,8 @@ impl LaneRay8 {
         };
         Self {
             origin: four.origin.map(twice),
-            inv_dir: four.inv_dir.map(twice),
+            inv_near: four.inv_near.map(twice),
+            inv_far: four.inv_far.map(twice),
             t_min: twice(four.t_min),
             t_max: twice(four.t_max),
             from_zero: four.from_zero,
@@ -181,13 +216,14 @@ impl LaneRay8 {
     }
 
     /// [`LaneRay::enter`] for eight boxes: the lanes this ray enters within its interval,
-    /// widened by `margin` (relative), and each lane's entry distance less that margin. The
+    /// widened by [`MARGIN`] (relative), and each lane's entry distance less that margin. The
     /// same arithmetic lane for lane, in eight-lane vectors (one AVX instruction where the
     /// target has it, two four-lane ones elsewhere).
     #[inline(always)]
-    pub(crate) fn enter(&self, node: &Aabb8, margin: f32) -> (u32, [f32; 8]) {
+    pub(crate) fn enter(&self, node: &Aabb8) -> (u32, [f32; 8]) {
         let [ox, oy, oz] = self.origin;
-        let [ix, iy, iz] = self.inv_dir;
+        let [ix, iy, iz] = self.inv_near;
+        let [jx, jy, jz] = self.inv_far;
         let [neg_x, neg_y, neg_z] = self.negative;
         let (nx, fx) = near_far8(neg_x, &node.min_x, &node.max_x);
         let (ny, fy) = near_far8(neg_y, &node.min_y, &node.max_y);
@@ -196,11 +232,17 @@ impl LaneRay8 {
             .fast_max((ny - oy) * iy)
             .fast_max((nz - oz) * iz)
             .fast_max(self.t_min);
-        let exit = ((fx - ox) * ix)
-            .fast_min((fy - oy) * iy)
-            .fast_min((fz - oz) * iz)
+        let exit = ((fx - ox) * jx)
+            .fast_min((fy - oy) * jy)
+            .fast_min((fz - oz) * jz)
             .fast_min(self.t_max);
-        widened_verdict8(entry, exit, self.from_zero, margin)
+        let (lo, hi) = if self.from_zero {
+            (entry, exit)
+        } else {
+            let m = f32x8::splat(MARGIN);
+            (entry - entry.abs() * m, exit + exit.abs() * m)
+        };
+        (lo.simd_le(hi).to_bitmask(), lo.to_array())
     }
 }
 
@@ -321,7 +363,7 @@ mod tests {
                 lanes.set_t_max(next().abs() * 4.0);
             }
             for planes in [near_far as Planes, near_far_values] {
-                let (mask, _) = lanes.enter(&boxes, MARGIN, planes);
+                let (mask, _) = lanes.enter(&boxes, planes);
                 assert_eq!(mask & 0b1100, 0, "round {round}: {mask:04b}");
                 used_entered += (mask & 0b11).count_ones();
             }
@@ -329,7 +371,7 @@ mod tests {
             for lane in 0..2 {
                 boxes8.set_lane(lane, &boxes.lane(lane));
             }
-            let (mask8, _) = LaneRay8::from_lanes(&lanes).enter(&boxes8, MARGIN);
+            let (mask8, _) = LaneRay8::from_lanes(&lanes).enter(&boxes8);
             assert_eq!(mask8 & 0xFC, 0, "round {round}: {mask8:08b}");
             // A packet of rays from the same origin, with directions of the same signs.
             let slabs: [SlabRay; crate::query::packet_lanes::PACKET_RAYS] =
@@ -348,6 +390,84 @@ mod tests {
         }
         // Not vacuous: the used lanes are entered often.
         assert!(used_entered > 10_000, "{used_entered} used lanes entered");
+    }
+
+    /// The lane tests never cull a box the ray meets within its interval, and never key it
+    /// beyond its true entry: against each box's interval computed exactly (in `f64`, where
+    /// the slab arithmetic of `f32` inputs loses far less than the margin), for random rays
+    /// and boxes, thin and grazed boxes among them, `t_min` zero or negative, `t_max` cut
+    /// short or not, four lanes and eight.
+    #[test]
+    fn the_margin_never_culls_a_box_the_ray_meets() {
+        let mut next = uniform(0x5851_f42d_4c95_7f2d);
+        let mut met = 0;
+        let mut v = move || {
+            let (x, y, z) = (next(), next(), next());
+            (Vec3::new(x, y, z), next())
+        };
+        for round in 0..20_000 {
+            let (origin, scalar) = v();
+            let origin = origin * 2.0;
+            // Aimed at the boxes' region, so that most rays meet some of them.
+            let (target, _) = v();
+            let dir = target * 0.5 - origin;
+            if dir.abs().min_element() < 1e-3 {
+                continue;
+            }
+            let mut ray = Ray::new(origin, dir);
+            ray.t_min = if round % 4 == 0 { -0.5 } else { 0.0 };
+            if round % 3 == 0 {
+                ray.t_max = scalar.abs() * 3.0 + 0.01;
+            }
+            let mut boxes = Aabb4::EMPTY;
+            let mut boxes8 = Aabb8::EMPTY;
+            for lane in 0..4 {
+                let ((a, along), (b, _)) = (v(), v());
+                let (mut lo, mut hi) = (a.min(b), a.max(b));
+                // Thin boxes, and boxes whose face the ray grazes at a chosen distance.
+                if lane == 1 {
+                    hi.y = lo.y;
+                }
+                if lane == 2 {
+                    let p = ray.at(along.abs() * 2.0);
+                    lo = lo.min(p);
+                    hi.x = p.x;
+                }
+                boxes.set_lane(lane, &Aabb::new(lo, hi));
+                boxes8.set_lane(lane, &Aabb::new(lo, hi));
+                boxes8.set_lane(lane + 4, &Aabb::new(lo, hi));
+            }
+            let lanes = LaneRay::new(&SlabRay::new(&ray));
+            let (mask, keys) = lanes.enter(&boxes, near_far);
+            let (mask8, keys8) = LaneRay8::from_lanes(&lanes).enter(&boxes8);
+            for lane in 0..4 {
+                let b = boxes.lane(lane);
+                let (mut entry, mut exit) = (f64::from(ray.t_min), f64::from(ray.t_max));
+                for axis in 0..3 {
+                    let o = f64::from(ray.origin[axis]);
+                    let d = f64::from(ray.dir[axis]);
+                    let t0 = (f64::from(b.min[axis]) - o) / d;
+                    let t1 = (f64::from(b.max[axis]) - o) / d;
+                    entry = entry.max(t0.min(t1));
+                    exit = exit.min(t0.max(t1));
+                }
+                if entry <= exit {
+                    met += 1;
+                    for (m, k, l) in [(mask, keys[lane], lane), (mask8, keys8[lane], lane)]
+                        .into_iter()
+                        .chain([(mask8, keys8[lane + 4], lane + 4)])
+                    {
+                        assert!(m & (1 << l) != 0, "round {round} lane {l}: culled");
+                        assert!(
+                            f64::from(k) <= entry,
+                            "round {round} lane {l}: key {k} beyond entry {entry}"
+                        );
+                    }
+                }
+            }
+        }
+        // Not vacuous: many boxes are met.
+        assert!(met > 10_000, "{met} boxes met");
     }
 
     /// Both plane pickers give the same verdict and keys, bit for bit, and a box around the
@@ -371,8 +491,8 @@ mod tests {
             if round % 3 == 0 {
                 boxes.set_lane(1, &Aabb::new(origin - 0.01, origin + 0.01));
             }
-            let by_address = lanes.enter(&boxes, MARGIN, near_far);
-            let by_value = lanes.enter(&boxes, MARGIN, near_far_values);
+            let by_address = lanes.enter(&boxes, near_far);
+            let by_value = lanes.enter(&boxes, near_far_values);
             assert_eq!(by_address.0, by_value.0, "round {round}");
             assert_eq!(
                 by_address.1.map(f32::to_bits),

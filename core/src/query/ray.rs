@@ -287,17 +287,17 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &Aabb8) -> (u32, [f32; 8]) {
-        LaneRay8::from_lanes(&self.lanes).enter(boxes, MARGIN)
+        LaneRay8::from_lanes(&self.lanes).enter(boxes)
     }
 
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes.enter(boxes, MARGIN, near_far)
+        self.lanes.enter(boxes, near_far)
     }
 
     #[inline(always)]
     fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
-        self.lanes.enter(boxes, MARGIN, near_far_values)
+        self.lanes.enter(boxes, near_far_values)
     }
 
     #[inline(always)]
