@@ -138,3 +138,70 @@ fn own_queries_answer_as_brute_force_and_the_generic_path() {
         }
     }
 }
+
+/// Bad input to `MeshIndex`'s own methods: NaN and zero-direction rays hit nothing, non-finite
+/// points and a negative limit find nothing, and a batch with a short buffer is refused with
+/// the generic path's error before anything is written.
+#[test]
+fn own_queries_refuse_bad_input_as_the_generic_path_does() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let rays = workload::random_rays(&loaded.positions, 8, 3);
+    for kind in StructureKind::ALL {
+        let index = MeshIndex::build(&mesh, kind).unwrap();
+        let o = RayOptions::default();
+        for bad in [
+            Ray::new(Vec3::new(f32::NAN, 0.0, 0.0), Vec3::X),
+            Ray::new(Vec3::ZERO, Vec3::new(0.0, f32::NAN, 1.0)),
+            Ray::new(Vec3::ZERO, Vec3::ZERO),
+        ] {
+            assert_eq!(index.raycast(&bad), None, "{kind}");
+            assert!(!index.raycast_any_with(&bad, &o), "{kind}");
+            let mut out = [RayHit {
+                t: 0.0,
+                tri: 0,
+                u: 0.0,
+                v: 0.0,
+            }; 4];
+            assert_eq!(index.raycast_all(&bad, &o, &mut out).written, 0, "{kind}");
+        }
+        for (p, limit) in [
+            (Vec3::new(f32::NAN, 0.0, 0.0), f32::INFINITY),
+            (Vec3::splat(f32::INFINITY), f32::INFINITY),
+            (Vec3::ZERO, -1.0),
+            (Vec3::ZERO, f32::NAN),
+        ] {
+            assert_eq!(point_bits(index.closest_point(p, limit)), None, "{kind}");
+        }
+        let mut keys = vec![0u64; rays.len()];
+        let sentinel = Some(RayHit {
+            t: -7.0,
+            tri: 7,
+            u: 0.0,
+            v: 0.0,
+        });
+        let mut hits = vec![sentinel; rays.len() - 1];
+        let own = index.raycast_batch(&rays, &o, &mut keys, &mut hits);
+        let generic = MeshQuery::raycast_batch(&index, &rays, &o, &mut keys, &mut hits);
+        assert!(own.is_err(), "{kind}: short output accepted");
+        assert_eq!(own, generic, "{kind}");
+        assert!(hits.iter().all(|&h| bits(h) == bits(sentinel)), "{kind}");
+        let mut any = vec![true; rays.len()];
+        assert!(
+            index
+                .raycast_any_batch(&rays, &o, &mut keys[..2], &mut any)
+                .is_err(),
+            "{kind}: short keys accepted"
+        );
+        assert!(any.iter().all(|&a| a), "{kind}: written after an error");
+        let points = workload::closest_points(&loaded.positions, 4, 1);
+        let mut out = vec![None; 3];
+        assert!(
+            index
+                .closest_points(&points, f32::INFINITY, &mut keys, &mut out)
+                .is_err(),
+            "{kind}: short point output accepted"
+        );
+        assert!(out.iter().all(Option::is_none), "{kind}");
+    }
+}
