@@ -79,6 +79,22 @@ impl Aabb4 {
         }
     }
 
+    /// Plane `index` of the four boxes: 0, 1, 2 their smallest x, y, z; 3, 4, 5 their largest
+    /// x, y, z (a larger index: the largest z). With `index` the same for many calls, as a
+    /// ray's near planes are over a walk, the pick compiles to a fixed offset from the boxes.
+    #[must_use]
+    #[inline(always)]
+    pub fn plane(&self, index: usize) -> &[f32; 4] {
+        match index {
+            0 => &self.min_x,
+            1 => &self.min_y,
+            2 => &self.min_z,
+            3 => &self.max_x,
+            4 => &self.max_y,
+            _ => &self.max_z,
+        }
+    }
+
     /// Bit `i` set for each lane whose box is not empty on x (`min_x ≤ max_x`; a NaN
     /// coordinate counts as empty). Built boxes are empty on every axis or on none.
     #[inline(always)]

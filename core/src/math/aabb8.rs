@@ -80,6 +80,22 @@ impl Aabb8 {
         }
     }
 
+    /// Plane `index` of the eight boxes: 0, 1, 2 their smallest x, y, z; 3, 4, 5 their largest
+    /// x, y, z (a larger index: the largest z). With `index` the same for many calls, as a
+    /// ray's near planes are over a walk, the pick compiles to a fixed offset from the boxes.
+    #[must_use]
+    #[inline(always)]
+    pub fn plane(&self, index: usize) -> &[f32; 8] {
+        match index {
+            0 => &self.min_x,
+            1 => &self.min_y,
+            2 => &self.min_z,
+            3 => &self.max_x,
+            4 => &self.max_y,
+            _ => &self.max_z,
+        }
+    }
+
     /// Bit `i` set for each used lane (`min.x ≤ max.x`; the empty box fails it).
     #[must_use]
     #[inline(always)]
@@ -98,5 +114,45 @@ impl Aabb8 {
             .flatten()
             .zip(all(other).iter().flatten())
             .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::math::Aabb4;
+
+    /// Each plane index names the coordinate its documentation says, for four lanes and for
+    /// eight: plane `i` holds lane `k`'s `min[i]` for `i < 3`, its `max[i − 3]` above, and every
+    /// index past 5 the largest z.
+    #[test]
+    fn plane_indices_name_their_coordinates() {
+        let mut four = Aabb4::EMPTY;
+        let mut eight = Aabb8::EMPTY;
+        let boxes: [Aabb; 8] = core::array::from_fn(|k| {
+            let k = k as f32;
+            Aabb::new(
+                Vec3::new(k, 10.0 + k, 20.0 + k),
+                Vec3::new(30.0 + k, 40.0 + k, 50.0 + k),
+            )
+        });
+        for (lane, b) in boxes.iter().enumerate() {
+            four.set_lane(lane, b);
+            eight.set_lane(lane, b);
+        }
+        for index in 0..8 {
+            let coordinate = |b: &Aabb| match index {
+                0..3 => b.min[index],
+                _ => b.max[index.min(5) - 3],
+            };
+            for (lane, b) in boxes.iter().enumerate() {
+                assert_eq!(eight.plane(index)[lane], coordinate(b), "plane {index}");
+                if lane < 4 {
+                    assert_eq!(four.plane(index)[lane], coordinate(b), "plane {index}");
+                }
+            }
+        }
     }
 }

@@ -104,9 +104,9 @@ impl LaneRay {
     pub(crate) fn enter(&self, node: &Aabb4, planes: Planes) -> (u32, [f32; 4]) {
         let [neg_x, neg_y, neg_z] = self.negative;
         let planes = [
-            planes(neg_x, &node.min_x, &node.max_x),
-            planes(neg_y, &node.min_y, &node.max_y),
-            planes(neg_z, &node.min_z, &node.max_z),
+            planes(node, 0, neg_x),
+            planes(node, 1, neg_y),
+            planes(node, 2, neg_z),
         ];
         self.verdict(planes)
     }
@@ -136,24 +136,49 @@ impl LaneRay {
     }
 }
 
-/// Picks one axis's (near, far) planes of four boxes for a ray whose inverse direction is
-/// `negative` or not.
-pub(crate) type Planes = fn(bool, &[f32; 4], &[f32; 4]) -> (Vec4, Vec4);
+/// Picks axis `axis`'s (near, far) planes of four boxes for a ray whose inverse direction on
+/// that axis is `negative` or not.
+pub(crate) type Planes = fn(&Aabb4, usize, bool) -> (Vec4, Vec4);
 
-/// [`Planes`] for boxes read where they are stored: each plane picked by its address (a
-/// conditional move), so only the two planes used are loaded.
+/// The indices ([`Aabb4::plane`], [`Aabb8::plane`]) of axis `axis`'s near and far planes for
+/// a ray whose inverse direction on that axis is `negative` or not: the near plane is the
+/// smaller coordinate for a positive direction.
 #[inline(always)]
-pub(crate) fn near_far(negative: bool, min: &[f32; 4], max: &[f32; 4]) -> (Vec4, Vec4) {
-    let (near, far) = if negative { (max, min) } else { (min, max) };
-    (Vec4::from_array(*near), Vec4::from_array(*far))
+pub(crate) fn plane_indices(axis: usize, negative: bool) -> (usize, usize) {
+    if negative {
+        (axis + 3, axis)
+    } else {
+        (axis, axis + 3)
+    }
+}
+
+/// [`Planes`] for boxes read where they are stored: each plane picked by its index. A ray's
+/// indices are the same at every node, so the compiler keeps each as an offset for the whole
+/// walk and loads the plane directly (a pick among loaded values branched on the sign at
+/// every node, and a random ray's signs mispredict; a pick between addresses cost selects).
+#[inline(always)]
+pub(crate) fn near_far(node: &Aabb4, axis: usize, negative: bool) -> (Vec4, Vec4) {
+    let (near, far) = plane_indices(axis, negative);
+    (
+        Vec4::from_array(*node.plane(near)),
+        Vec4::from_array(*node.plane(far)),
+    )
 }
 
 /// [`Planes`] for boxes just computed (in registers): picked among the values, as picking by
-/// address would first store them.
+/// index would first store them.
 #[inline(always)]
-pub(crate) fn near_far_values(negative: bool, min: &[f32; 4], max: &[f32; 4]) -> (Vec4, Vec4) {
-    let (min, max) = (Vec4::from_array(*min), Vec4::from_array(*max));
+pub(crate) fn near_far_values(node: &Aabb4, axis: usize, negative: bool) -> (Vec4, Vec4) {
+    let min = Vec4::from_array(*node.plane(axis));
+    let max = Vec4::from_array(*node.plane(axis + 3));
     if negative { (max, min) } else { (min, max) }
+}
+
+/// [`near_far`] for eight boxes.
+#[inline(always)]
+pub(crate) fn near_far8(node: &Aabb8, axis: usize, negative: bool) -> (f32x8, f32x8) {
+    let (near, far) = plane_indices(axis, negative);
+    (f32x8::new(*node.plane(near)), f32x8::new(*node.plane(far)))
 }
 
 /// The lanes whose box lies within squared distance `limit` of `point`, after shrinking each
@@ -225,9 +250,9 @@ impl LaneRay8 {
         let [ix, iy, iz] = self.inv_near;
         let [jx, jy, jz] = self.inv_far;
         let [neg_x, neg_y, neg_z] = self.negative;
-        let (nx, fx) = near_far8(neg_x, &node.min_x, &node.max_x);
-        let (ny, fy) = near_far8(neg_y, &node.min_y, &node.max_y);
-        let (nz, fz) = near_far8(neg_z, &node.min_z, &node.max_z);
+        let (nx, fx) = near_far8(node, 0, neg_x);
+        let (ny, fy) = near_far8(node, 1, neg_y);
+        let (nz, fz) = near_far8(node, 2, neg_z);
         let entry = ((nx - ox) * ix)
             .fast_max((ny - oy) * iy)
             .fast_max((nz - oz) * iz)
@@ -268,25 +293,6 @@ pub(super) fn widened_verdict8(
         )
     };
     (lo.simd_le(hi).to_bitmask(), lo.to_array())
-}
-
-/// One axis's (near, far) planes of eight boxes for a ray whose inverse direction is
-/// `negative` or not. Without 256-bit vectors each plane is picked by its address, as
-/// [`near_far`] does (picked among loaded values, the compiler branched on the sign at every
-/// node, and a random ray's signs mispredict); with them, among the values, where LLVM
-/// already picks addresses and an explicit pick was slower.
-#[inline(always)]
-fn near_far8(negative: bool, min: &[f32; 8], max: &[f32; 8]) -> (f32x8, f32x8) {
-    if cfg!(target_feature = "avx") {
-        if negative {
-            (f32x8::new(*max), f32x8::new(*min))
-        } else {
-            (f32x8::new(*min), f32x8::new(*max))
-        }
-    } else {
-        let (near, far) = if negative { (max, min) } else { (min, max) };
-        (f32x8::new(*near), f32x8::new(*far))
-    }
 }
 
 /// [`enter_point`] for eight boxes: the lanes within squared distance `limit` of `point`
@@ -474,7 +480,7 @@ mod tests {
     /// ray's start is always entered: random rays of every direction sign against random
     /// boxes, with an empty lane, for `t_min` zero and negative.
     #[test]
-    fn planes_picked_by_address_or_by_value_agree() {
+    fn planes_picked_by_index_or_by_value_agree() {
         let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         let mut entered = 0;
         for round in 0..20_000 {
@@ -491,21 +497,21 @@ mod tests {
             if round % 3 == 0 {
                 boxes.set_lane(1, &Aabb::new(origin - 0.01, origin + 0.01));
             }
-            let by_address = lanes.enter(&boxes, near_far);
+            let by_index = lanes.enter(&boxes, near_far);
             let by_value = lanes.enter(&boxes, near_far_values);
-            assert_eq!(by_address.0, by_value.0, "round {round}");
+            assert_eq!(by_index.0, by_value.0, "round {round}");
             assert_eq!(
-                by_address.1.map(f32::to_bits),
+                by_index.1.map(f32::to_bits),
                 by_value.1.map(f32::to_bits),
                 "round {round}"
             );
             if round % 3 == 0 {
                 assert!(
-                    by_address.0 & 2 != 0,
+                    by_index.0 & 2 != 0,
                     "round {round}: the box around the start"
                 );
             }
-            entered += (by_address.0 & 0b101).count_ones();
+            entered += (by_index.0 & 0b101).count_ones();
         }
         // Not a vacuous agreement: many random boxes are entered, many are not.
         assert!(

@@ -13,7 +13,7 @@
 use glam::Vec4;
 use wide::f32x8;
 
-use super::box_lanes::{Planes, widened_verdict8};
+use super::box_lanes::{Planes, near_far8, widened_verdict8};
 use crate::geom::SlabRay;
 use crate::math::{Aabb, Aabb4, Aabb8, max_f32, min_f32};
 
@@ -70,7 +70,7 @@ impl PacketLanes {
     /// The lanes some ray of the packet may enter within `[self.t_min, t_max]` (`t_max` the
     /// largest of the packet's, in every lane), widened by `margin` as a single ray's test
     /// is, and each lane's entry distance less that margin: no larger than any ray's own.
-    /// `planes` picks each axis's planes: by address for stored boxes, among values for
+    /// `planes` picks each axis's planes: by index for stored boxes, among values for
     /// computed ones.
     #[inline(always)]
     pub(super) fn enter(
@@ -84,9 +84,9 @@ impl PacketLanes {
         let [lx, ly, lz] = self.inv_lo;
         let [hx, hy, hz] = self.inv_hi;
         let [neg_x, neg_y, neg_z] = self.negative;
-        let (nx, fx) = planes(neg_x, &node.min_x, &node.max_x);
-        let (ny, fy) = planes(neg_y, &node.min_y, &node.max_y);
-        let (nz, fz) = planes(neg_z, &node.min_z, &node.max_z);
+        let (nx, fx) = planes(node, 0, neg_x);
+        let (ny, fy) = planes(node, 1, neg_y);
+        let (nz, fz) = planes(node, 2, neg_z);
         // The smallest of `d · inv` over the interval (the entry), and the largest (the exit).
         let least = |d: Vec4, lo: Vec4, hi: Vec4| Vec4::select(d.cmpge(Vec4::ZERO), d * lo, d * hi);
         let most = |d: Vec4, lo: Vec4, hi: Vec4| Vec4::select(d.cmpge(Vec4::ZERO), d * hi, d * lo);
@@ -119,13 +119,9 @@ impl PacketLanes {
         let [lx, ly, lz] = splat(&self.inv_lo);
         let [hx, hy, hz] = splat(&self.inv_hi);
         let [neg_x, neg_y, neg_z] = self.negative;
-        let planes = |negative: bool, min: &[f32; 8], max: &[f32; 8]| {
-            let (min, max) = (f32x8::new(*min), f32x8::new(*max));
-            if negative { (max, min) } else { (min, max) }
-        };
-        let (nx, fx) = planes(neg_x, &node.min_x, &node.max_x);
-        let (ny, fy) = planes(neg_y, &node.min_y, &node.max_y);
-        let (nz, fz) = planes(neg_z, &node.min_z, &node.max_z);
+        let (nx, fx) = near_far8(node, 0, neg_x);
+        let (ny, fy) = near_far8(node, 1, neg_y);
+        let (nz, fz) = near_far8(node, 2, neg_z);
         let zero = f32x8::ZERO;
         let least = |d: f32x8, lo: f32x8, hi: f32x8| d.simd_ge(zero).select(d * lo, d * hi);
         let most = |d: f32x8, lo: f32x8, hi: f32x8| d.simd_ge(zero).select(d * hi, d * lo);

@@ -264,17 +264,23 @@ pub(super) struct RayTester<K, G> {
 }
 
 /// The ray visitor: boxes by the slab test, leaves by the kernel, hits to the goal.
-pub(super) struct RayVisitor<'m, S: ?Sized, K, G> {
+///
+/// The tester is borrowed, not held: a leaf's test may be a call the compiler keeps out of
+/// line, and it is handed the tester's address. Were the tester a field, that address would
+/// be inside the visitor, and after every leaf the walk would have to read the lanes back and
+/// redo what it derives from them (each plane's offset); kept apart, the lanes are known to
+/// be untouched by the call.
+pub(super) struct RayVisitor<'m, 't, S: ?Sized, K, G> {
     source: &'m S,
     /// The ray as given, for structures that walk along it.
     ray: Ray,
     /// The same ray for four boxes at once, and for eight through [`LaneRay8::from_lanes`]
     /// (optimised away when no structure asks).
     lanes: LaneRay,
-    pub(super) tester: RayTester<K, G>,
+    tester: &'t mut RayTester<K, G>,
 }
 
-impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, S, K, G> {
+impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, '_, S, K, G> {
     #[inline(always)]
     fn ray(&self) -> Option<&Ray> {
         Some(&self.ray)
@@ -486,16 +492,16 @@ fn walk_with<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, K: Kernel, G: Goal
     kernel: K,
     goal: G,
 ) -> G {
-    let mut v = RayVisitor::new(source, ray, kernel, goal);
+    let mut tester = RayTester::new(ray, kernel, goal);
+    let mut v = RayVisitor::new(source, ray, &mut tester);
     tree.traverse(&mut v);
-    v.tester.goal
+    tester.goal
 }
 
-impl<'m, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, S, K, G> {
-    /// The visitor of `ray` over `source`, with its kernel and goal.
+impl<'m, 't, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, 't, S, K, G> {
+    /// The visitor of `ray` over `source`, testing leaves with `tester`.
     #[inline(always)]
-    pub(super) fn new(source: &'m S, ray: &Ray, kernel: K, goal: G) -> Self {
-        let tester = RayTester::new(ray, kernel, goal);
+    pub(super) fn new(source: &'m S, ray: &Ray, tester: &'t mut RayTester<K, G>) -> Self {
         Self {
             source,
             ray: *ray,

@@ -54,7 +54,7 @@ pub trait Visitor {
     /// [`enter_lanes`](Self::enter_lanes) for four boxes the structure has just computed
     /// (decoded from a compact node, or an octree cell's children) rather than read where
     /// they are stored: the same verdict and keys. The default calls `enter_lanes`; the
-    /// built-in ray visitors pick each axis's planes among the values here, and by address
+    /// built-in ray visitors pick each axis's planes among the values here, and by index
     /// among stored boxes.
     fn enter_computed_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
         self.enter_lanes(boxes)

@@ -445,7 +445,7 @@ fn by_rank8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
 /// and mispredicts its loop's exit (a point query enters four to eight lanes at random).
 #[inline(always)]
 fn by_network8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
-    let mut v: [u64; 8] = core::array::from_fn(|lane| {
+    let v: [u64; 8] = core::array::from_fn(|lane| {
         // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
         let key = keys.get(lane).copied().unwrap_or(f32::INFINITY) + 0.0;
         let bits = key.to_bits();
@@ -456,42 +456,44 @@ fn by_network8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
             u64::MAX
         }
     });
-    const NETWORK: [(usize, usize); 19] = [
-        (0, 2),
-        (1, 3),
-        (4, 6),
-        (5, 7),
-        (0, 4),
-        (1, 5),
-        (2, 6),
-        (3, 7),
-        (0, 1),
-        (2, 3),
-        (4, 5),
-        (6, 7),
-        (2, 4),
-        (3, 5),
-        (1, 4),
-        (3, 6),
-        (1, 2),
-        (3, 4),
-        (5, 6),
-    ];
-    // By reference: iterating the array by value copied all 19 pairs (a call to `memcpy`) at
-    // every node.
-    for &(a, b) in &NETWORK {
-        if let (Some(&x), Some(&y)) = (v.get(a), v.get(b)) {
-            let (lo, hi) = (x.min(y), x.max(y));
-            if let Some(p) = v.get_mut(a) {
-                *p = lo;
-            }
-            if let Some(q) = v.get_mut(b) {
-                *q = hi;
-            }
-        }
-    }
+    // Named values, not an indexed loop: the compiler kept the loop (nineteen rounds of loads,
+    // bounds checks and stores), where the exchanges on values stay in registers.
+    let [
+        mut v0,
+        mut v1,
+        mut v2,
+        mut v3,
+        mut v4,
+        mut v5,
+        mut v6,
+        mut v7,
+    ] = v;
+    let exchange = |x: &mut u64, y: &mut u64| {
+        let (lo, hi) = ((*x).min(*y), (*x).max(*y));
+        *x = lo;
+        *y = hi;
+    };
+    exchange(&mut v0, &mut v2);
+    exchange(&mut v1, &mut v3);
+    exchange(&mut v4, &mut v6);
+    exchange(&mut v5, &mut v7);
+    exchange(&mut v0, &mut v4);
+    exchange(&mut v1, &mut v5);
+    exchange(&mut v2, &mut v6);
+    exchange(&mut v3, &mut v7);
+    exchange(&mut v0, &mut v1);
+    exchange(&mut v2, &mut v3);
+    exchange(&mut v4, &mut v5);
+    exchange(&mut v6, &mut v7);
+    exchange(&mut v2, &mut v4);
+    exchange(&mut v3, &mut v5);
+    exchange(&mut v1, &mut v4);
+    exchange(&mut v3, &mut v6);
+    exchange(&mut v1, &mut v2);
+    exchange(&mut v3, &mut v4);
+    exchange(&mut v5, &mut v6);
     (
-        v.map(|entry| (entry & 7) as u32),
+        [v0, v1, v2, v3, v4, v5, v6, v7].map(|entry| (entry & 7) as u32),
         (mask & 0xFF).count_ones() as usize,
     )
 }
