@@ -307,6 +307,24 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
     }
 }
 
+/// `key` as an integer with the same order (the usual sign flip of the float's bits): negative
+/// floats order backwards by their bits, so all their bits are flipped; positive ones need
+/// only the sign bit set to come after them. `−0` is taken as `+0`, which compares equal as a
+/// float and so must tie here too. Never given NaN (an entered lane's key is a number).
+#[inline(always)]
+fn ordered_bits(key: f32) -> u32 {
+    let bits = (key + 0.0).to_bits();
+    bits ^ ((((bits as i32) >> 31) as u32) | 0x8000_0000)
+}
+
+/// One exchange of a sorting network: the smaller of the two in `x`, the larger in `y`.
+#[inline(always)]
+fn exchange(x: &mut u64, y: &mut u64) {
+    let (lo, hi) = ((*x).min(*y), (*x).max(*y));
+    *x = lo;
+    *y = hi;
+}
+
 /// The lanes of `mask` (four lanes), sorted by key, ascending (lower lane first on equal
 /// keys), and how many there are.
 ///
@@ -317,12 +335,7 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
 #[inline(always)]
 fn by_key4(mask: u32, keys: [f32; 4]) -> ([u32; 8], usize) {
     let sortable = |lane: u32| -> u64 {
-        // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
-        let key = keys.get(lane as usize).copied().unwrap_or(f32::INFINITY) + 0.0;
-        let bits = key.to_bits();
-        // Negative floats order backwards by their bits: flip them all; positive ones just
-        // need the sign bit set to come after the negatives.
-        let ordered = bits ^ ((((bits as i32) >> 31) as u32) | 0x8000_0000);
+        let ordered = ordered_bits(keys.get(lane as usize).copied().unwrap_or(f32::INFINITY));
         if mask & (1 << lane) != 0 {
             (u64::from(ordered) << 2) | u64::from(lane)
         } else {
@@ -330,11 +343,6 @@ fn by_key4(mask: u32, keys: [f32; 4]) -> ([u32; 8], usize) {
         }
     };
     let [mut a, mut b, mut c, mut d] = [sortable(0), sortable(1), sortable(2), sortable(3)];
-    let exchange = |x: &mut u64, y: &mut u64| {
-        let (lo, hi) = ((*x).min(*y), (*x).max(*y));
-        *x = lo;
-        *y = hi;
-    };
     exchange(&mut a, &mut b);
     exchange(&mut c, &mut d);
     exchange(&mut a, &mut c);
@@ -400,10 +408,7 @@ fn by_key8(mut mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
     while mask != 0 {
         let lane = mask.trailing_zeros();
         mask &= mask - 1;
-        // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
-        let key = keys.get(lane as usize).copied().unwrap_or(f32::INFINITY) + 0.0;
-        let bits = key.to_bits();
-        let ordered = bits ^ ((((bits as i32) >> 31) as u32) | 0x8000_0000);
+        let ordered = ordered_bits(keys.get(lane as usize).copied().unwrap_or(f32::INFINITY));
         let entry = (u64::from(ordered) << 3) | u64::from(lane);
         let mut at = n;
         while let Some(&before) = at.checked_sub(1).and_then(|i| sorted.get(i)) {
@@ -456,10 +461,7 @@ fn by_rank8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
 #[inline(always)]
 fn by_network8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
     let v: [u64; 8] = core::array::from_fn(|lane| {
-        // `+ 0.0` turns −0 into +0, which compare equal as floats and so must tie here too.
-        let key = keys.get(lane).copied().unwrap_or(f32::INFINITY) + 0.0;
-        let bits = key.to_bits();
-        let ordered = bits ^ ((((bits as i32) >> 31) as u32) | 0x8000_0000);
+        let ordered = ordered_bits(keys.get(lane).copied().unwrap_or(f32::INFINITY));
         if mask & (1 << lane) != 0 {
             (u64::from(ordered) << 3) | lane as u64
         } else {
@@ -478,11 +480,6 @@ fn by_network8(mask: u32, keys: &[f32; 8]) -> ([u32; 8], usize) {
         mut v6,
         mut v7,
     ] = v;
-    let exchange = |x: &mut u64, y: &mut u64| {
-        let (lo, hi) = ((*x).min(*y), (*x).max(*y));
-        *x = lo;
-        *y = hi;
-    };
     exchange(&mut v0, &mut v2);
     exchange(&mut v1, &mut v3);
     exchange(&mut v4, &mut v6);
