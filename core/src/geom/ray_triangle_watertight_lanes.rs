@@ -71,6 +71,18 @@ impl WatertightRay {
             CullMode::Back => u.cmpge(zero) & v.cmpge(zero) & w.cmpge(zero),
             CullMode::Front => u.cmple(zero) & v.cmple(zero) & w.cmple(zero),
         };
+        let unsure = redone_in_f64.bitmask();
+        if inside.bitmask() | unsure == 0 {
+            // Most batches a ray visits hold no triangle it crosses: the distances and the
+            // division are skipped (the scalar test would reject every lane here too).
+            return LaneHits {
+                sure: 0,
+                unsure: 0,
+                t: [0.0; 4],
+                u: [0.0; 4],
+                v: [0.0; 4],
+            };
+        }
         let det = u + v + w;
         // `det == det` is false for NaN: the scalar test's `det.is_nan()`.
         let det_usable = det.cmpne(zero) & det.cmpeq(det);
@@ -78,7 +90,6 @@ impl WatertightRay {
         let inv_det = Vec4::ONE / det;
         let t = t_scaled * inv_det;
         let in_range = t.cmpge(Vec4::splat(self.t_min)) & t.cmple(Vec4::splat(self.t_max));
-        let unsure = redone_in_f64.bitmask();
         LaneHits {
             sure: (inside & det_usable & in_range).bitmask() & !unsure,
             unsure,
