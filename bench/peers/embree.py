@@ -20,7 +20,9 @@ For each mesh:
   code;
 - both answers are compared ray by ray (the same triangle, or a distance within 1e-5 of the
   mesh's size: two triangles meeting where the ray lands);
-- times are the best of `--repeat` runs (default 3).
+- times are the best of `--repeat` rounds (default 5); each round runs every meshq command
+  and Embree query of the workload once, one after another, so that the machine's slow spells
+  fall on both sides alike.
 
 The 1.1M-triangle case is the bunny subdivided twice (each triangle into four, midpoints
 shared), written to target/peers/ as a binary PLY at run time; it is never committed.
@@ -109,13 +111,11 @@ def embree_build(v, f):
     return scene, time.perf_counter() - start
 
 
-def best(k, f):
-    times, last = [], None
-    for _ in range(k):
-        start = time.perf_counter()
-        last = f()
-        times.append(time.perf_counter() - start)
-    return min(times), last
+def timed(f):
+    """How long `f` took, and what it returned."""
+    start = time.perf_counter()
+    result = f()
+    return time.perf_counter() - start, result
 
 
 def main():
@@ -123,7 +123,7 @@ def main():
     parser.add_argument("meshes", nargs="*", default=DEFAULT_MESHES)
     parser.add_argument("--meshq", default=str(ROOT / "target/release/meshq"))
     parser.add_argument("--rays", type=int, default=1_000_000)
-    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--json", action="store_true")
     nodes = parser.add_mutually_exclusive_group()
     nodes.add_argument("--eight-wide", action="store_true",
@@ -159,33 +159,46 @@ def main():
             for kind, file in workloads.items():
                 o, d = read_rays(file)
                 out = s / "hits.bin"
-                runs = [meshq(args.meshq, path, file, out, "--per-ray") for _ in range(args.repeat)]
-                ours = np.fromfile(out, dtype=[("t", "<f4"), ("tri", "<u4")])
-                per_ray_bytes = out.read_bytes()
+                # Round by round, each meshq run beside the Embree run it is compared with, so
+                # that a slow spell of the machine falls on both sides alike.
+                runs, em_times, any_runs, em_any_times, batch_runs, batch_any_runs = ([] for _ in range(6))
+                per_ray_bytes = any_bytes = None
+                for _ in range(args.repeat):
+                    runs.append(meshq(args.meshq, path, file, out, "--per-ray"))
+                    records = out.read_bytes()
+                    if per_ray_bytes not in (None, records):
+                        sys.exit(f"{label} {kind}: two runs of the same rays differ")
+                    per_ray_bytes = records
+                    em_times.append(timed(lambda: scene.run(o, d, output=1)))
+                    any_runs.append(meshq(args.meshq, path, file, out, "--any", "--per-ray"))
+                    records = out.read_bytes()
+                    if any_bytes not in (None, records):
+                        sys.exit(f"{label} {kind}: two any-hit runs of the same rays differ")
+                    any_bytes = records
+                    em_any_times.append(timed(lambda: scene.run(o, d, query="OCCLUDED")))
+                    # The batch entry point (packets for rays that share an origin): timed, and
+                    # its records checked equal to one ray per call, byte for byte.
+                    batch_runs.append(meshq(args.meshq, path, file, out))
+                    batch_same = out.read_bytes() == per_ray_bytes
+                    batch_any_runs.append(meshq(args.meshq, path, file, out, "--any"))
+                    batch_any_same = out.read_bytes() == any_bytes
+                    if not (batch_same and batch_any_same):
+                        sys.exit(f"{label} {kind}: batched records differ from one ray per call")
+                ours = np.frombuffer(per_ray_bytes, dtype=[("t", "<f4"), ("tri", "<u4")])
+                ours_any = np.frombuffer(any_bytes, dtype=[("t", "<f4"), ("tri", "<u4")])["tri"] != 0xFFFFFFFF
                 mq = min(r["query_seconds"] for r in runs)
+                anyq = min(r["query_seconds"] for r in any_runs)
+                batch = min(r["query_seconds"] for r in batch_runs)
+                batch_any = min(r["query_seconds"] for r in batch_any_runs)
                 row["meshq_build_s"] = min(row.get("meshq_build_s", 1e9), *(r["build_seconds"] for r in runs))
-                em, theirs = best(args.repeat, lambda: scene.run(o, d, output=1))
+                em, theirs = min(em_times, key=lambda x: x[0])
+                em_any, occluded = min(em_any_times, key=lambda x: x[0])
                 hit = theirs["primID"] >= 0
                 same = (ours["tri"] == np.where(hit, theirs["primID"], 0xFFFFFFFF).astype(np.uint32))
                 close = np.isfinite(ours["t"]) & hit & (
                     np.abs(ours["t"] * np.linalg.norm(d, axis=1) - theirs["tfar"] * np.linalg.norm(d, axis=1))
                     <= 1e-5 * size)
                 agree = int(np.count_nonzero(same | close))
-                anyq = min(r["query_seconds"] for r in
-                           [meshq(args.meshq, path, file, out, "--any", "--per-ray") for _ in range(args.repeat)])
-                ours_any = np.fromfile(out, dtype=[("t", "<f4"), ("tri", "<u4")])["tri"] != 0xFFFFFFFF
-                any_bytes = out.read_bytes()
-                # The batch entry point (packets for rays that share an origin): timed, and its
-                # records checked equal to one ray per call, byte for byte.
-                batch = min(r["query_seconds"] for r in
-                            [meshq(args.meshq, path, file, out) for _ in range(args.repeat)])
-                batch_same = out.read_bytes() == per_ray_bytes
-                batch_any = min(r["query_seconds"] for r in
-                                [meshq(args.meshq, path, file, out, "--any") for _ in range(args.repeat)])
-                batch_any_same = out.read_bytes() == any_bytes
-                if not (batch_same and batch_any_same):
-                    sys.exit(f"{label} {kind}: batched records differ from one ray per call")
-                em_any, occluded = best(args.repeat, lambda: scene.run(o, d, query="OCCLUDED"))
                 agree_any = int(np.count_nonzero(ours_any == (occluded >= 0)))
                 n = len(o)
                 row[kind] = {

@@ -57,6 +57,13 @@ impl RecordReader {
     pub fn next_chunk(&mut self, max: usize, out: &mut Vec<f32>) -> Result<usize> {
         out.clear();
         let record = self.floats * 4;
+        // A file of known length needs a buffer no larger than what is left of it (one record
+        // more, so that a file that grew is still caught): a small file is not given a whole
+        // chunk's zeroed megabytes.
+        let left = self
+            .expected
+            .map_or(u64::MAX, |e| e.saturating_sub(self.count) + 1);
+        let max = usize::try_from(left).map_or(max, |left| max.min(left));
         self.bytes.resize(max * record, 0);
         let mut filled = 0;
         while filled < self.bytes.len() {
@@ -126,5 +133,59 @@ impl ResultWriter {
 
     pub fn finish(self) -> Result<()> {
         self.file.commit()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file of `n` records of two floats each, record `i` holding `(i, -i)`, in a fresh
+    /// directory under the system's temporary one.
+    fn records_file(name: &str, n: u32) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("meshq-records-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        let bytes: Vec<u8> = (0..n)
+            .flat_map(|i| [i as f32, -(i as f32)])
+            .flat_map(f32::to_le_bytes)
+            .collect();
+        std::fs::write(&path, bytes).unwrap();
+        path
+    }
+
+    /// Every record comes back once, in order, whatever the chunk size against the file's
+    /// length (smaller, equal, larger), and the buffer never outgrows what is left of the file.
+    #[test]
+    fn chunks_read_every_record_once() {
+        for (n, chunk) in [(0, 4), (1, 4), (7, 3), (9, 3), (5, 100), (100, 100)] {
+            let path = records_file(&format!("r{n}-{chunk}"), n);
+            let mut reader = RecordReader::open(&path, 2, "pair").unwrap();
+            assert_eq!(reader.expected, Some(u64::from(n)));
+            let (mut floats, mut all) = (Vec::new(), Vec::new());
+            loop {
+                let got = reader.next_chunk(chunk, &mut floats).unwrap();
+                assert!(got <= chunk);
+                assert_eq!(floats.len(), 2 * got);
+                assert!(reader.bytes.len() <= 8 * (n as usize + 1).min(chunk));
+                if got == 0 {
+                    break;
+                }
+                all.extend_from_slice(&floats);
+            }
+            let want: Vec<f32> = (0..n).flat_map(|i| [i as f32, -(i as f32)]).collect();
+            assert_eq!(all, want, "{n} records in chunks of {chunk}");
+            assert_eq!(reader.count, u64::from(n));
+        }
+    }
+
+    #[test]
+    fn a_partial_record_is_refused() {
+        let path = records_file("partial", 3);
+        let mut bytes = std::fs::read(&path).unwrap();
+        bytes.pop();
+        std::fs::write(&path, bytes).unwrap();
+        let err = RecordReader::open(&path, 2, "pair").err().unwrap();
+        assert!(err.to_string().contains("not a multiple of 8"), "{err}");
     }
 }
