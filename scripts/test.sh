@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Every check, as CI runs it: install what is missing, then formatting, lints, docs, the
-# bare-metal and WebAssembly builds of the core, all tests, the firmware in QEMU, the
-# WebAssembly tests in Node, the npm package installed from its tarball, its TypeScript
-# typings, the three.js drop-in test, the demo in headless Chromium, and a short run of the
-# Node benchmark. (Clippy with --all-targets type-checks the criterion
-# benchmarks; `cargo bench` runs them.)
+# bare-metal and WebAssembly builds of the core, all tests, the profile-guided build against
+# the test build, the firmware in QEMU, the WebAssembly tests in Node, the npm package
+# installed from its tarball, its TypeScript typings, the three.js drop-in test, the demo in
+# headless Chromium, and a short run of the Node benchmark. (Clippy with --all-targets
+# type-checks the criterion benchmarks; `cargo bench` runs them.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -46,6 +46,26 @@ if grep -qw avx2 /proc/cpuinfo 2>/dev/null && [ "$(uname -m)" = x86_64 ]; then
 else
   echo "no AVX2 here: skipped"
 fi
+
+step "profile-guided build (scripts/pgo.sh): the same answers, bit for bit, as the test build"
+./scripts/pgo.sh
+pgo_check=target/pgo-train/check
+mkdir -p "$pgo_check"
+target/debug/meshq workload assets/fandisk.obj --count 50000 -o "$pgo_check/random.rays" >/dev/null
+target/debug/meshq workload assets/fandisk.obj --kind camera-rays --image 256x256 -o "$pgo_check/camera.rays" >/dev/null
+target/debug/meshq workload assets/fandisk.obj --kind points --count 20000 -o "$pgo_check/points.bin" >/dev/null
+for build in debug pgo/release; do
+  for rays in random camera; do
+    target/$build/meshq raycast assets/fandisk.obj --rays "$pgo_check/$rays.rays" \
+      --out "$pgo_check/${build%%/*}-$rays.bin" --per-ray >/dev/null
+  done
+  target/$build/meshq closest assets/fandisk.obj --points "$pgo_check/points.bin" \
+    --out "$pgo_check/${build%%/*}-closest.bin" >/dev/null
+done
+for what in random camera closest; do
+  cmp "$pgo_check/debug-$what.bin" "$pgo_check/pgo-$what.bin"
+done
+echo "profile-guided build: every record equal"
 
 step "firmware: Cortex-M4F in QEMU, parity with the golden files (queries, remeshing), panic-free proofs, memory"
 MESHQ_CLI_PROFILE=test ./scripts/firmware.sh
