@@ -259,15 +259,17 @@ pub fn side(value: &JsValue) -> Result<RayOptions, JsValue> {
 
 /// An input `Float32Array`, copied.
 pub fn floats(value: &JsValue, what: &str) -> Result<Vec<f32>, JsValue> {
-    value
-        .dyn_ref::<Float32Array>()
-        .map(Float32Array::to_vec)
-        .ok_or_else(|| {
-            type_error(&format!(
-                "{what} must be a Float32Array, got {}",
-                value_kind(value)
-            ))
-        })
+    float_array(value, what).map(|a| a.to_vec())
+}
+
+/// Input numbers: a `Float32Array`, not copied (see [`floats`] for the error).
+pub fn float_array(value: &JsValue, what: &str) -> Result<Float32Array, JsValue> {
+    value.dyn_ref::<Float32Array>().cloned().ok_or_else(|| {
+        type_error(&format!(
+            "{what} must be a Float32Array, got {}",
+            value_kind(value)
+        ))
+    })
 }
 
 /// Input numbers: a `Float32Array` copied, or an array (or other typed array) of numbers

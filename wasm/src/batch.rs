@@ -11,7 +11,7 @@ use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
 use crate::args::{
-    floats, max_distance, output_f32, output_u8, output_u32, range, range_error, side,
+    float_array, floats, max_distance, output_f32, output_u8, output_u32, range, range_error, side,
 };
 
 /// The `t` a ray batch writes for a ray that hits nothing (`MeshBvh.MISS_T`).
@@ -23,22 +23,73 @@ pub const MISS_DISTANCE: f32 = f32::INFINITY;
 /// (`0xFFFFFFFF`, `MeshBvh.MISS_TRIANGLE`).
 pub const MISS_TRIANGLE: u32 = u32::MAX;
 
-/// The rays of a `Float32Array` of 6 numbers per ray, with `t` in `[near, far]`.
-fn read_rays(rays: &JsValue, near: &JsValue, far: &JsValue) -> Result<Vec<Ray>, JsValue> {
-    let values = floats(rays, "rays")?;
-    if !values.len().is_multiple_of(6) {
-        return Err(range_error(&format!(
-            "rays hold {} numbers, not a multiple of 6 (origin x, y, z, direction x, y, z)",
-            values.len()
-        )));
-    }
-    let (near, far) = range(near, far)?;
-    Ok(values
-        .chunks_exact(6)
-        .map(|r| {
-            Ray::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])).with_range(near, far)
+/// Rays a ray batch answers per pass. A batch reads its rays, and writes their answers, a chunk
+/// at a time through buffers of this many rays (under 1 MB), whatever its length: a
+/// WebAssembly module's memory, once grown, is never given back, so buffers sized by the whole
+/// batch (about 64 bytes per ray) would keep a large batch's peak for the page's life. A
+/// multiple of 8, so that runs of eight rays from one origin stay in one chunk.
+pub const RAY_CHUNK: usize = 8_192;
+
+/// The rays of a `Float32Array` of 6 numbers per ray, with `t` in `[near, far]`: checked, and
+/// read a chunk at a time by [`RayInput::for_each_chunk`].
+struct RayInput {
+    values: Float32Array,
+    count: usize,
+    near: f32,
+    far: f32,
+}
+
+impl RayInput {
+    /// The rays of `rays`, or the error a wrong type, length or range throws.
+    fn new(rays: &JsValue, near: &JsValue, far: &JsValue) -> Result<Self, JsValue> {
+        let values = float_array(rays, "rays")?;
+        let len = values.length() as usize;
+        if !len.is_multiple_of(6) {
+            return Err(range_error(&format!(
+                "rays hold {len} numbers, not a multiple of 6 (origin x, y, z, direction x, y, z)"
+            )));
+        }
+        let (near, far) = range(near, far)?;
+        Ok(Self {
+            values,
+            count: len / 6,
+            near,
+            far,
         })
-        .collect())
+    }
+
+    /// Hands `each` consecutive runs of at most [`RAY_CHUNK`] rays, in order, with the index
+    /// of each run's first ray; stops at its first error.
+    fn for_each_chunk(
+        &self,
+        mut each: impl FnMut(u32, &[Ray]) -> Result<(), JsValue>,
+    ) -> Result<(), JsValue> {
+        let most = RAY_CHUNK.min(self.count);
+        let mut numbers = vec![0.0f32; 6 * most];
+        let mut rays = Vec::with_capacity(most);
+        for first in (0..self.count).step_by(RAY_CHUNK) {
+            let len = RAY_CHUNK.min(self.count - first);
+            let numbers = &mut numbers[..6 * len];
+            self.values
+                .subarray((6 * first) as u32, (6 * (first + len)) as u32)
+                .copy_to(numbers);
+            rays.clear();
+            rays.extend(numbers.chunks_exact(6).map(|r| {
+                Ray::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5]))
+                    .with_range(self.near, self.far)
+            }));
+            each(first as u32, &rays)?;
+        }
+        Ok(())
+    }
+}
+
+/// The elements `first..first + part.len()` of `values` set to `part` (a run of a batch's
+/// answers).
+fn write_f32(values: &Float32Array, first: u32, part: &[f32]) {
+    values
+        .subarray(first, first + part.len() as u32)
+        .copy_from(part);
 }
 
 #[wasm_bindgen]
@@ -71,7 +122,8 @@ impl MeshBvh {
     /// and `MISS_TRIANGLE`. `side` as in `raycast`. Returns the number of hits. Each answer is
     /// exactly `raycast`'s; rays are cast in the given order, and runs of eight consecutive
     /// rays from one origin (a camera's: give them in rows or small tiles) walk the tree
-    /// together.
+    /// together. Rays are read, and answers written, 8,192 at a time: a batch of any length
+    /// needs under 1 MB of the module's memory.
     #[wasm_bindgen(js_name = raycastBatch)]
     pub fn raycast_batch(
         &self,
@@ -106,7 +158,8 @@ impl MeshBvh {
 
     /// Any-hit for every ray of `rays` (a `Float32Array`, 6 numbers per ray): `hits[i]` (a
     /// `Uint8Array`, one per ray) becomes 1 when ray `i` hits something in `[near, far]`
-    /// (omitted: `0`, `Infinity`), else 0. Returns the number of rays that hit.
+    /// (omitted: `0`, `Infinity`), else 0. Returns the number of rays that hit. Read and
+    /// answered 8,192 rays at a time, as `raycastBatch`.
     #[wasm_bindgen(js_name = raycastAnyBatch)]
     pub fn raycast_any_batch(
         &self,
@@ -117,14 +170,22 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let options = crate::args::side(&side.unwrap_or(JsValue::UNDEFINED))?;
-        let rays = read_rays(rays, near, far)?;
-        let hits = output_u8(hits, "hits", rays.len(), " (one per ray)")?;
-        let mut answers = vec![false; rays.len()];
-        self.storage
-            .raycast_any_batch(&rays, &options, &mut answers)?;
-        let flags: Vec<u8> = answers.iter().map(|&a| u8::from(a)).collect();
-        hits.copy_from(&flags);
-        Ok(answers.iter().map(|&a| u32::from(a)).sum())
+        let input = RayInput::new(rays, near, far)?;
+        let hits = output_u8(hits, "hits", input.count, " (one per ray)")?;
+        let (mut answers, mut flags, mut found) = (Vec::new(), Vec::new(), 0u32);
+        input.for_each_chunk(|first, rays| {
+            answers.clear();
+            answers.resize(rays.len(), false);
+            self.storage
+                .raycast_any_batch(rays, &options, &mut answers)?;
+            flags.clear();
+            flags.extend(answers.iter().map(|&a| u8::from(a)));
+            hits.subarray(first, first + flags.len() as u32)
+                .copy_from(&flags);
+            found += answers.iter().map(|&a| u32::from(a)).sum::<u32>();
+            Ok(())
+        })?;
+        Ok(found)
     }
 
     /// The closest surface point of every point of `points` (a `Float32Array`, 3 numbers per
@@ -200,29 +261,40 @@ impl MeshBvh {
         side_in: &JsValue,
     ) -> Result<u32, JsValue> {
         let options = side(side_in)?;
-        let rays = read_rays(rays, near, far)?;
-        let n = rays.len();
+        let input = RayInput::new(rays, near, far)?;
+        let n = input.count;
         let t_out = output_f32(t_out, "t", n, " (one per ray)")?;
         let triangles = output_u32(triangles, "triangles", n, " (one per ray)")?;
         let barycentrics: Option<Float32Array> = barycentrics
             .map(|b| output_f32(b, "barycentrics", 2 * n, " (two per ray)"))
             .transpose()?;
-        let mut answers = vec![None; n];
-        self.storage.raycast_batch(&rays, &options, &mut answers)?;
-        let ts: Vec<f32> = answers.iter().map(|h| h.map_or(MISS_T, |h| h.t)).collect();
-        let tris: Vec<u32> = answers
-            .iter()
-            .map(|h| h.map_or(MISS_TRIANGLE, |h| h.tri))
-            .collect();
-        t_out.copy_from(&ts);
-        triangles.copy_from(&tris);
-        if let Some(uv) = barycentrics {
-            let pairs: Vec<f32> = answers
-                .iter()
-                .flat_map(|h| h.map_or([f32::NAN; 2], |h| [h.u, h.v]))
-                .collect();
-            uv.copy_from(&pairs);
-        }
-        Ok(answers.iter().filter(|a| a.is_some()).count() as u32)
+        let (mut answers, mut ts, mut tris, mut uvs) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut found = 0u32;
+        input.for_each_chunk(|first, rays| {
+            answers.clear();
+            answers.resize(rays.len(), None);
+            self.storage.raycast_batch(rays, &options, &mut answers)?;
+            ts.clear();
+            ts.extend(answers.iter().map(|h| h.map_or(MISS_T, |h| h.t)));
+            write_f32(&t_out, first, &ts);
+            tris.clear();
+            tris.extend(answers.iter().map(|h| h.map_or(MISS_TRIANGLE, |h| h.tri)));
+            triangles
+                .subarray(first, first + tris.len() as u32)
+                .copy_from(&tris);
+            if let Some(uv) = &barycentrics {
+                uvs.clear();
+                uvs.extend(
+                    answers
+                        .iter()
+                        .flat_map(|h| h.map_or([f32::NAN; 2], |h| [h.u, h.v])),
+                );
+                write_f32(uv, 2 * first, &uvs);
+            }
+            found += answers.iter().flatten().count() as u32;
+            Ok(())
+        })?;
+        Ok(found)
     }
 }

@@ -284,6 +284,98 @@ fn every_structure_matches_the_golden_digest_and_blob() {
     );
 }
 
+/// Ray batches are answered a chunk of `RAY_CHUNK` rays at a time: across chunk boundaries,
+/// with a run of rays from one origin (a packet) straddling each, every ray's closest hit
+/// (with its barycentric weights) and any-hit answer is the one single calls give, written to
+/// its own place, and the counts returned are the hits.
+#[wasm_bindgen_test]
+fn ray_batches_answer_across_their_chunks_as_single_calls_do() {
+    let bvh = build(MESHES[0].1, &JsValue::UNDEFINED);
+    let bounds = bvh.root_bounds();
+    let n = 2 * meshq_wasm::RAY_CHUNK + 500;
+    let mut rays: Vec<Ray> = meshq_workload::RandomRays::new(bounds, 11)
+        .take(n)
+        .collect();
+    // Rays from one corner toward points spread over the box, 24 around each boundary.
+    let corner = bounds.max + (bounds.max - bounds.min);
+    for boundary in [meshq_wasm::RAY_CHUNK, 2 * meshq_wasm::RAY_CHUNK] {
+        for (k, ray) in rays[boundary - 12..boundary + 12].iter_mut().enumerate() {
+            let f = k as f32 / 24.0;
+            let target = bounds.min + (bounds.max - bounds.min) * Vec3::new(f, 0.5, 1.0 - f);
+            *ray = Ray::new(corner, target - corner);
+        }
+    }
+    let flat: Vec<f32> = rays
+        .iter()
+        .flat_map(|r| {
+            [
+                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+            ]
+        })
+        .collect();
+    let flat = Float32Array::from(flat.as_slice());
+    let t_js = Float32Array::new_with_length(n as u32);
+    let triangles_js = Uint32Array::new_with_length(n as u32);
+    let uv_js = Float32Array::new_with_length(2 * n as u32);
+    let found = bvh
+        .raycast_batch_barycentric(
+            &flat,
+            &JsValue::UNDEFINED,
+            &JsValue::UNDEFINED,
+            &t_js,
+            &triangles_js,
+            &uv_js,
+            None,
+        )
+        .unwrap();
+    let hits_js = js_sys::Uint8Array::new_with_length(n as u32);
+    let any_found = bvh
+        .raycast_any_batch(
+            &flat,
+            &JsValue::UNDEFINED,
+            &JsValue::UNDEFINED,
+            &hits_js,
+            None,
+        )
+        .unwrap();
+    let (t, triangles, uv, any) = (
+        t_js.to_vec(),
+        triangles_js.to_vec(),
+        uv_js.to_vec(),
+        hits_js.to_vec(),
+    );
+    let expected: Vec<_> = rays.iter().map(|r| bvh.raycast_ray(r)).collect();
+    let hit_count = expected.iter().flatten().count();
+    assert_eq!(found as usize, hit_count);
+    assert_eq!(any_found as usize, hit_count);
+    // Not vacuous: hits and misses on both sides of each boundary.
+    for boundary in [meshq_wasm::RAY_CHUNK, 2 * meshq_wasm::RAY_CHUNK] {
+        let near = &expected[boundary - 12..boundary + 12];
+        assert!(near[..12].iter().any(Option::is_some) && near[12..].iter().any(Option::is_some));
+    }
+    assert!(hit_count > n / 10 && hit_count < n, "{hit_count} of {n}");
+    for (i, e) in expected.iter().enumerate() {
+        let got = (
+            t[i].to_bits(),
+            triangles[i],
+            uv[2 * i].to_bits(),
+            uv[2 * i + 1].to_bits(),
+        );
+        match e {
+            Some(h) => assert_eq!(
+                got,
+                (h.t.to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()),
+                "ray {i}"
+            ),
+            None => {
+                assert_eq!((t[i], triangles[i]), (f32::INFINITY, u32::MAX), "ray {i}");
+                assert!(uv[2 * i].is_nan() && uv[2 * i + 1].is_nan(), "ray {i}");
+            }
+        }
+        assert_eq!(any[i], u8::from(bvh.raycast_any_ray(&rays[i])), "ray {i}");
+    }
+}
+
 fn number(object: &JsValue, path: &[&str]) -> f64 {
     let mut v = object.clone();
     for key in path {
