@@ -34,6 +34,9 @@ pub const RAY_CHUNK: usize = 8_192;
 /// read a chunk at a time by [`RayInput::for_each_chunk`].
 struct RayInput {
     values: Float32Array,
+    /// The rays' numbers copied whole, when an output shares their memory (see
+    /// [`RayInput::read_before_writing`]); `None`: read a chunk at a time from `values`.
+    whole: Option<Vec<f32>>,
     count: usize,
     near: f32,
     far: f32,
@@ -52,10 +55,30 @@ impl RayInput {
         let (near, far) = range(near, far)?;
         Ok(Self {
             values,
+            whole: None,
             count: len / 6,
             near,
             far,
         })
+    }
+
+    /// Copies the rays whole when any of `outputs` (typed arrays) overlaps their bytes, so
+    /// that writing a chunk's answers never changes rays not yet read: the answers are those
+    /// of separate arrays, whatever the caller shares.
+    fn read_before_writing(&mut self, outputs: &[&js_sys::Object]) {
+        let span = |a: &js_sys::Object| {
+            let view = a.unchecked_ref::<js_sys::Uint8Array>();
+            let start = f64::from(view.byte_offset());
+            (view.buffer(), start, start + f64::from(view.byte_length()))
+        };
+        let (buffer, start, end) = span(self.values.unchecked_ref());
+        let shared = outputs.iter().any(|o| {
+            let (b, s, e) = span(o);
+            js_sys::Object::is(&b, &buffer) && s < end && start < e
+        });
+        if shared {
+            self.whole = Some(self.values.to_vec());
+        }
     }
 
     /// Hands `each` consecutive runs of at most [`RAY_CHUNK`] rays, in order, with the index
@@ -70,9 +93,13 @@ impl RayInput {
         for first in (0..self.count).step_by(RAY_CHUNK) {
             let len = RAY_CHUNK.min(self.count - first);
             let numbers = &mut numbers[..6 * len];
-            self.values
-                .subarray((6 * first) as u32, (6 * (first + len)) as u32)
-                .copy_to(numbers);
+            match &self.whole {
+                Some(whole) => numbers.copy_from_slice(&whole[6 * first..6 * (first + len)]),
+                None => self
+                    .values
+                    .subarray((6 * first) as u32, (6 * (first + len)) as u32)
+                    .copy_to(numbers),
+            }
             rays.clear();
             rays.extend(numbers.chunks_exact(6).map(|r| {
                 Ray::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5]))
@@ -113,6 +140,13 @@ impl MeshBvh {
     #[wasm_bindgen(getter = MISS_TRIANGLE)]
     pub fn miss_triangle() -> u32 {
         MISS_TRIANGLE
+    }
+
+    /// `8192`: how many rays a ray batch reads and answers per pass (`MeshBvh.RAY_CHUNK`).
+    /// Answers do not depend on it; an output array may even share the rays' buffer.
+    #[wasm_bindgen(getter = RAY_CHUNK)]
+    pub fn ray_chunk() -> u32 {
+        RAY_CHUNK as u32
     }
 
     /// Casts every ray of `rays` (a `Float32Array`, 6 numbers per ray: origin, then
@@ -170,8 +204,9 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let options = crate::args::side(&side.unwrap_or(JsValue::UNDEFINED))?;
-        let input = RayInput::new(rays, near, far)?;
+        let mut input = RayInput::new(rays, near, far)?;
         let hits = output_u8(hits, "hits", input.count, " (one per ray)")?;
+        input.read_before_writing(&[&hits]);
         let (mut answers, mut flags, mut found) = (Vec::new(), Vec::new(), 0u32);
         input.for_each_chunk(|first, rays| {
             answers.clear();
@@ -261,13 +296,17 @@ impl MeshBvh {
         side_in: &JsValue,
     ) -> Result<u32, JsValue> {
         let options = side(side_in)?;
-        let input = RayInput::new(rays, near, far)?;
+        let mut input = RayInput::new(rays, near, far)?;
         let n = input.count;
         let t_out = output_f32(t_out, "t", n, " (one per ray)")?;
         let triangles = output_u32(triangles, "triangles", n, " (one per ray)")?;
         let barycentrics: Option<Float32Array> = barycentrics
             .map(|b| output_f32(b, "barycentrics", 2 * n, " (two per ray)"))
             .transpose()?;
+        match &barycentrics {
+            Some(uv) => input.read_before_writing(&[&t_out, &triangles, uv]),
+            None => input.read_before_writing(&[&t_out, &triangles]),
+        }
         let (mut answers, mut ts, mut tris, mut uvs) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut found = 0u32;

@@ -275,6 +275,40 @@ const batchCases = [
 }
 for (const [i, [f, type, words]] of cases.entries()) throws(f, type, words, `case ${i}`);
 
+// Outputs in the rays' own buffer (over rays not yet read, when a batch is read a chunk at a
+// time) get the answers of separate arrays: every ray is read before any answer is written.
+{
+  const n = 3 * MeshBvh.RAY_CHUNK + 5;
+  const fresh = randomRays(bvh.bounds(), 3, n);
+  const want = [new Float32Array(n), new Uint32Array(n), new Float32Array(2 * n), new Uint8Array(n)];
+  bvh.raycastBatchBarycentric(fresh, 0, Infinity, want[0], want[1], want[2]);
+  bvh.raycastAnyBatch(fresh, 0, Infinity, want[3]);
+  assert.ok(want[1].some((tri) => tri !== MeshBvh.MISS_TRIANGLE), 'some rays hit');
+  // Each output laid over a different part of the rays: t over their start, triangles over the
+  // second chunk's, barycentrics over the tail, the any-hit flags over the middle.
+  const shared = (at, make) => {
+    const buffer = new ArrayBuffer(fresh.byteLength);
+    const rays = new Float32Array(buffer);
+    rays.set(fresh);
+    return [rays, make(buffer, at)];
+  };
+  let [r, t] = shared(0, (b) => new Float32Array(b, 0, n));
+  bvh.raycastBatch(r, 0, Infinity, t, new Uint32Array(n));
+  assert.deepEqual(t, want[0], 't over the rays');
+  let tri;
+  [r, tri] = shared(0, (b) => new Uint32Array(b, 4 * 6 * MeshBvh.RAY_CHUNK, n));
+  bvh.raycastBatch(r, 0, Infinity, new Float32Array(n), tri);
+  assert.deepEqual(tri, want[1], 'triangles over the rays');
+  let uv;
+  [r, uv] = shared(0, (b) => new Float32Array(b, b.byteLength - 8 * n, 2 * n));
+  bvh.raycastBatchBarycentric(r, 0, Infinity, new Float32Array(n), new Uint32Array(n), uv);
+  assert.deepEqual(uv, want[2], 'barycentrics over the rays');
+  let hits;
+  [r, hits] = shared(0, (b) => new Uint8Array(b, 4 * 6 * MeshBvh.RAY_CHUNK + 1, n));
+  bvh.raycastAnyBatch(r, 0, Infinity, hits);
+  assert.deepEqual(hits, want[3], 'any-hit flags over the rays');
+}
+
 // A mesh too large for WebAssembly's 4 GiB is refused with an Error naming the limit, before
 // anything is allocated for it (17 million triangles, all corners at vertex 0).
 throws(() => MeshBvh.build(new Float32Array(3), new Uint16Array(3 * 17_000_000)), Error, /too large for WebAssembly.*4 GiB/,
