@@ -6,8 +6,9 @@ use crate::mesh::ValidMesh;
 
 /// Lookup tables of the CRC: one (1 KiB) on bare-metal targets, where flash is scarce and
 /// blobs are small; sixteen (16 KiB, "slice-by-16", about ten times the speed) everywhere
-/// else, where checking a multi-megabyte blob at load is most of the load time. The same
-/// checksum either way.
+/// else, where checking a multi-megabyte blob is a large part of its load. The same checksum
+/// either way. (Targets with byte shuffles check a blob's bytes with `crc_lanes` instead; the
+/// tables still serve the mesh checksum there.)
 #[cfg(target_os = "none")]
 type Tables = Table<1>;
 #[cfg(not(target_os = "none"))]

@@ -3,7 +3,7 @@
 use postcard::ser_flavors::{Size, Slice};
 use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
 
-use super::checksum::{digest, mesh_checksum};
+use super::checksum::mesh_checksum;
 use super::format::{
     BASE_VERSION, CHECKSUM_BYTES, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
     NodeRecord, PLANNED_VERSION, SPATIAL_VERSION, TriangleRecord,
@@ -159,10 +159,28 @@ pub fn reseal(blob: &mut [u8]) -> Result<(), BlobError> {
 /// bytes, ending at `header_len`).
 pub(crate) fn blob_checksum(blob: &[u8], header_len: usize) -> u32 {
     let at = header_len.saturating_sub(CHECKSUM_BYTES);
-    let mut d = digest();
-    d.update(blob.get(..at).unwrap_or_default());
-    d.update(blob.get(header_len..).unwrap_or_default());
-    d.finalize()
+    let head = blob.get(..at).unwrap_or_default();
+    let payload = blob.get(header_len..).unwrap_or_default();
+    #[cfg(any(
+        target_feature = "simd128",
+        target_feature = "ssse3",
+        all(target_arch = "aarch64", target_feature = "neon")
+    ))]
+    {
+        use super::crc_lanes::{update, update_lanes};
+        !update_lanes(update(!0, head), payload)
+    }
+    #[cfg(not(any(
+        target_feature = "simd128",
+        target_feature = "ssse3",
+        all(target_arch = "aarch64", target_feature = "neon")
+    )))]
+    {
+        let mut d = super::checksum::digest();
+        d.update(head);
+        d.update(payload);
+        d.finalize()
+    }
 }
 
 /// The header as written: magic, version, fields, checksum (a placeholder until resealed).

@@ -78,6 +78,15 @@
 #[cfg(feature = "alloc")]
 mod boxes_deferred;
 mod checksum;
+// The checksum by byte shuffles where the target has them (SSSE3, NEON, WebAssembly SIMD),
+// tested on every target.
+#[cfg(any(
+    test,
+    target_feature = "simd128",
+    target_feature = "ssse3",
+    all(target_arch = "aarch64", target_feature = "neon")
+))]
+mod crc_lanes;
 mod decode;
 mod encode;
 mod format;

@@ -2,7 +2,10 @@
 
 use super::{MAX_DEPTH, TreeArrays};
 use crate::error::StructureError;
-use crate::math::{Aabb, Triangle};
+use glam::Vec4;
+
+use crate::geom::TriangleLanes;
+use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::query::LeafTriangles;
 
 /// How much to check.
@@ -93,7 +96,23 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
             }
             next_slot = first + tris.len();
             if let Some(mesh) = mesh {
+                // A run of stored triangles is checked four at a time first; only a triangle
+                // its lanes do not find inside goes through the test below.
+                let run = match level {
+                    CheckLevel::Full => mesh.run(first, tris.entries()),
+                    CheckLevel::Topology => None,
+                };
+                let mut inside = 0u32;
                 for (slot, tri) in tris {
+                    let lane = slot.wrapping_sub(first);
+                    if lane % 4 == 0 {
+                        inside = run
+                            .and_then(|r| r.get(lane..))
+                            .map_or(0, |rest| held_lanes(&bounds, rest));
+                    }
+                    if inside & (1 << (lane % 4)) != 0 {
+                        continue;
+                    }
                     let t = mesh
                         .corners(slot, tri)
                         .ok_or(StructureError::TriangleOutOfRange { node: index, tri })?;
@@ -154,6 +173,24 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
         nodes: reached as usize,
         slots: next_slot,
     })
+}
+
+/// Bit `i` set when `bounds` holds `tris[i]` ([`holds`], the same compares four triangles at
+/// a time), for the first four of `tris`; 0 for none.
+#[inline(always)]
+fn held_lanes(bounds: &Aabb, tris: &[PackedTriangle]) -> u32 {
+    let Some(lanes) = TriangleLanes::from_packed(tris) else {
+        return 0;
+    };
+    let (min, max) = (bounds.min.to_array(), bounds.max.to_array());
+    let mut inside = glam::BVec4A::splat(true);
+    for corner in [lanes.a, lanes.b, lanes.c] {
+        for ((row, lo), hi) in corner.rows.iter().zip(min).zip(max) {
+            inside &= row.cmpge(Vec4::splat(lo)) & row.cmple(Vec4::splat(hi));
+        }
+    }
+    let used = (1u32 << tris.len().min(4)) - 1;
+    inside.bitmask() & used
 }
 
 /// Whether `bounds` holds the triangle: every corner inside, which for the finite corners of
