@@ -9,7 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
 
-step() { printf '\n== %s\n' "$*"; }
+# Each step's heading says how long the run has taken so far (CI's budget is 30 minutes).
+step() { printf '\n== %s (at %d min %02d s)\n' "$*" $((SECONDS / 60)) $((SECONDS % 60)); }
 
 step "format"
 cargo fmt --all -- --check
@@ -108,3 +109,5 @@ if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null
 else
   echo "skipped: no nightly toolchain"
 fi
+
+step "all checks passed"
