@@ -2,7 +2,8 @@
 // with the DESIGN.md workloads and the same rays and points for both. Prints throughput
 // ratios (meshq / three-mesh-bvh); --json prints them as JSON. Build the package first:
 // scripts/wasm.sh. Environment: MESHQ_BENCH_RAYS (default 1,000,000), MESHQ_BENCH_SINGLE
-// (rays for the one-call-per-ray runs, default 200,000), MESHQ_BENCH_POINTS (default 100,000).
+// (rays for the one-call-per-ray runs, default 200,000), MESHQ_BENCH_POINTS (default 100,000),
+// MESHQ_BENCH_MESH (an OBJ file instead of the bundled bunny).
 import os from 'node:os';
 import * as THREE from 'three';
 import { MeshBVH, SAH } from 'three-mesh-bvh';
@@ -47,7 +48,7 @@ let bvh = null;
 const buildMeshq = time(() => { bvh?.free(); bvh = meshq.MeshBvh.build(positions, index); }, 5);
 const buildPeer = time(() => new MeshBVH(geometry), 5);
 const peer = new MeshBVH(geometry);
-log(`bunny: ${index.length / 3} triangles; meshq build ${buildMeshq.toFixed(1)} ms, three-mesh-bvh ${buildPeer.toFixed(1)} ms`);
+log(`${process.env.MESHQ_BENCH_MESH ?? 'bunny'}: ${index.length / 3} triangles; meshq build ${buildMeshq.toFixed(1)} ms, three-mesh-bvh ${buildPeer.toFixed(1)} ms`);
 report('build (default settings)', buildMeshq, buildPeer);
 // Like for like: meshq's fast preset splits at the centre, as three-mesh-bvh's default
 // (CENTER) does; meshq's default is binned SAH, as three-mesh-bvh's SAH strategy is.

@@ -212,6 +212,8 @@ mod tests {
     use crate::blob::{self, BlobHeader, BlobView, MeshLayout};
     use crate::bvh::BuildConfig;
     use crate::mesh::MeshRef;
+    use crate::wide::collapse::collapse_planned_vec;
+    use crate::wide::{CollapsePlan, WideNode8};
 
     /// A wavy sheet of `2·n²` triangles.
     fn sheet(n: u32) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
@@ -246,6 +248,17 @@ mod tests {
             let checked = MeshBvh::decode(&BlobView::parse(&bytes).unwrap()).unwrap();
             assert_eq!(quick.bvh().nodes(), checked.bvh().nodes());
             assert_eq!(quick.packed().as_slice(), checked.packed().as_slice());
+            // The space reserved for the wide nodes made from the blob's roles is exactly
+            // their count: nothing left over, nothing moved by a shrink.
+            let roles = BlobView::parse(&bytes)
+                .unwrap()
+                .tree()
+                .and_then(|t| t.collapse_roles())
+                .unwrap();
+            let plan = CollapsePlan::<8>::from_roles_unchecked(&quick.bvh(), roles);
+            let wide = collapse_planned_vec::<WideNode8, 8>(&plan).unwrap();
+            assert!(wide.len() > 1);
+            assert_eq!(plan.node_bound(), wide.len());
             // Nodes are 32-byte records after the header and their count's varint: shrink
             // each node's box in turn, one coordinate pulled to its centre.
             let header = BlobHeader::read(&bytes).unwrap();

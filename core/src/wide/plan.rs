@@ -273,9 +273,9 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     }
 
     #[cfg(feature = "alloc")]
-    /// At least as many as the nodes the collapse writes, for reserving room: the count when
-    /// known.
-    pub(super) fn node_bound(&self) -> usize {
+    /// How many nodes the collapse writes, for reserving room: exact for a solved plan and for
+    /// stored roles that pass their check (roles that do not fail the collapse).
+    pub(crate) fn node_bound(&self) -> usize {
         match self.choices {
             Choices::Stored(roles) if self.nodes == 0 => roles.node_bound(),
             _ => self.nodes,

@@ -203,10 +203,16 @@ impl<'a> CollapseRoles<'a> {
     }
 
     #[cfg(feature = "alloc")]
-    /// At least as many as the wide nodes of the collapse these roles describe (exactly the
-    /// nodes plus the merged leaves, for roles that pass [`check`](Self::check)).
+    /// The wide nodes of the collapse these roles describe, for roles that pass
+    /// [`check`](Self::check) (the `WIDE` roles, or 1 for a lone leaf): the capacity to reserve
+    /// for them, so that the nodes fill it exactly (roles that break the rules fail the
+    /// collapse, which may write more).
     pub(super) fn node_bound(&self) -> usize {
-        self.marked().max(1)
+        self.bytes
+            .iter()
+            .map(|&b| (b & !(b >> 1) & 0x55).count_ones() as usize)
+            .sum::<usize>()
+            .max(1)
     }
 
     /// Writes the lanes of the wide node at the inner node `inner` into `slots` (left to
