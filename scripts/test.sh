@@ -40,13 +40,15 @@ step "the wide trees built for AVX2 (eight lanes in one instruction), against br
 # The default x86-64 build runs eight lanes as two SSE halves; an AVX2 build takes the `wide`
 # crate's AVX path for them. Its answers must be the same, bit for bit: the wide-tree suites and the query
 # layer's again, built for x86-64-v3 in their own target directory, where the CPU has AVX2.
-# The blob suites run there too: with SSSE3, blobs are checksummed by byte shuffles
-# (`crc_lanes`) instead of the tables.
+# The blob suites run there too, and the core's blob unit tests without `std`: a build for
+# SSSE3 without `std` checksums blobs by byte shuffles (`crc_lanes`), not by tables.
 if grep -qw avx2 /proc/cpuinfo 2>/dev/null && [ "$(uname -m)" = x86_64 ]; then
   RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=target/x86-64-v3 \
     cargo test --locked -p meshq-tests --test eight_wide --test compact_nodes \
     --test raycast_vs_brute_force --test query_layer --test spatial_splits \
     --test blob_corruption --test blob_round_trip
+  RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=target/x86-64-v3 \
+    cargo test --locked -p meshq --features blob,alloc --lib blob::
 else
   echo "no AVX2 here: skipped"
 fi

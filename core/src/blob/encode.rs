@@ -161,26 +161,7 @@ pub(crate) fn blob_checksum(blob: &[u8], header_len: usize) -> u32 {
     let at = header_len.saturating_sub(CHECKSUM_BYTES);
     let head = blob.get(..at).unwrap_or_default();
     let payload = blob.get(header_len..).unwrap_or_default();
-    #[cfg(any(
-        target_feature = "simd128",
-        target_feature = "ssse3",
-        all(target_arch = "aarch64", target_feature = "neon")
-    ))]
-    {
-        use super::crc_lanes::{update, update_lanes};
-        !update_lanes(update(!0, head), payload)
-    }
-    #[cfg(not(any(
-        target_feature = "simd128",
-        target_feature = "ssse3",
-        all(target_arch = "aarch64", target_feature = "neon")
-    )))]
-    {
-        let mut d = super::checksum::digest();
-        d.update(head);
-        d.update(payload);
-        d.finalize()
-    }
+    super::checksum::crc_of_parts(head, payload)
 }
 
 /// The header as written: magic, version, fields, checksum (a placeholder until resealed).
