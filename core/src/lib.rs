@@ -70,8 +70,13 @@
 //!   of its structure and answers every query; with `blob`, `MeshBvh`
 //!   round-trips blobs too. Links the `alloc` crate; without this feature the crate links no
 //!   allocator.
+//! - `std`: links the standard library for what only it can do, find CPU features at run
+//!   time. With `blob`, on x86, x86-64 and AArch64, blob checksums are then computed with the
+//!   CPU's carry-less multiply or CRC32 instructions where present (through `crc32fast`);
+//!   the same checksums. Not for firmware.
+//! - `parallel`: batches and builds on rayon's thread pool (module `parallel`); implies `std`.
 //!
-//! Features add API only; none changes a layout, a wire format or a result.
+//! Features add API (`std` only speed); none changes a layout, a wire format or a result.
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
