@@ -26,24 +26,28 @@ macro_rules! on_structure {
 impl MeshIndex {
     /// [`MeshQuery::raycast`], run by the structure it holds (the same answer).
     #[must_use]
+    #[inline]
     pub fn raycast(&self, ray: &Ray) -> Option<RayHit> {
         on_structure!(self, s => s.raycast(ray))
     }
 
     /// [`MeshQuery::raycast_with`], run by the structure it holds (the same answer).
     #[must_use]
+    #[inline]
     pub fn raycast_with(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
         on_structure!(self, s => s.raycast_with(ray, options))
     }
 
     /// [`MeshQuery::raycast_any`], run by the structure it holds (the same answer).
     #[must_use]
+    #[inline]
     pub fn raycast_any(&self, ray: &Ray) -> bool {
         on_structure!(self, s => s.raycast_any(ray))
     }
 
     /// [`MeshQuery::raycast_any_with`], run by the structure it holds (the same answer).
     #[must_use]
+    #[inline]
     pub fn raycast_any_with(&self, ray: &Ray, options: &RayOptions) -> bool {
         on_structure!(self, s => s.raycast_any_with(ray, options))
     }
