@@ -105,6 +105,7 @@ MESHQ_BIN=target/debug/meshq node web/tests/e2e.mjs
 step "Node benchmark runs (small counts; the real run is node bench/node/bench.mjs)"
 MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_SINGLE=5000 MESHQ_BENCH_POINTS=2000 node bench/node/bench.mjs
 node bench/node/first.mjs 1
+MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_POINTS=4000 node bench/node/pool-balance.mjs
 
 step "fuzz blob parsing briefly"
 if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null 2>&1; then

@@ -1,5 +1,6 @@
 // Serves the demo on 127.0.0.1 and prints its URL. Port: MESHQ_PORT (default 8173; 0 or a
-// taken port: a free one the OS picks). GET /__meshq-demo answers "meshq-demo <token>" so a test can check that this server,
+// taken port: a free one the OS picks). A page asked for with `?isolated` is served
+// cross-origin isolated (COOP and COEP headers). GET /__meshq-demo answers "meshq-demo <token>" so a test can check that this server,
 // not another one on the same port, is the one answering.
 import { createServer } from 'node:http';
 import { createReadStream, statSync } from 'node:fs';
@@ -23,8 +24,13 @@ const server = createServer((request, response) => {
   // The request's own path, parsed as a path (never as `//host/…`); a malformed one is a 400,
   // never a crash.
   let path;
+  let isolated;
   try {
-    path = decodeURIComponent(new URL(`http://localhost/${request.url.replace(/^\/+/, '')}`).pathname);
+    const url = new URL(`http://localhost/${request.url.replace(/^\/+/, '')}`);
+    path = decodeURIComponent(url.pathname);
+    // `?isolated` serves a page cross-origin isolated (SharedArrayBuffer available, so
+    // meshq-wasm/pool shares memory with its workers); everything here is same-origin.
+    isolated = url.searchParams.has('isolated');
   } catch {
     response.writeHead(400, { 'content-type': 'text/plain' }).end('bad request');
     return;
@@ -45,9 +51,14 @@ const server = createServer((request, response) => {
     response.writeHead(404, { 'content-type': 'text/plain' }).end('not found');
     return;
   }
+  // A worker's script inherits no policy from its page: it states COEP itself, as an isolated
+  // page requires (and a page that is not isolated ignores).
+  const worker = /worker\.m?js$/.test(file);
   response.writeHead(200, {
     'content-type': types[extname(file)] ?? 'application/octet-stream',
     'cache-control': 'no-store',
+    ...(isolated ? { 'cross-origin-opener-policy': 'same-origin' } : {}),
+    ...(isolated || worker ? { 'cross-origin-embedder-policy': 'require-corp' } : {}),
   });
   createReadStream(file).pipe(response);
 });

@@ -17,7 +17,7 @@ export class MeshqPool {
   static fromBlob(bytes: Uint8Array, options?: MeshqPoolOptions): Promise<MeshqPool>;
   /** How many workers answer. */
   readonly size: number;
-  /** Whether queries and answers live in shared memory. */
+  /** Whether queries and answers live in shared memory (the workers then take each batch in pieces as they go, so a slower one answers fewer; copied, each answers an equal share). */
   readonly shared: boolean;
   /** Stops the workers; batches still running and later calls reject. */
   terminate(): void;

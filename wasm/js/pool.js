@@ -10,8 +10,11 @@
 // (Node; a cross-origin-isolated page), the blob, the queries and the answers live in shared
 // memory: nothing is copied between threads but each worker's own load. Elsewhere each worker
 // gets a copy of the blob and of its share of the queries, and sends its answers back.
-// A batch is cut into one contiguous share per worker, each answered by the same batch call
-// as on one thread, so every answer is the single-thread answer, bit for bit.
+// In shared memory a batch is cut into pieces that the workers take one after another until
+// none are left, so a worker on a slower core (or one the system runs less) answers fewer of
+// them; copied, it is cut into one contiguous share per worker. Each piece or share is
+// answered by the same batch call as on one thread, so every answer is the single-thread
+// answer, bit for bit.
 
 const inNode = typeof process !== 'undefined' && process.versions?.node !== undefined
   && typeof window === 'undefined';
@@ -21,6 +24,19 @@ function canShare() {
   if (typeof SharedArrayBuffer === 'undefined') return false;
   return inNode || globalThis.crossOriginIsolated === true;
 }
+
+/**
+ * The smallest piece a worker takes of a shared ray batch (the last may be smaller): small
+ * enough that the workers finish within a fraction of a millisecond of each other, large
+ * enough that taking it (an atomic exchange) costs nothing measurable. A multiple of the 8
+ * rays of a packet.
+ */
+const RAY_PIECE = 1024;
+/**
+ * The same for closest points: larger, as a batch call answers its points in Morton order,
+ * which pays more the more points it orders at once.
+ */
+const POINT_PIECE = 8192;
 
 /** A worker running pool-worker, with a promise-per-message interface. */
 class Thread {
@@ -154,20 +170,37 @@ export class MeshqPool {
     this.#threads = [];
   }
 
-  /** Cuts `count` queries into one contiguous share per worker and runs `ask` on each. */
-  async #spread(count, ask) {
-    if (this.#threads.length === 0) throw new Error('this pool was terminated');
-    const per = Math.ceil(count / this.#threads.length);
-    const jobs = [];
-    for (let w = 0, from = 0; w < this.#threads.length && from < count; w++, from += per) {
-      jobs.push(ask(this.#threads[w], from, Math.min(count, from + per)));
+  /**
+   * Answers `request` (a batch of `count` queries of `kind`) on every worker. In shared
+   * memory the workers take pieces (of at least `minPiece` queries) from one shared cursor as
+   * they go and write their answers in place; copied, each worker gets one contiguous share
+   * of `input` (values `stride` per query) and `copyBack(result, from)` places its answers.
+   * Resolves to the total count (hits, or points found).
+   */
+  async #answer(kind, count, input, stride, minPiece, request, copyBack) {
+    const threads = this.#threads;
+    if (threads.length === 0) throw new Error('this pool was terminated');
+    if (count === 0) return 0;
+    let jobs;
+    if (this.#share) {
+      const cursor = new Int32Array(new SharedArrayBuffer(4));
+      const shared = { total: count, cursor, workers: threads.length, minPiece };
+      jobs = threads.map((thread) => thread.call({ kind, input, ...request, ...shared }));
+    } else {
+      const per = Math.ceil(count / threads.length);
+      jobs = [];
+      for (let w = 0, from = 0; w < threads.length && from < count; w++, from += per) {
+        const to = Math.min(count, from + per);
+        const share = input.slice(stride * from, stride * to);
+        jobs.push(threads[w].call({ kind, input: share, ...request, out: null, from: 0, to: to - from })
+          .then((result) => {
+            copyBack(result, from);
+            return result;
+          }));
+      }
     }
-    return Promise.all(jobs);
-  }
-
-  /** Queries `input` (values `stride` per query) from `from` to `to`, for a worker. */
-  #share_of(input, stride, from, to) {
-    return this.#share ? { input, from, to } : { input: input.slice(stride * from, stride * to), from: 0, to: to - from };
+    const results = await Promise.all(jobs);
+    return results.reduce((sum, r) => sum + r.count, 0);
   }
 
   /**
@@ -181,17 +214,12 @@ export class MeshqPool {
     const input = shareable(rays, this.#share);
     const t = output(Float32Array, n, this.#share);
     const triangles = output(Uint32Array, n, this.#share);
-    const parts = await this.#spread(n, (thread, from, to) => thread.call({
-      kind: 'raycast', ...this.#share_of(input, 6, from, to), near, far, side,
-      out: this.#share ? { t, triangles } : null,
-    }).then((result) => {
-      if (!this.#share) {
+    const hits = await this.#answer('raycast', n, input, 6, RAY_PIECE, { near, far, side, out: { t, triangles } },
+      (result, from) => {
         t.set(result.t, from);
         triangles.set(result.triangles, from);
-      }
-      return result.hits;
-    }));
-    return { t, triangles, hits: parts.reduce((a, b) => a + b, 0) };
+      });
+    return { t, triangles, hits };
   }
 
   /**
@@ -202,14 +230,9 @@ export class MeshqPool {
     const n = checkQueries(rays, 6, 'rays');
     const input = shareable(rays, this.#share);
     const hits = output(Uint8Array, n, this.#share);
-    const parts = await this.#spread(n, (thread, from, to) => thread.call({
-      kind: 'any', ...this.#share_of(input, 6, from, to), near, far, side,
-      out: this.#share ? { hits } : null,
-    }).then((result) => {
-      if (!this.#share) hits.set(result.hits, from);
-      return result.count;
-    }));
-    return { hits, count: parts.reduce((a, b) => a + b, 0) };
+    const count = await this.#answer('any', n, input, 6, RAY_PIECE, { near, far, side, out: { hits } },
+      (result, from) => hits.set(result.hits, from));
+    return { hits, count };
   }
 
   /**
@@ -223,18 +246,14 @@ export class MeshqPool {
     const closest = output(Float32Array, 3 * n, this.#share);
     const triangles = output(Uint32Array, n, this.#share);
     const distances = output(Float32Array, n, this.#share);
-    const parts = await this.#spread(n, (thread, from, to) => thread.call({
-      kind: 'closest', ...this.#share_of(input, 3, from, to), maxDistance,
-      out: this.#share ? { closest, triangles, distances } : null,
-    }).then((result) => {
-      if (!this.#share) {
+    const found = await this.#answer('closest', n, input, 3, POINT_PIECE,
+      { maxDistance, out: { closest, triangles, distances } },
+      (result, from) => {
         closest.set(result.closest, 3 * from);
         triangles.set(result.triangles, from);
         distances.set(result.distances, from);
-      }
-      return result.found;
-    }));
-    return { closest, triangles, distances, found: parts.reduce((a, b) => a + b, 0) };
+      });
+    return { closest, triangles, distances, found };
   }
 }
 

@@ -157,8 +157,38 @@ try {
     return { same, hits, shared, size };
   });
   assert.ok(pooled.same && pooled.hits > 5000 && pooled.size === 2 && !pooled.shared, JSON.stringify(pooled));
+  // The same page served cross-origin isolated: the pool shares memory with its workers, which
+  // take the batch in pieces (Atomics on a SharedArrayBuffer), and answers as one thread does.
+  await page.goto(new URL('?isolated', url).href);
+  await page.waitForFunction(() => window.meshqDemo?.ready || window.meshqDemo?.error, null, { timeout: 60000 });
+  const isolated = await page.evaluate(async () => {
+    const { MeshBvh, randomRays, queryPoints } = await import('meshq-wasm');
+    const { MeshqPool } = await import('meshq-wasm/pool');
+    const bytes = new Uint8Array(await (await fetch('assets/bunny.meshq')).arrayBuffer());
+    const bvh = MeshBvh.fromBlob(bytes);
+    const n = 50003;
+    const rays = randomRays(bvh.bounds(), 6, n);
+    const t = new Float32Array(n);
+    const triangles = new Uint32Array(n);
+    const hits = bvh.raycastBatch(rays, 0, Infinity, t, triangles);
+    const points = queryPoints(bvh.bounds(), 7, 20000);
+    const distances = new Float32Array(20000);
+    const closestTriangles = new Uint32Array(20000);
+    const found = bvh.closestPointBatch(points, 0.05, new Float32Array(60000), closestTriangles, distances);
+    const pool = await MeshqPool.fromBlob(bytes, { workers: 2 });
+    const got = await pool.raycastBatch(rays);
+    const near = await pool.closestPointBatch(points, 0.05);
+    const { size, shared } = pool;
+    pool.terminate();
+    const same = got.hits === hits && got.t.every((x, i) => Object.is(x, t[i])) && got.triangles.every((x, i) => x === triangles[i])
+      && near.found === found && near.distances.every((x, i) => Object.is(x, distances[i]))
+      && near.triangles.every((x, i) => x === closestTriangles[i]);
+    return { same, hits, found, shared, size, isolated: globalThis.crossOriginIsolated };
+  });
+  assert.ok(isolated.same && isolated.hits > 10000 && isolated.found > 0 && isolated.size === 2 && isolated.shared
+    && isolated.isolated, JSON.stringify(isolated));
   assert.deepEqual(errors, [], 'no console errors');
-  console.log('browser: the demo, meshq-wasm/three and meshq-wasm/pool (2 Web Workers) run from the installed tarball through the import map');
+  console.log('browser: the demo, meshq-wasm/three and meshq-wasm/pool (2 Web Workers, copied and shared) run from the installed tarball through the import map');
 } finally {
   await browser?.close();
   server.kill();

@@ -1,6 +1,7 @@
-// meshq-wasm/pool in Node (worker_threads): pools of 1, 2 and 3 workers, with memory shared and
-// copied, answer the bunny's DESIGN.md workloads exactly as the single-thread batch calls do
-// (the same bits), batches smaller than the pool included; bad input is refused with the
+// meshq-wasm/pool in Node (worker_threads): pools of 1, 2 and 3 workers, with memory shared (the
+// workers taking pieces of a batch as they go) and copied (an equal share each), answer the
+// bunny's DESIGN.md workloads exactly as the single-thread batch calls do (the same bits),
+// batches smaller than the pool and batches of odd sizes included; bad input is refused with the
 // error the single-thread call gives; a damaged blob rejects the pool; a terminated pool
 // rejects. Run after scripts/build-web.sh: node web/tests/pool.mjs
 import assert from 'node:assert/strict';
@@ -49,6 +50,11 @@ for (const shared of [true, false]) {
     assert.deepEqual(bits(c.closest), bits(closest), `${what}: closest points`);
     assert.deepEqual(c.triangles, closestTriangles, what);
     assert.deepEqual(bits(c.distances), bits(distances), what);
+    // A batch whose last piece is not whole packets: each ray's answer is its answer in the
+    // full batch.
+    const odd = await pool.raycastBatch(rays.subarray(0, 6 * (n - 3)));
+    assert.deepEqual(bits(odd.t), bits(t.subarray(0, n - 3)), `${what}: ${n - 3} rays`);
+    assert.deepEqual(odd.triangles, triangles.subarray(0, n - 3), `${what}: ${n - 3} rays`);
     // Fewer queries than workers, and none at all.
     const two = await pool.raycastBatch(rays.subarray(0, 12), 0, 10, 2);
     const t2 = new Float32Array(2);
