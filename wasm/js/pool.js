@@ -37,6 +37,8 @@ const RAY_PIECE = 1024;
  * which pays more the more points it orders at once.
  */
 const POINT_PIECE = 8192;
+/** Rays per packet: pieces of ray batches are whole packets. */
+const PACKET = 8;
 
 /** A worker running pool-worker, with a promise-per-message interface. */
 class Thread {
@@ -172,8 +174,8 @@ export class MeshqPool {
 
   /**
    * Answers `request` (a batch of `count` queries of `kind`) on every worker. In shared
-   * memory the workers take pieces (of at least `minPiece` queries) from one shared cursor as
-   * they go and write their answers in place; copied, each worker gets one contiguous share
+   * memory the workers take pieces (of at least `minPiece` queries, or a quarter of a share
+   * for a small batch) from one shared cursor as they go and write their answers in place; copied, each worker gets one contiguous share
    * of `input` (values `stride` per query) and `copyBack(result, from)` places its answers.
    * Resolves to the total count (hits, or points found).
    */
@@ -184,7 +186,10 @@ export class MeshqPool {
     let jobs;
     if (this.#share) {
       const cursor = new Int32Array(new SharedArrayBuffer(4));
-      const shared = { total: count, cursor, workers: threads.length, minPiece };
+      // A smaller batch takes smaller pieces: at least four per worker, else the first worker
+      // to start could take it all.
+      const smallest = Math.min(minPiece, Math.ceil(count / (4 * threads.length) / PACKET) * PACKET);
+      const shared = { total: count, cursor, workers: threads.length, minPiece: smallest };
       jobs = threads.map((thread) => thread.call({ kind, input, ...request, ...shared }));
     } else {
       const per = Math.ceil(count / threads.length);
