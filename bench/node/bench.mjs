@@ -17,7 +17,7 @@ const POINTS = Number(process.env.MESHQ_BENCH_POINTS ?? 100_000);
 const json = process.argv.includes('--json');
 const log = (...a) => { if (!json) console.log(...a); };
 
-/** Median wall time in ms of `runs` calls of `f`, after one warm-up call. */
+/** Median wall time in ms of `runs` calls of `f`, after one warm-up call (builds, loads). */
 function time(f, runs) {
   f();
   const times = [];
@@ -28,6 +28,26 @@ function time(f, runs) {
   }
   times.sort((a, b) => a - b);
   return times[Math.floor(times.length / 2)];
+}
+
+/**
+ * Best wall times in ms of `ours` and `theirs` over `rounds` rounds, after one warm-up call of
+ * each: every round times one call of each, back to back, so that a slow spell of a shared
+ * machine falls on both sides alike (timed apart, one side's runs could land in it alone).
+ */
+function paired(ours, theirs, rounds = 5) {
+  ours();
+  theirs();
+  let [best, peerBest] = [Infinity, Infinity];
+  for (let i = 0; i < rounds; i++) {
+    let t0 = performance.now();
+    ours();
+    best = Math.min(best, performance.now() - t0);
+    t0 = performance.now();
+    theirs();
+    peerBest = Math.min(peerBest, performance.now() - t0);
+  }
+  return [best, peerBest];
 }
 
 const results = [];
@@ -113,15 +133,15 @@ function batch(rays) {
 }
 
 const nRandom = RAYS;
-report('random rays, batched vs raycastFirst', time(batch(random), 3),
-  time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+report('random rays, batched vs raycastFirst',
+  ...paired(batch(random), () => peerFirstHits(random, nRandom)), nRandom, 'rays');
 {
   const n = nRandom;
   const distances = new Float32Array(n);
   const triangles = new Uint32Array(n);
   report('random rays, batched on the fast tree vs raycastFirst',
-    time(() => fastBvh.raycastBatch(random, 0, Infinity, distances, triangles), 3),
-    time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+    ...paired(() => fastBvh.raycastBatch(random, 0, Infinity, distances, triangles),
+      () => peerFirstHits(random, nRandom)), nRandom, 'rays');
 }
 {
   // A mesh loaded from a blob decodes its tree for the same fast queries as a built one.
@@ -130,12 +150,12 @@ report('random rays, batched vs raycastFirst', time(batch(random), 3),
   const triangles = new Uint32Array(n);
   const fromBlob = meshq.MeshBvh.fromBlob(blob);
   report('random rays, batched on the blob-loaded tree vs raycastFirst',
-    time(() => fromBlob.raycastBatch(random, 0, Infinity, distances, triangles), 3),
-    time(() => peerFirstHits(random, nRandom), 3), nRandom, 'rays');
+    ...paired(() => fromBlob.raycastBatch(random, 0, Infinity, distances, triangles),
+      () => peerFirstHits(random, nRandom)), nRandom, 'rays');
   fromBlob.free();
 }
-report('camera rays 1024², batched vs raycastFirst', time(batch(camera), 3),
-  time(() => peerFirstHits(camera, camera.length / 6), 3), camera.length / 6, 'rays');
+report('camera rays 1024², batched vs raycastFirst',
+  ...paired(batch(camera), () => peerFirstHits(camera, camera.length / 6)), camera.length / 6, 'rays');
 {
   // The four-wide tree (`fourWideNodes()`; a BVH walks eight-wide nodes as built or loaded):
   // the same answers, checked here.
@@ -149,8 +169,8 @@ report('camera rays 1024², batched vs raycastFirst', time(batch(camera), 3),
     const wantTri = new Uint32Array(n);
     bvh.raycastBatch(rays, 0, Infinity, wantT, wantTri);
     report(`${name}, batched on the four-wide tree vs raycastFirst`,
-      time(() => four.raycastBatch(rays, 0, Infinity, distances, triangles), 3),
-      time(() => peerFirstHits(rays, n), 3), n, 'rays');
+      ...paired(() => four.raycastBatch(rays, 0, Infinity, distances, triangles),
+        () => peerFirstHits(rays, n)), n, 'rays');
     for (let k = 0; k < n; k++) {
       if (triangles[k] !== wantTri[k] || !Object.is(distances[k], wantT[k])) {
         throw new Error(`four-wide tree: ray ${k} differs`);
@@ -182,16 +202,17 @@ const singleArrays = () => {
   }
   return hits;
 };
-const peerSingle = time(() => peerFirstHits(random, SINGLE), 3);
-report('random rays, one call each: raycastXyz', time(singleXyz, 3), peerSingle, SINGLE, 'rays');
-report('random rays, one call each: raycast(arrays)', time(singleArrays, 3), peerSingle, SINGLE, 'rays');
+report('random rays, one call each: raycastXyz',
+  ...paired(singleXyz, () => peerFirstHits(random, SINGLE)), SINGLE, 'rays');
+report('random rays, one call each: raycast(arrays)',
+  ...paired(singleArrays, () => peerFirstHits(random, SINGLE)), SINGLE, 'rays');
 
 const anyBatch = (() => {
   const out = new Uint8Array(RAYS);
   return () => bvh.raycastAnyBatch(random, 0, Infinity, out);
 })();
-report('random rays, any hit batched vs raycastFirst', time(anyBatch, 3),
-  time(() => peerFirstHits(random, nRandom), 1), nRandom, 'rays');
+report('random rays, any hit batched vs raycastFirst',
+  ...paired(anyBatch, () => peerFirstHits(random, nRandom)), nRandom, 'rays');
 
 const closestBatch = (() => {
   const c = new Float32Array(3 * POINTS);
@@ -207,8 +228,8 @@ const peerClosest = () => {
     peer.closestPointToPoint(p, target);
   }
 };
-report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
-  time(peerClosest, 3), POINTS, 'points');
+report('closest point, batched vs closestPointToPoint',
+  ...paired(closestBatch, peerClosest), POINTS, 'points');
 
 // The worker pool (meshq-wasm/pool): the same batch on 1 worker and on one per core, each
 // loading the blob; the answers are checked equal to the single-thread batch first.
@@ -221,8 +242,9 @@ report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
     const got = await pool.raycastBatch(random);
     if (!got.triangles.every((x, i) => x === want[i])) throw new Error(`pool of ${pool.size}: other answers`);
   }
-  // Interleaved, best of 3 rounds, so machine noise hits both pools alike.
-  let [one, all] = [Infinity, Infinity];
+  // Interleaved with three-mesh-bvh's pass, best of 3 rounds after a warm-up round, so
+  // machine noise hits both pools and the peer alike.
+  let [one, all, peer] = [Infinity, Infinity, Infinity];
   for (let round = 0; round < 4; round++) {
     for (const [k, pool] of pools.entries()) {
       const t0 = performance.now();
@@ -230,8 +252,10 @@ report('closest point, batched vs closestPointToPoint', time(closestBatch, 3),
       const ms = performance.now() - t0;
       if (round > 0) k === 0 ? (one = Math.min(one, ms)) : (all = Math.min(all, ms));
     }
+    const t0 = performance.now();
+    peerFirstHits(random, nRandom);
+    if (round > 0) peer = Math.min(peer, performance.now() - t0);
   }
-  const peer = time(() => peerFirstHits(random, nRandom), 3);
   report(`random rays, pool of ${cores} workers vs raycastFirst`, all, peer, nRandom, 'rays');
   log(`pool scaling: ${cores} workers ${(one / all).toFixed(2)}× one worker (${one.toFixed(0)} vs ${all.toFixed(0)} ms)`);
   results.push({ workload: 'pool scaling', workers: cores, one_worker_ms: one, all_workers_ms: all, ratio: one / all });
