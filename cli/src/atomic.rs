@@ -2,8 +2,11 @@
 //!
 //! Every file the command writes goes to a temporary file in the same directory, renamed over
 //! the output path only once complete and synced: a run that fails, is killed, or meets a full
-//! disk leaves any earlier file at that path as it was.
+//! disk leaves any earlier file at that path as it was. An output path that already names
+//! something other than a file or a directory — `/dev/null`, a named pipe, a terminal — is
+//! written in place instead: a rename would put a plain file where the device or pipe was.
 
+use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -42,16 +45,33 @@ fn same_file(a: &Path, b: &Path) -> bool {
 }
 
 /// A file being written: it takes the output path's place only at [`AtomicFile::commit`];
-/// dropped before that, it is deleted.
+/// dropped before that, it is deleted. A device or pipe is written in place.
 pub struct AtomicFile {
-    out: BufWriter<NamedTempFile>,
+    out: Sink,
     path: PathBuf,
+}
+
+enum Sink {
+    /// A temporary file beside the output, renamed over it at the end.
+    Temp(BufWriter<NamedTempFile>),
+    /// A device, pipe or socket already at the output path, written as a stream.
+    Stream(BufWriter<File>),
 }
 
 impl AtomicFile {
     /// Starts writing `path`, after refusing it if it is one of `inputs`.
     pub fn create(path: &Path, inputs: &[&Path]) -> Result<Self> {
         refuse_inputs(path, inputs)?;
+        if is_stream(path) {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .with_context(|| format!("cannot open {}", path.display()))?;
+            return Ok(Self {
+                out: Sink::Stream(BufWriter::with_capacity(1 << 20, file)),
+                path: path.to_owned(),
+            });
+        }
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d,
             _ => Path::new("."),
@@ -62,36 +82,54 @@ impl AtomicFile {
             .tempfile_in(dir)
             .with_context(|| format!("cannot create a file in {}", dir.display()))?;
         Ok(Self {
-            out: BufWriter::with_capacity(1 << 20, temp),
+            out: Sink::Temp(BufWriter::with_capacity(1 << 20, temp)),
             path: path.to_owned(),
         })
     }
 
-    /// Flushes, syncs and renames the file over the output path.
+    /// Flushes, syncs and renames the file over the output path (a stream: flushes it).
     pub fn commit(self) -> Result<()> {
         let path = self.path;
         let done = (|| -> Result<()> {
-            let temp = self.out.into_inner().map_err(|e| e.into_error())?;
-            set_readable(temp.as_file())?;
-            temp.as_file().sync_all()?;
-            temp.persist(&path).map_err(|e| e.error)?;
+            match self.out {
+                Sink::Temp(out) => {
+                    let temp = out.into_inner().map_err(|e| e.into_error())?;
+                    set_readable(temp.as_file())?;
+                    temp.as_file().sync_all()?;
+                    temp.persist(&path).map_err(|e| e.error)?;
+                }
+                Sink::Stream(mut out) => out.flush()?,
+            }
             Ok(())
         })();
         done.with_context(|| format!("cannot write {}", path.display()))
     }
+
+    fn writer(&mut self) -> &mut dyn Write {
+        match &mut self.out {
+            Sink::Temp(out) => out,
+            Sink::Stream(out) => out,
+        }
+    }
+}
+
+/// Whether `path` (followed through symbolic links, as `/dev/stdout` is) already names
+/// something that is neither a regular file nor a directory.
+fn is_stream(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
 }
 
 impl Write for AtomicFile {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.out.write(buf)
+        self.writer().write(buf)
     }
 
     fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
-        self.out.write_all(buf)
+        self.writer().write_all(buf)
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.out.flush()
+        self.writer().flush()
     }
 }
 

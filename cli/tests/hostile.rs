@@ -155,6 +155,64 @@ fn failed_and_killed_runs_leave_earlier_outputs_whole() {
     }
 }
 
+/// An output path that already names a pipe or a device (`/dev/null`, `/dev/stdout`, a named
+/// pipe) is written in place: renaming a finished file over it, as other outputs are, would
+/// leave a plain file where the pipe was (and, run as root with `--out /dev/null`, replace the
+/// device). A named pipe stands for them all here; a reader `cat` waits on it, and gives up
+/// after a minute if no writer ever comes (the pipe was replaced).
+#[cfg(target_os = "linux")]
+#[test]
+fn an_output_that_is_a_pipe_is_written_through_not_replaced() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = asset("spot.obj");
+    let rays = dir.path().join("rays.bin");
+    assert!(
+        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &"20000"])
+            .status
+            .success()
+    );
+    let expected = dir.path().join("hits.bin");
+    assert!(
+        meshq(&[&"raycast", &mesh, &"--rays", &rays, &"--out", &expected])
+            .status
+            .success()
+    );
+    let pipe = dir.path().join("hits.pipe");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&pipe)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let reader = Command::new("timeout")
+        .arg("60")
+        .arg("cat")
+        .arg(&pipe)
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let run = meshq(&[&"raycast", &mesh, &"--rays", &rays, &"--out", &pipe]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let read = reader.wait_with_output().unwrap();
+    assert!(read.status.success(), "no writer opened the pipe");
+    // 20,000 records of 8 bytes went through the pipe (more than its 64 KB buffer), the same
+    // bytes as written to a file.
+    assert_eq!(read.stdout, std::fs::read(&expected).unwrap());
+    assert!(std::fs::metadata(&pipe).unwrap().file_type().is_fifo());
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".partial"))
+        .collect();
+    assert!(left.is_empty(), "temporary files left: {left:?}");
+}
+
 #[test]
 fn tiny_files_that_declare_huge_counts_are_errors_under_a_memory_limit() {
     let dir = tempfile::tempdir().unwrap();
