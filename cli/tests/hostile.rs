@@ -36,6 +36,29 @@ fn asset(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// `count` random rays for `mesh` in `dir/rays.bin` and their closest hits in `dir/hits.bin`,
+/// both written by the command.
+fn rays_and_hits(mesh: &Path, dir: &Path, count: usize) -> (PathBuf, PathBuf) {
+    let (rays, hits) = (dir.join("rays.bin"), dir.join("hits.bin"));
+    let count = count.to_string();
+    assert!(
+        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &count])
+            .status
+            .success()
+    );
+    assert!(
+        meshq(&[&"raycast", &mesh, &"--rays", &rays, &"--out", &hits])
+            .status
+            .success()
+    );
+    (rays, hits)
+}
+
+/// A named pipe at `path` (`mkfifo`).
+fn make_fifo(path: &Path) {
+    assert!(Command::new("mkfifo").arg(path).status().unwrap().success());
+}
+
 /// A failure with status 1 and one stderr line containing `needle`, no panic.
 fn refused(out: &Output, needle: &str) {
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -101,18 +124,7 @@ fn failed_and_killed_runs_leave_earlier_outputs_whole() {
     let dir = tempfile::tempdir().unwrap();
     let good = dir.path().join("good.obj");
     std::fs::copy(asset("spot.obj"), &good).unwrap();
-    let rays = dir.path().join("rays.bin");
-    assert!(
-        meshq(&[&"workload", &good, &"-o", &rays, &"--count", &"1000"])
-            .status
-            .success()
-    );
-    let hits = dir.path().join("hits.bin");
-    assert!(
-        meshq(&[&"raycast", &good, &"--rays", &rays, &"--out", &hits])
-            .status
-            .success()
-    );
+    let (rays, hits) = rays_and_hits(&good, dir.path(), 1000);
     let before = std::fs::read(&hits).unwrap();
     // A run that fails (a NaN vertex) leaves the previous results as they were.
     let bad = dir.path().join("bad.obj");
@@ -166,26 +178,9 @@ fn an_output_that_is_a_pipe_is_written_through_not_replaced() {
     use std::os::unix::fs::FileTypeExt;
     let dir = tempfile::tempdir().unwrap();
     let mesh = asset("spot.obj");
-    let rays = dir.path().join("rays.bin");
-    assert!(
-        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &"20000"])
-            .status
-            .success()
-    );
-    let expected = dir.path().join("hits.bin");
-    assert!(
-        meshq(&[&"raycast", &mesh, &"--rays", &rays, &"--out", &expected])
-            .status
-            .success()
-    );
+    let (rays, expected) = rays_and_hits(&mesh, dir.path(), 20_000);
     let pipe = dir.path().join("hits.pipe");
-    assert!(
-        Command::new("mkfifo")
-            .arg(&pipe)
-            .status()
-            .unwrap()
-            .success()
-    );
+    make_fifo(&pipe);
     let reader = Command::new("timeout")
         .arg("60")
         .arg("cat")
@@ -273,13 +268,7 @@ fn tiny_files_that_declare_huge_counts_are_errors_under_a_memory_limit() {
     }
     // A mesh path that is a pipe is refused, not waited on.
     let fifo_mesh = dir.path().join("pipe.obj");
-    assert!(
-        Command::new("mkfifo")
-            .arg(&fifo_mesh)
-            .status()
-            .unwrap()
-            .success()
-    );
+    make_fifo(&fifo_mesh);
     refused(
         &meshq(&[&"bake", &fifo_mesh, &"-o", &out]),
         "not a regular file",
