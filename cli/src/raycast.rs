@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use meshq::math::{Ray, RayHit, Vec3};
 use meshq::owned::MeshIndex;
 use meshq::parallel;
-use meshq::query::RayOptions;
+use meshq::query::{RayOptions, sorts_ray_batch};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -152,10 +152,6 @@ fn query_here(
     results: &mut Vec<RayHit>,
 ) -> Result<()> {
     let options = RayOptions::default();
-    let batch = rays.len().min(BATCH);
-    scratch.keys.resize(batch, 0);
-    scratch.answers.resize(batch, None);
-    scratch.flags.resize(batch, false);
     if args.hits.is_some() {
         for r in rays {
             let found = scene.raycast_all(r, &options, nearest);
@@ -168,8 +164,18 @@ fn query_here(
     } else if args.per_ray {
         results.extend(rays.iter().map(|r| scene.raycast(r).unwrap_or(MISS)));
     } else {
-        // Batches of BATCH rays: their scratch stays small and in cache.
-        for batch in rays.chunks(BATCH) {
+        // Batches of BATCH rays, whose scratch stays small and in cache, or the whole chunk
+        // when the core sorts it.
+        let per_call = if sorts_ray_batch(scene, rays) {
+            rays.len().max(1)
+        } else {
+            BATCH
+        };
+        let scratch_len = per_call.min(rays.len());
+        scratch.keys.resize(scratch_len, 0);
+        scratch.answers.resize(scratch_len, None);
+        scratch.flags.resize(scratch_len, false);
+        for batch in rays.chunks(per_call) {
             let keys = &mut scratch.keys[..batch.len()];
             if args.any {
                 let flags = &mut scratch.flags[..batch.len()];
@@ -185,7 +191,8 @@ fn query_here(
     Ok(())
 }
 
-/// Rays per batch call on one thread.
+/// Rays per batch call on one thread, unless the core sorts the chunk's rays
+/// (`meshq::query::sorts_ray_batch`: many rays on a large mesh), which needs them in one call.
 const BATCH: usize = 1 << 14;
 
 /// Answers `rays` on the current rayon pool (`meshq::parallel` batches, or one every-hit

@@ -4,7 +4,9 @@
 //!
 //! Each call cuts its queries into runs of [`RUN`] consecutive queries and hands the runs to
 //! the pool; a run is answered by the single-threaded batch call ([`MeshQuery::raycast_batch`]
-//! and friends), whose answer for query `i` is exactly the single call's. So `out[i]` is the
+//! and friends), whose answer for query `i` is exactly the single call's. A ray batch that the
+//! single-threaded call would sort (a large batch on a large structure) is sorted first, on
+//! the pool, and cut into runs in that order. So `out[i]` is the
 //! same, bit for bit, whatever the number of threads, the run length or the other queries —
 //! and the same as on a target without threads. The pool is rayon's global one unless the
 //! call runs inside [`rayon::ThreadPool::install`] (the `meshq` command's `--threads`).
@@ -22,11 +24,14 @@
 //! ```
 
 use alloc::vec;
+use alloc::vec::Vec;
 
 use rayon::prelude::*;
 
 use crate::error::{BatchBuffer, BatchError};
 use crate::math::{ClosestPoint, Ray, RayHit, Vec3};
+use crate::query::batch_order::query_index;
+use crate::query::ray_order::KeyGrid;
 use crate::query::{MeshQuery, RayOptions};
 
 /// Queries per run handed to a thread: long enough for the Morton order inside a run to keep
@@ -67,7 +72,7 @@ pub fn raycast_batch<Q: MeshQuery + Sync + ?Sized>(
     options: &RayOptions,
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
-    in_runs(rays, out, |run, keys, answers| {
+    in_ray_order(query, rays, out, |run, keys, answers| {
         query.raycast_batch(run, options, keys, answers)
     })
 }
@@ -83,9 +88,64 @@ pub fn raycast_any_batch<Q: MeshQuery + Sync + ?Sized>(
     options: &RayOptions,
     out: &mut [bool],
 ) -> Result<(), BatchError> {
-    in_runs(rays, out, |run, keys, answers| {
+    in_ray_order(query, rays, out, |run, keys, answers| {
         query.raycast_any_batch(run, options, keys, answers)
     })
+}
+
+/// [`in_runs`] over `rays` in the order a single-threaded batch of them would take on `query`
+/// (sorted by line key when the batch and the structure are large, see
+/// [`MeshQuery::raycast_batch`]): the whole batch is sorted here, on the pool, copied in that
+/// order and cut into runs, and each answer is then written back to its ray's place. Runs are
+/// shorter than any sorted batch, so each is answered as given.
+fn in_ray_order<Q: MeshQuery + Sync + ?Sized, O: Copy + Default + Send + Sync>(
+    query: &Q,
+    rays: &[Ray],
+    out: &mut [O],
+    batch: impl Fn(&[Ray], &mut [u64], &mut [O]) -> Result<(), BatchError> + Sync + Send,
+) -> Result<(), BatchError> {
+    let grid = KeyGrid::for_batch(rays, query.batch_hint());
+    let (Some(grid), Some(first)) = (grid, rays.first()) else {
+        return in_runs(rays, out, batch);
+    };
+    if out.len() < rays.len() {
+        return Err(BatchError::BufferTooSmall {
+            buffer: BatchBuffer::Results,
+            needed: rays.len(),
+            got: out.len(),
+        });
+    }
+    if u32::try_from(rays.len()).is_err() {
+        return Err(BatchError::TooLarge);
+    }
+    let mut keys: Vec<u64> = rays
+        .par_iter()
+        .enumerate()
+        .map(|(i, ray)| grid.key(ray, i as u64))
+        .collect();
+    keys.par_sort_unstable();
+    let sorted: Vec<Ray> = keys
+        .par_iter()
+        .map(|&key| rays.get(query_index(key)).copied().unwrap_or(*first))
+        .collect();
+    let mut answers = vec![O::default(); rays.len()];
+    in_runs(&sorted, &mut answers, batch)?;
+    // Where each ray's answer landed: the inverse of the order, so that the answers are
+    // written back by a gather on the pool rather than a scatter.
+    let mut place = vec![0u32; rays.len()];
+    for (&key, at) in keys.iter().zip(0u32..) {
+        if let Some(slot) = place.get_mut(query_index(key)) {
+            *slot = at;
+        }
+    }
+    out.par_iter_mut()
+        .zip(place.par_iter())
+        .for_each(|(slot, &at)| {
+            if let Some(&answer) = answers.get(at as usize) {
+                *slot = answer;
+            }
+        });
+    Ok(())
 }
 
 /// [`MeshQuery::closest_points`] on every thread of the pool: `out[i]` is exactly

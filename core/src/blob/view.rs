@@ -147,6 +147,17 @@ impl Traverse for BlobView<'_> {
     fn split_refs(&self) -> crate::query::SplitRefs<'_> {
         self.structure.split_refs()
     }
+
+    /// The header's root box ([`BlobView::bounds`]) and triangle count; `None` when the box
+    /// is empty.
+    #[inline(always)]
+    fn batch_hint(&self) -> Option<crate::query::BatchHint> {
+        let bounds = self.bounds();
+        (!bounds.is_empty()).then_some(crate::query::BatchHint {
+            bounds,
+            triangles: self.header.triangle_count as usize,
+        })
+    }
 }
 
 impl LeafTriangles for BlobView<'_> {

@@ -7,7 +7,9 @@ use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, SpatialSplits, node_capacit
 use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
-use crate::query::{LeafTriangles, PackedTriangles, SplitRef, SplitRefs, Traverse, Visitor};
+use crate::query::{
+    BatchHint, LeafTriangles, PackedTriangles, SplitRef, SplitRefs, Traverse, Visitor,
+};
 use crate::wide::collapse::{collapse_planned_vec, collapse_vec};
 #[cfg(feature = "parallel")]
 use crate::wide::parallel_collapse::collapse_vec_parallel;
@@ -480,6 +482,17 @@ impl Traverse for MeshBvh {
     #[inline(always)]
     fn split_refs(&self) -> SplitRefs<'_> {
         SplitRefs::new(&self.splits)
+    }
+
+    /// The root's padded box ([`MeshBvh::bounds`]) and the triangle count; `None` for no
+    /// triangles.
+    #[inline(always)]
+    fn batch_hint(&self) -> Option<BatchHint> {
+        let bounds = self.bounds();
+        (!bounds.is_empty()).then_some(BatchHint {
+            bounds,
+            triangles: self.triangle_count(),
+        })
     }
 }
 

@@ -96,6 +96,15 @@ impl Traverse for MeshIndex {
         }
     }
 
+    /// The BVH's ([`MeshBvh`]'s); `None` for the cell structures.
+    #[inline]
+    fn batch_hint(&self) -> Option<crate::query::BatchHint> {
+        match self {
+            Self::Bvh(s) => s.batch_hint(),
+            Self::KdTree(_) | Self::Octree(_) | Self::Grid(_) => None,
+        }
+    }
+
     /// The BVH walks packets; the cell structures march one ray at a time.
     #[inline]
     fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {

@@ -40,23 +40,20 @@ pub(crate) fn morton_order(
     Ok(keys)
 }
 
-/// [`morton_order`] without the sort: the first `n` keys hold the query indices in the given
-/// order. The same checks and errors.
-pub(crate) fn given_order(
-    n: usize,
-    keys: &mut [u64],
-    out_len: usize,
-) -> Result<&[u64], BatchError> {
-    let keys = checked_keys(n, keys, out_len)?;
+/// Writes each key its own index: the given order.
+pub(super) fn fill_given_order(keys: &mut [u64]) {
     for (key, i) in keys.iter_mut().zip(0u64..) {
         *key = i;
     }
-    Ok(keys)
 }
 
 /// The first `n` of `keys`, after checking a batch of `n` queries against them and its
 /// `out_len` answers.
-fn checked_keys(n: usize, keys: &mut [u64], out_len: usize) -> Result<&mut [u64], BatchError> {
+pub(super) fn checked_keys(
+    n: usize,
+    keys: &mut [u64],
+    out_len: usize,
+) -> Result<&mut [u64], BatchError> {
     if u32::try_from(n).is_err() {
         return Err(BatchError::TooLarge);
     }
@@ -84,9 +81,9 @@ pub(crate) const fn query_index(key: u64) -> usize {
 /// per query between long searches. Small, so a batch costs little stack on a microcontroller.
 const CHUNK: usize = 16;
 
-/// Answers `queries` in the order of `order` (keys from [`morton_order`] or [`given_order`])
-/// with `answer`,
-/// writing each answer to `out` at its query's index.
+/// Answers `queries` in the order of `order` (keys from [`morton_order`] or
+/// [`ray_order`](super::ray_order::ray_order)) with `answer`, writing each answer to `out` at
+/// its query's index.
 #[inline(always)]
 pub(crate) fn answer_in_order<Q: Copy, T: Copy + Default>(
     queries: &[Q],

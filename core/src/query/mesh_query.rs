@@ -115,11 +115,19 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     }
 
     /// The closest hit of each of `rays`: `out[i]` is exactly what
-    /// [`MeshQuery::raycast_with`] returns for `rays[i]`. The rays are cast in the given order;
-    /// on structures that walk packets ([`Traverse::traverse_packet`](crate::query::Traverse::traverse_packet): the four-wide BVHs), each run of
-    /// eight consecutive rays with one origin (bit for bit) and the same direction signs walks
-    /// the tree together, so give a camera's rays in small tiles or rows. Buffers, errors and
-    /// scratch (`keys` holds the order) as [`MeshQuery::closest_points`].
+    /// [`MeshQuery::raycast_with`] returns for `rays[i]`, whatever order they are cast in.
+    ///
+    /// The order: a batch of at least 65,536 rays whose origins are not all one point, on a
+    /// structure whose [`Traverse::batch_hint`](crate::query::Traverse::batch_hint) names at
+    /// least 131,072 triangles, is cast sorted by the line each ray draws through the hint's
+    /// box (where it enters and leaves it, quantized), so that rays crossing the same region
+    /// run together and find its nodes and triangles in cache. Any other batch is cast in the
+    /// given order. On structures that walk packets
+    /// ([`Traverse::traverse_packet`](crate::query::Traverse::traverse_packet): the wide
+    /// BVHs), each run of eight consecutive rays with one origin (bit for bit) and the same
+    /// direction signs walks the tree together, so give a camera's rays in small tiles or
+    /// rows. Buffers, errors and scratch (`keys` holds the order) as
+    /// [`MeshQuery::closest_points`].
     ///
     /// # Errors
     /// As [`MeshQuery::closest_points`].

@@ -77,7 +77,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod batch_order;
+pub(crate) mod batch_order;
 mod box_lanes;
 mod cell;
 mod closest;
@@ -91,6 +91,7 @@ mod overlap_shapes;
 mod packet_lanes;
 mod ray;
 mod ray_all;
+pub(crate) mod ray_order;
 mod ray_packet;
 mod raycast_batch;
 mod shapecast;
@@ -104,6 +105,7 @@ pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
 pub use ray_all::RayHits;
+pub use ray_order::sorts_ray_batch;
 pub use shapecast::{BoundsOverlap, ShapeCast};
 pub use split_refs::{SPLIT_REF_BYTES, SplitRef, SplitRefs};
-pub use traverse::{Traverse, Visitor, With};
+pub use traverse::{BatchHint, Traverse, Visitor, With};

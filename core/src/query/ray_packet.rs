@@ -185,11 +185,65 @@ pub(super) trait BatchGoal {
     fn of_alone(goal: &Self::Alone) -> Self::Answer;
 }
 
-/// Answers `rays` in the order of `order` (keys from
-/// [`given_order`](super::batch_order::given_order)): each run of [`PACKET`] (or, at the
+/// Rays a sorted batch gathers before answering them, and answers it holds before scattering
+/// them: four packets' worth.
+const GATHER: usize = 4 * PACKET;
+
+/// Answers `rays` in their order, `out[i]` for `rays[i]`: each run of [`PACKET`] (or, at the
 /// end, fewer) valid rays that share an origin and direction signs as one packet, any other
-/// ray alone. `out` holds each ray's answer at the ray's index.
-pub(super) fn answer_in_packets<A, S, B>(
+/// ray alone. `packets` is cleared at the first packet the structure declines, which then
+/// answers one ray at a time.
+pub(super) fn answer_in_runs<A, S, B>(
+    tree: &A,
+    source: &S,
+    rays: &[Ray],
+    options: &RayOptions,
+    out: &mut [B::Answer],
+    packets: &mut bool,
+) where
+    A: Traverse + ?Sized,
+    S: LeafTriangles + ?Sized,
+    B: BatchGoal,
+{
+    for (group, found) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+        let [first, ..] = group else {
+            continue;
+        };
+        let together =
+            *packets && group.len() >= 2 && group.iter().all(|r| r.is_valid() && alike(r, first));
+        if together {
+            // A short run is padded with its last ray, whose extra answers are dropped.
+            let last = group.len() - 1;
+            let padded: [Ray; PACKET] =
+                core::array::from_fn(|k| group.get(k.min(last)).copied().unwrap_or(*first));
+            *packets = walk_packet(tree, source, &padded, options, &B::in_packet, |k, g| {
+                if let Some(slot) = found.get_mut(k) {
+                    *slot = B::of_packet(g);
+                }
+            });
+            if *packets {
+                continue;
+            }
+        }
+        for (ray, slot) in group.iter().zip(found.iter_mut()) {
+            let g = if ray.is_valid() {
+                walk(tree, source, ray, options, B::alone())
+            } else {
+                B::alone()
+            };
+            *slot = B::of_alone(&g);
+        }
+    }
+}
+
+/// Answers `rays` in the order of `order` (sorted keys from
+/// [`ray_order`](super::ray_order::ray_order)) as [`answer_in_runs`] answers them in theirs,
+/// writing each answer to `out` at its ray's index.
+///
+/// The rays are copied out [`GATHER`] at a time, and their answers written back as many at a
+/// time: in a sorted order each ray's read is a cache miss, and a loop of nothing but those
+/// reads overlaps them, where a read before each walk would wait alone.
+pub(super) fn answer_in_order<A, S, B>(
     tree: &A,
     source: &S,
     rays: &[Ray],
@@ -200,42 +254,30 @@ pub(super) fn answer_in_packets<A, S, B>(
     A: Traverse + ?Sized,
     S: LeafTriangles + ?Sized,
     B: BatchGoal,
+    B::Answer: Copy,
 {
-    // Cleared at the first packet the structure declines: it answers one ray at a time.
+    let Some(&placeholder) = rays.first() else {
+        return;
+    };
+    let mut gathered = [placeholder; GATHER];
+    let mut answers = [B::of_alone(&B::alone()); GATHER];
     let mut packets = true;
-    for keys in order.chunks(PACKET) {
-        let ray_of = |k: usize| keys.get(k).and_then(|&key| rays.get(query_index(key)));
-        let together = packets
-            && keys.len() >= 2
-            && ray_of(0).is_some_and(|first| {
-                (0..keys.len()).all(|k| ray_of(k).is_some_and(|r| r.is_valid() && alike(r, first)))
-            });
-        let last = keys.len().saturating_sub(1);
-        // A short run is padded with its last ray, whose extra answers are dropped.
-        if together {
-            let gathered: [Ray; PACKET] = core::array::from_fn(|k| {
-                ray_of(k.min(last))
-                    .copied()
-                    .unwrap_or(Ray::new(Vec3::ZERO, Vec3::X))
-            });
-            packets = walk_packet(tree, source, &gathered, options, &B::in_packet, |k, g| {
-                if let Some(slot) = keys.get(k).and_then(|&key| out.get_mut(query_index(key))) {
-                    *slot = B::of_packet(g);
-                }
-            });
-            if packets {
-                continue;
-            }
+    for block in order.chunks(GATHER) {
+        for (ray, &key) in gathered.iter_mut().zip(block) {
+            *ray = rays.get(query_index(key)).copied().unwrap_or(placeholder);
         }
-        for &key in keys {
+        let (Some(gathered), Some(answers)) =
+            (gathered.get(..block.len()), answers.get_mut(..block.len()))
+        else {
+            continue;
+        };
+        answer_in_runs::<_, _, B>(tree, source, gathered, options, answers, &mut packets);
+        for (&answer, &key) in answers.iter().zip(block) {
             let i = query_index(key);
-            if let (Some(ray), Some(slot)) = (rays.get(i), out.get_mut(i)) {
-                let g = if ray.is_valid() {
-                    walk(tree, source, ray, options, B::alone())
-                } else {
-                    B::alone()
-                };
-                *slot = B::of_alone(&g);
+            if i < rays.len()
+                && let Some(slot) = out.get_mut(i)
+            {
+                *slot = answer;
             }
         }
     }

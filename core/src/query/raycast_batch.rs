@@ -2,13 +2,13 @@
 //! [`MeshQuery::raycast_batch`](crate::query::MeshQuery::raycast_batch)): cast in the given
 //! order, runs of rays from one origin as packets on the structures that walk them.
 //!
-//! Rays are not reordered: sorting them by origin (as point batches are) made random rays
-//! slower, gathering each ray and scattering its answer out of cache for no reuse of the tree,
-//! and a caller's order is usually already coherent (a camera's pixels).
+//! Large batches of rays from many origins on large structures are answered in the order of
+//! [`ray_order`]: sorted by the line each ray draws through the structure's box. Other batches
+//! keep the given order (a caller's order is usually coherent already: a camera's pixels).
 
-use super::batch_order::given_order;
 use super::ray::{Nearest, NearestOne, Occluded};
-use super::ray_packet::{BatchGoal, answer_in_packets};
+use super::ray_order::ray_order;
+use super::ray_packet::{BatchGoal, answer_in_order, answer_in_runs};
 use super::{LeafTriangles, RayOptions, Traverse};
 use crate::error::BatchError;
 use crate::math::{Ray, RayHit};
@@ -22,8 +22,12 @@ pub(crate) fn raycast_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     keys: &mut [u64],
     out: &mut [Option<RayHit>],
 ) -> Result<(), BatchError> {
-    let order = given_order(rays.len(), keys, out.len())?;
-    answer_in_packets::<_, _, ClosestHits>(tree, source, rays, options, order, out);
+    match ray_order(rays, tree.batch_hint(), keys, out.len())? {
+        Some(order) => {
+            answer_in_order::<_, _, ClosestHits>(tree, source, rays, options, order, out)
+        }
+        None => answer_in_runs::<_, _, ClosestHits>(tree, source, rays, options, out, &mut true),
+    }
     Ok(())
 }
 
@@ -37,8 +41,10 @@ pub(crate) fn raycast_any_batch<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>
     keys: &mut [u64],
     out: &mut [bool],
 ) -> Result<(), BatchError> {
-    let order = given_order(rays.len(), keys, out.len())?;
-    answer_in_packets::<_, _, AnyHits>(tree, source, rays, options, order, out);
+    match ray_order(rays, tree.batch_hint(), keys, out.len())? {
+        Some(order) => answer_in_order::<_, _, AnyHits>(tree, source, rays, options, order, out),
+        None => answer_in_runs::<_, _, AnyHits>(tree, source, rays, options, out, &mut true),
+    }
     Ok(())
 }
 

@@ -184,6 +184,14 @@ pub trait Traverse {
         false
     }
 
+    /// What the structure can tell a batch about itself without a walk (see [`BatchHint`]);
+    /// `None` (the default) when it knows nothing. Only ever used to order a batch's work: no
+    /// answer depends on it.
+    #[inline(always)]
+    fn batch_hint(&self) -> Option<BatchHint> {
+        None
+    }
+
     /// This structure with the triangles it was built over — the
     /// [`ValidMesh`](crate::mesh::ValidMesh), or a packed copy in its leaf order — ready for
     /// every query of [`MeshQuery`](super::MeshQuery).
@@ -191,6 +199,18 @@ pub trait Traverse {
     fn with<'a, S: LeafTriangles + ?Sized>(&'a self, triangles: &'a S) -> With<'a, Self, S> {
         With::new(self, triangles)
     }
+}
+
+/// What a structure tells batch queries about itself ([`Traverse::batch_hint`]): a large
+/// structure's nodes and triangles do not fit in the caches, so a large batch of rays from
+/// many origins is answered in an order that keeps rays crossing the same region together
+/// ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BatchHint {
+    /// A box holding every triangle (finite; any box that does works, a tight one best).
+    pub bounds: Aabb,
+    /// How many triangles the structure indexes.
+    pub triangles: usize,
 }
 
 /// A structure paired with the triangles it indexes, made by [`Traverse::with`]: it answers
@@ -250,6 +270,11 @@ impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
     #[inline(always)]
     fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
         self.structure.traverse_packet(visitor)
+    }
+
+    #[inline(always)]
+    fn batch_hint(&self) -> Option<BatchHint> {
+        self.structure.batch_hint()
     }
 }
 
