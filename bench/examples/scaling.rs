@@ -3,7 +3,8 @@
 //! --example scaling [mesh.obj] [subdivisions]`), batches on rayon pools of 1, 2, … up to
 //! the number of cores, interleaved round by round, best of 5 rounds. The build is timed on
 //! the mesh subdivided `subdivisions` times (each triangle into four; default 2, which makes the
-//! bunny's 1.1M triangles), against the sequential `MeshBvh::build`. Every run's answers are
+//! bunny's 1.1M triangles), against the sequential `MeshBvh::build`, and 1M random rays are
+//! cast at that mesh too (a batch the calls sort). Every run's answers are
 //! checked to equal the one-thread answers first.
 //!
 //! The speed-ups for more cores than the machine has are estimates, not measurements: Amdahl's
@@ -157,6 +158,18 @@ fn main() {
         .unwrap_or_else(|e| panic!("{e}"));
     let config = BuildConfig::default();
     let want = MeshBvh::build(&big_mesh, &config).unwrap_or_else(|e| panic!("{e}"));
+    // A large batch on a large mesh, which the batch calls answer sorted.
+    let big_random = workload::random_rays(&big.positions, 1_000_000, 1);
+    let (big_scene, big_random) = (&want, &big_random);
+    batches(
+        &format!(
+            "random rays (1M) on {} triangles (sorted), closest hit",
+            big_mesh.triangle_count()
+        ),
+        &pools,
+        vec![None; big_random.len()],
+        |out| parallel::raycast_batch(big_scene, big_random, options, out),
+    );
     let mut runs: Vec<Box<dyn FnMut()>> = vec![Box::new(|| {
         std::hint::black_box(MeshBvh::build(&big_mesh, &config).unwrap_or_else(|e| panic!("{e}")));
     })];

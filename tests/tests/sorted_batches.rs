@@ -128,6 +128,51 @@ fn large_batches_are_sorted_and_answer_each_ray_as_alone() {
     check(&view, &rays, &want, "blob view");
 }
 
+/// A batch large enough for one sorted piece per thread (`parallel::SORTED_PIECE` rays each)
+/// is cut into such pieces on the pool: every answer is still the single call's, on one
+/// thread (one piece), on two (two uneven pieces, one holding a camera's run and invalid rays)
+/// and on three (three pieces of fewer than `SORTED_PIECE` rays: the batch is sorted whole).
+#[test]
+fn batches_in_sorted_pieces_per_thread_answer_each_ray_as_alone() {
+    let loaded = subdivided(&load_mesh("stanford-bunny"));
+    let mesh = loaded.valid();
+    let owned = MeshBvh::build(&mesh, &BuildConfig::default()).expect("build");
+    let mut rays = workload::random_rays(&loaded.positions, 2 * parallel::SORTED_PIECE + 777, 9);
+    let camera = workload::camera_rays(&loaded.positions, 16, 16);
+    let at = rays.len() - 5_000;
+    rays.splice(at..at, camera);
+    rays.insert(at, Ray::new(Vec3::new(0.0, f32::INFINITY, 0.0), Vec3::Y));
+    let options = RayOptions::default();
+    let want: Vec<_> = rays
+        .iter()
+        .map(|r| owned.raycast_with(r, &options))
+        .collect();
+    let brute = BruteForce::new(&mesh);
+    for (i, ray) in rays.iter().enumerate().step_by(4096) {
+        assert_eq!(
+            bits(want[i]),
+            bits(brute.raycast(ray, &options)),
+            "ray {i} against the scan"
+        );
+    }
+    let want_any: Vec<bool> = want.iter().map(Option::is_some).collect();
+    for threads in [1, 2, 3] {
+        pool(threads).install(|| {
+            let mut hits = vec![None; rays.len()];
+            parallel::raycast_batch(&owned, &rays, &options, &mut hits).expect("batch");
+            assert!(
+                hits.iter()
+                    .map(|&h| bits(h))
+                    .eq(want.iter().map(|&h| bits(h))),
+                "{threads} threads"
+            );
+            let mut any = vec![false; rays.len()];
+            parallel::raycast_any_batch(&owned, &rays, &options, &mut any).expect("batch");
+            assert_eq!(any, want_any, "any hit on {threads} threads");
+        });
+    }
+}
+
 /// Below either threshold a batch keeps the given order (and the same answers).
 #[test]
 fn small_batches_and_small_meshes_keep_the_given_order() {
