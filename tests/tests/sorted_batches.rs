@@ -9,7 +9,7 @@ use meshq::bvh::BuildConfig;
 use meshq::math::{Ray, RayHit, Vec3};
 use meshq::owned::{MeshIndex, StructureKind};
 use meshq::parallel;
-use meshq::query::RayOptions;
+use meshq::query::{RayOptions, sorts_ray_batch, sorts_ray_batches_of};
 use meshq::{MeshBvh, MeshQuery};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{bake, load_mesh, subdivided, workload};
@@ -203,4 +203,28 @@ fn small_batches_and_small_meshes_keep_the_given_order() {
             .enumerate()
             .all(|(i, &k)| k == i as u64)
     );
+}
+
+/// `sorts_ray_batches_of` (a batch's length, before its rays are read) agrees with
+/// `sorts_ray_batch` on batches from many origins, and with the order the batch call takes.
+#[test]
+fn the_length_alone_tells_whether_a_batch_from_many_origins_is_sorted() {
+    let small = load_mesh("stanford-bunny");
+    let large = subdivided(&small);
+    let options = RayOptions::default();
+    for (loaded, sorts) in [(&small, false), (&large, true)] {
+        let owned = MeshBvh::build(&loaded.valid(), &BuildConfig::default()).expect("build");
+        for n in [SORT_MIN_RAYS - 1, SORT_MIN_RAYS, SORT_MIN_RAYS + 100] {
+            let rays = workload::random_rays(&loaded.positions, n, 3);
+            let want = sorts && n >= SORT_MIN_RAYS;
+            assert_eq!(sorts_ray_batches_of(&owned, n), want, "{n} rays");
+            assert_eq!(sorts_ray_batch(&owned, &rays), want, "{n} rays");
+            let (mut keys, mut out) = (vec![0u64; n], vec![None; n]);
+            owned
+                .raycast_batch(&rays, &options, &mut keys, &mut out)
+                .expect("batch");
+            let given = keys.iter().enumerate().all(|(i, &k)| k == i as u64);
+            assert_eq!(!given, want, "{n} rays: the order taken");
+        }
+    }
 }

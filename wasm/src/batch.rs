@@ -7,6 +7,7 @@
 use glam::Vec3;
 use js_sys::Float32Array;
 use meshq::math::Ray;
+use meshq::query::sorts_ray_batches_of;
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
@@ -26,9 +27,18 @@ pub const MISS_TRIANGLE: u32 = u32::MAX;
 /// Rays a ray batch answers per pass. A batch reads its rays, and writes their answers, a chunk
 /// at a time through buffers of this many rays (under 1 MB), whatever its length: a
 /// WebAssembly module's memory, once grown, is never given back, so buffers sized by the whole
-/// batch (about 64 bytes per ray) would keep a large batch's peak for the page's life. A
-/// multiple of 8, so that runs of eight rays from one origin stay in one chunk.
+/// batch (about 100 bytes per ray) would keep a large batch's peak for the page's life. A
+/// multiple of 8, so that runs of eight rays from one origin stay in one chunk. (On a large
+/// mesh, a large batch from many origins goes in passes of [`SORTED_PASS`].)
 pub const RAY_CHUNK: usize = 8_192;
+
+/// Rays per pass of a batch of at least 65,536 rays from many origins on a structure of at
+/// least 131,072 triangles: passes this long are answered sorted by the line each ray draws
+/// through the mesh's box (`meshq::query::sorts_ray_batches_of`), where rays crossing the same
+/// region meet while its nodes and triangles are in cache. Their buffers keep about 26 MB of
+/// the module's memory, against the mesh's own 50 bytes or more per triangle. A multiple of
+/// [`RAY_CHUNK`].
+pub const SORTED_PASS: usize = 1 << 18;
 
 /// The rays of a `Float32Array` of 6 numbers per ray, with `t` in `[near, far]`: checked, and
 /// read a chunk at a time by [`RayInput::for_each_chunk`].
@@ -81,17 +91,31 @@ impl RayInput {
         }
     }
 
-    /// Hands `each` consecutive runs of at most [`RAY_CHUNK`] rays, in order, with the index
-    /// of each run's first ray; stops at its first error.
+    /// Whether the first [`RAY_CHUNK`] rays' origins are not all one point (bit for bit).
+    fn origins_vary(&self) -> bool {
+        let len = 6 * RAY_CHUNK.min(self.count);
+        let numbers = match &self.whole {
+            Some(whole) => whole.get(..len).map(<[f32]>::to_vec).unwrap_or_default(),
+            None => self.values.subarray(0, len as u32).to_vec(),
+        };
+        let origin = |r: &[f32]| [r[0], r[1], r[2]].map(f32::to_bits);
+        let mut rays = numbers.chunks_exact(6);
+        let first = rays.next().map(origin);
+        rays.any(|r| Some(origin(r)) != first)
+    }
+
+    /// Hands `each` consecutive runs of at most `chunk` rays, in order, with the index of each
+    /// run's first ray; stops at its first error.
     fn for_each_chunk(
         &self,
+        chunk: usize,
         mut each: impl FnMut(u32, &[Ray]) -> Result<(), JsValue>,
     ) -> Result<(), JsValue> {
-        let most = RAY_CHUNK.min(self.count);
+        let most = chunk.min(self.count);
         let mut numbers = vec![0.0f32; 6 * most];
         let mut rays = Vec::with_capacity(most);
-        for first in (0..self.count).step_by(RAY_CHUNK) {
-            let len = RAY_CHUNK.min(self.count - first);
+        for first in (0..self.count).step_by(chunk) {
+            let len = chunk.min(self.count - first);
             let numbers = &mut numbers[..6 * len];
             match &self.whole {
                 Some(whole) => numbers.copy_from_slice(&whole[6 * first..6 * (first + len)]),
@@ -157,7 +181,10 @@ impl MeshBvh {
     /// exactly `raycast`'s; rays are cast in the given order, and runs of eight consecutive
     /// rays from one origin (a camera's: give them in rows or small tiles) walk the tree
     /// together. Rays are read, and answers written, 8,192 at a time: a batch of any length
-    /// needs under 1 MB of the module's memory.
+    /// needs under 1 MB of the module's memory. On a mesh of 131,072 triangles or more, a batch
+    /// of 65,536 rays or more whose first rays come from more than one origin goes in passes of
+    /// 262,144 rays instead, each answered sorted by the line each ray draws through the mesh's
+    /// box (about 26 MB of the module's memory, kept); the answers are the same.
     #[wasm_bindgen(js_name = raycastBatch)]
     pub fn raycast_batch(
         &self,
@@ -193,7 +220,7 @@ impl MeshBvh {
     /// Any-hit for every ray of `rays` (a `Float32Array`, 6 numbers per ray): `hits[i]` (a
     /// `Uint8Array`, one per ray) becomes 1 when ray `i` hits something in `[near, far]`
     /// (omitted: `0`, `Infinity`), else 0. Returns the number of rays that hit. Read and
-    /// answered 8,192 rays at a time, as `raycastBatch`.
+    /// answered in passes as `raycastBatch`.
     #[wasm_bindgen(js_name = raycastAnyBatch)]
     pub fn raycast_any_batch(
         &self,
@@ -208,7 +235,7 @@ impl MeshBvh {
         let hits = output_u8(hits, "hits", input.count, " (one per ray)")?;
         input.read_before_writing(&[&hits]);
         let (mut answers, mut flags, mut found) = (Vec::new(), Vec::new(), 0u32);
-        input.for_each_chunk(|first, rays| {
+        input.for_each_chunk(self.rays_per_pass(&input), |first, rays| {
             answers.clear();
             answers.resize(rays.len(), false);
             self.storage
@@ -284,6 +311,18 @@ impl MeshBvh {
 }
 
 impl MeshBvh {
+    /// Rays per pass of a ray batch on this mesh: [`SORTED_PASS`] when the core sorts a pass
+    /// that long on this structure and the batch's first rays do not all share one origin (a
+    /// camera's batch then keeps small passes, which stay in cache), else [`RAY_CHUNK`].
+    fn rays_per_pass(&self, input: &RayInput) -> usize {
+        let pass = SORTED_PASS.min(input.count);
+        if sorts_ray_batches_of(&self.storage.scene, pass) && input.origins_vary() {
+            SORTED_PASS
+        } else {
+            RAY_CHUNK
+        }
+    }
+
     #[allow(clippy::too_many_arguments)]
     fn batch(
         &self,
@@ -310,7 +349,7 @@ impl MeshBvh {
         let (mut answers, mut ts, mut tris, mut uvs) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut found = 0u32;
-        input.for_each_chunk(|first, rays| {
+        input.for_each_chunk(self.rays_per_pass(&input), |first, rays| {
             answers.clear();
             answers.resize(rays.len(), None);
             self.storage.raycast_batch(rays, &options, &mut answers)?;

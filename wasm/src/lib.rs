@@ -23,7 +23,7 @@ mod storage;
 mod typings;
 mod workload;
 
-pub use batch::{MISS_DISTANCE, MISS_T, MISS_TRIANGLE, RAY_CHUNK};
+pub use batch::{MISS_DISTANCE, MISS_T, MISS_TRIANGLE, RAY_CHUNK, SORTED_PASS};
 pub use mesh_bvh::MeshBvh;
 pub use remesh::remesh;
 pub use workload::{camera_rays, query_points, random_rays};

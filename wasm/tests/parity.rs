@@ -376,6 +376,88 @@ fn ray_batches_answer_across_their_chunks_as_single_calls_do() {
     }
 }
 
+/// A large batch from many origins on a large mesh (the bunny with each triangle split in
+/// four: 277,804 triangles) goes in passes of `SORTED_PASS` rays, each answered sorted: across
+/// the pass boundary, with a camera's run and an invalid ray inside, every ray's closest hit
+/// and any-hit answer is the one single calls give, written to its own place.
+#[wasm_bindgen_test]
+fn large_batches_on_large_meshes_answer_in_sorted_passes_as_single_calls_do() {
+    let (positions, indices) = load(MESHES[0].1);
+    // Each triangle into four through its edges' midpoints (corners repeated per triangle).
+    let (mut split, mut split_indices) = (Vec::new(), Vec::new());
+    for t in indices.chunks_exact(3) {
+        let p = |i: u32| Vec3::from_slice(&positions[3 * i as usize..3 * i as usize + 3]);
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let base = u32::try_from(split.len() / 3).unwrap();
+        for v in [a, b, c, (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5] {
+            split.extend_from_slice(&v.to_array());
+        }
+        split_indices.extend([0, 3, 5, 3, 1, 4, 5, 4, 2, 3, 4, 5].map(|k| base + k));
+    }
+    assert!(split_indices.len() / 3 >= 131_072);
+    let bvh = MeshBvh::build(
+        &floats_js(&split),
+        Some(Uint32Array::from(&split_indices[..]).into()),
+        None,
+    )
+    .unwrap();
+    let bounds = bvh.root_bounds();
+    let n = meshq_wasm::SORTED_PASS + 3_000;
+    let mut rays: Vec<Ray> = meshq_workload::RandomRays::new(bounds, 5).take(n).collect();
+    let boundary = meshq_wasm::SORTED_PASS;
+    let corner = bounds.max + (bounds.max - bounds.min);
+    for (k, ray) in rays[boundary - 12..boundary + 12].iter_mut().enumerate() {
+        let f = k as f32 / 24.0;
+        let target = bounds.min + (bounds.max - bounds.min) * Vec3::new(f, 0.5, 1.0 - f);
+        *ray = Ray::new(corner, target - corner);
+    }
+    rays[boundary + 100] = Ray::new(Vec3::new(f32::NAN, 0.0, 0.0), Vec3::X);
+    let flat: Vec<f32> = rays
+        .iter()
+        .flat_map(|r| {
+            [
+                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+            ]
+        })
+        .collect();
+    let flat = Float32Array::from(flat.as_slice());
+    let t_js = Float32Array::new_with_length(n as u32);
+    let triangles_js = Uint32Array::new_with_length(n as u32);
+    let found = bvh
+        .raycast_batch(
+            &flat,
+            &JsValue::UNDEFINED,
+            &JsValue::UNDEFINED,
+            &t_js,
+            &triangles_js,
+            None,
+        )
+        .unwrap();
+    let hits_js = js_sys::Uint8Array::new_with_length(n as u32);
+    let any_found = bvh
+        .raycast_any_batch(
+            &flat,
+            &JsValue::UNDEFINED,
+            &JsValue::UNDEFINED,
+            &hits_js,
+            None,
+        )
+        .unwrap();
+    let (t, triangles, any) = (t_js.to_vec(), triangles_js.to_vec(), hits_js.to_vec());
+    let expected: Vec<_> = rays.iter().map(|r| bvh.raycast_ray(r)).collect();
+    let hit_count = expected.iter().flatten().count();
+    assert_eq!(found as usize, hit_count);
+    assert_eq!(any_found as usize, hit_count);
+    assert!(hit_count > n / 10 && hit_count < n, "{hit_count} of {n}");
+    for (i, e) in expected.iter().enumerate() {
+        let want = e.map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
+            (h.t.to_bits(), h.tri)
+        });
+        assert_eq!((t[i].to_bits(), triangles[i]), want, "ray {i}");
+        assert_eq!(any[i], u8::from(e.is_some()), "ray {i}");
+    }
+}
+
 fn number(object: &JsValue, path: &[&str]) -> f64 {
     let mut v = object.clone();
     for key in path {

@@ -105,7 +105,7 @@ pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
 pub use ray_all::RayHits;
-pub use ray_order::sorts_ray_batch;
+pub use ray_order::{sorts_ray_batch, sorts_ray_batches_of};
 pub use shapecast::{BoundsOverlap, ShapeCast};
 pub use split_refs::{SPLIT_REF_BYTES, SplitRef, SplitRefs};
 pub use traverse::{BatchHint, Traverse, Visitor, With};

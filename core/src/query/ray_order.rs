@@ -81,6 +81,28 @@ pub fn sorts_ray_batch<T: super::Traverse + ?Sized>(structure: &T, rays: &[Ray])
     KeyGrid::for_batch(rays, structure.batch_hint()).is_some()
 }
 
+/// Whether a batch of `count` rays on `structure` is answered sorted when its rays' origins
+/// are not all one point (see [`sorts_ray_batch`]): `count` is at least 65,536 and the
+/// structure's [`Traverse::batch_hint`](super::Traverse::batch_hint) names at least 131,072
+/// triangles in a finite box. For a caller that reads a batch in passes and must choose their
+/// length before it has read the rays.
+#[must_use]
+pub fn sorts_ray_batches_of<T: super::Traverse + ?Sized>(structure: &T, count: usize) -> bool {
+    count >= SORT_MIN_RAYS && sorting_bounds(structure.batch_hint()).is_some()
+}
+
+/// The box a structure's large batches are sorted over: the hint's, when it names at least
+/// [`SORT_MIN_TRIANGLES`] triangles in a finite, non-empty box.
+fn sorting_bounds(hint: Option<BatchHint>) -> Option<Aabb> {
+    let hint = hint?;
+    let bounds = hint.bounds;
+    (hint.triangles >= SORT_MIN_TRIANGLES
+        && !bounds.is_empty()
+        && bounds.min.is_finite()
+        && bounds.max.is_finite())
+    .then_some(bounds)
+}
+
 /// Moves bit `k` of a [`BITS`]-bit value to bit `6k`: five copies of the value, five bits
 /// apart, put bit `k` of copy `k` there (the copies cannot carry into each other).
 const fn spread(v: u32) -> u32 {
@@ -99,21 +121,15 @@ impl KeyGrid {
     /// The grid to sort `rays` on a structure described by `hint` by, or `None` when they
     /// keep the given order (see [`ray_order`]).
     pub(crate) fn for_batch(rays: &[Ray], hint: Option<BatchHint>) -> Option<Self> {
-        let hint = hint?;
-        let bounds = &hint.bounds;
-        if rays.len() < SORT_MIN_RAYS
-            || hint.triangles < SORT_MIN_TRIANGLES
-            || bounds.is_empty()
-            || !bounds.min.is_finite()
-            || !bounds.max.is_finite()
-        {
+        if rays.len() < SORT_MIN_RAYS {
             return None;
         }
+        let bounds = sorting_bounds(hint)?;
         let mut valid = rays.iter().filter(|r| r.is_valid());
         let origin = valid.next()?.origin.to_array().map(f32::to_bits);
         valid
             .any(|r| r.origin.to_array().map(f32::to_bits) != origin)
-            .then(|| Self::over(bounds))
+            .then(|| Self::over(&bounds))
     }
 
     /// The sort key of `ray`, ray `index` of its batch: its [`Self::line_key`] in the high 32
