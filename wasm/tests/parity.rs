@@ -284,6 +284,28 @@ fn every_structure_matches_the_golden_digest_and_blob() {
     );
 }
 
+/// `rays` as a batch takes them: 6 numbers per ray.
+fn rays_js(rays: &[Ray]) -> Float32Array {
+    let flat: Vec<f32> = rays
+        .iter()
+        .flat_map(|r| {
+            [
+                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
+            ]
+        })
+        .collect();
+    Float32Array::from(flat.as_slice())
+}
+
+/// `raycastAnyBatch` over the `n` rays of `flat`: the count it returns and the flags.
+fn any_hits(bvh: &MeshBvh, flat: &Float32Array, n: usize) -> (u32, Vec<u8>) {
+    let hits = js_sys::Uint8Array::new_with_length(n as u32);
+    let found = bvh
+        .raycast_any_batch(flat, &JsValue::UNDEFINED, &JsValue::UNDEFINED, &hits, None)
+        .unwrap();
+    (found, hits.to_vec())
+}
+
 /// Ray batches are answered a chunk of `RAY_CHUNK` rays at a time: across chunk boundaries,
 /// with a run of rays from one origin (a packet) straddling each, every ray's closest hit
 /// (with its barycentric weights) and any-hit answer is the one single calls give, written to
@@ -305,15 +327,7 @@ fn ray_batches_answer_across_their_chunks_as_single_calls_do() {
             *ray = Ray::new(corner, target - corner);
         }
     }
-    let flat: Vec<f32> = rays
-        .iter()
-        .flat_map(|r| {
-            [
-                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
-            ]
-        })
-        .collect();
-    let flat = Float32Array::from(flat.as_slice());
+    let flat = rays_js(&rays);
     let t_js = Float32Array::new_with_length(n as u32);
     let triangles_js = Uint32Array::new_with_length(n as u32);
     let uv_js = Float32Array::new_with_length(2 * n as u32);
@@ -328,22 +342,8 @@ fn ray_batches_answer_across_their_chunks_as_single_calls_do() {
             None,
         )
         .unwrap();
-    let hits_js = js_sys::Uint8Array::new_with_length(n as u32);
-    let any_found = bvh
-        .raycast_any_batch(
-            &flat,
-            &JsValue::UNDEFINED,
-            &JsValue::UNDEFINED,
-            &hits_js,
-            None,
-        )
-        .unwrap();
-    let (t, triangles, uv, any) = (
-        t_js.to_vec(),
-        triangles_js.to_vec(),
-        uv_js.to_vec(),
-        hits_js.to_vec(),
-    );
+    let (any_found, any) = any_hits(&bvh, &flat, n);
+    let (t, triangles, uv) = (t_js.to_vec(), triangles_js.to_vec(), uv_js.to_vec());
     let expected: Vec<_> = rays.iter().map(|r| bvh.raycast_ray(r)).collect();
     let hit_count = expected.iter().flatten().count();
     assert_eq!(found as usize, hit_count);
@@ -412,15 +412,7 @@ fn large_batches_on_large_meshes_answer_in_sorted_passes_as_single_calls_do() {
         *ray = Ray::new(corner, target - corner);
     }
     rays[boundary + 100] = Ray::new(Vec3::new(f32::NAN, 0.0, 0.0), Vec3::X);
-    let flat: Vec<f32> = rays
-        .iter()
-        .flat_map(|r| {
-            [
-                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z,
-            ]
-        })
-        .collect();
-    let flat = Float32Array::from(flat.as_slice());
+    let flat = rays_js(&rays);
     let t_js = Float32Array::new_with_length(n as u32);
     let triangles_js = Uint32Array::new_with_length(n as u32);
     let found = bvh
@@ -433,17 +425,8 @@ fn large_batches_on_large_meshes_answer_in_sorted_passes_as_single_calls_do() {
             None,
         )
         .unwrap();
-    let hits_js = js_sys::Uint8Array::new_with_length(n as u32);
-    let any_found = bvh
-        .raycast_any_batch(
-            &flat,
-            &JsValue::UNDEFINED,
-            &JsValue::UNDEFINED,
-            &hits_js,
-            None,
-        )
-        .unwrap();
-    let (t, triangles, any) = (t_js.to_vec(), triangles_js.to_vec(), hits_js.to_vec());
+    let (any_found, any) = any_hits(&bvh, &flat, n);
+    let (t, triangles) = (t_js.to_vec(), triangles_js.to_vec());
     let expected: Vec<_> = rays.iter().map(|r| bvh.raycast_ray(r)).collect();
     let hit_count = expected.iter().flatten().count();
     assert_eq!(found as usize, hit_count);
