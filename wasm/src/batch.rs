@@ -27,7 +27,7 @@ pub const MISS_TRIANGLE: u32 = u32::MAX;
 /// Rays a ray batch answers per pass. A batch reads its rays, and writes their answers, a chunk
 /// at a time through buffers of this many rays (under 1 MB), whatever its length: a
 /// WebAssembly module's memory, once grown, is never given back, so buffers sized by the whole
-/// batch (about 100 bytes per ray) would keep a large batch's peak for the page's life. A
+/// batch (about 76 bytes per ray) would keep a large batch's peak for the page's life. A
 /// multiple of 8, so that runs of eight rays from one origin stay in one chunk. (On a large
 /// mesh, a large batch from many origins goes in passes of [`SORTED_PASS`].)
 pub const RAY_CHUNK: usize = 8_192;
@@ -35,7 +35,7 @@ pub const RAY_CHUNK: usize = 8_192;
 /// Rays per pass of a batch of at least 65,536 rays from many origins on a structure of at
 /// least 131,072 triangles: passes this long are answered sorted by the line each ray draws
 /// through the mesh's box (`meshq::query::sorts_ray_batches_of`), where rays crossing the same
-/// region meet while its nodes and triangles are in cache. Their buffers keep about 26 MB of
+/// region meet while its nodes and triangles are in cache. Their buffers keep about 19 MB of
 /// the module's memory, against the mesh's own 50 bytes or more per triangle. A multiple of
 /// [`RAY_CHUNK`].
 pub const SORTED_PASS: usize = 1 << 18;
@@ -184,7 +184,7 @@ impl MeshBvh {
     /// needs under 1 MB of the module's memory. On a mesh of 131,072 triangles or more, a batch
     /// of 65,536 rays or more whose first rays come from more than one origin goes in passes of
     /// 262,144 rays instead, each answered sorted by the line each ray draws through the mesh's
-    /// box (about 26 MB of the module's memory, kept); the answers are the same.
+    /// box (about 19 MB of the module's memory, kept); the answers are the same.
     #[wasm_bindgen(js_name = raycastBatch)]
     pub fn raycast_batch(
         &self,
