@@ -10,45 +10,14 @@ import { MeshBVH, SAH } from 'three-mesh-bvh';
 import meshq from '../../wasm/pkg/node/meshq_wasm.js';
 import { MeshqPool } from '../../wasm/pkg/node/pool.mjs';
 import { geometry, index, positions } from './bunny.mjs';
+// The timing and the peer's ray loop the browser benchmark (web/bench/) uses too.
+import { median as time, paired, peerFirstHits as firstHits } from '../../web/bench/timing.js';
 
 const RAYS = Number(process.env.MESHQ_BENCH_RAYS ?? 1_000_000);
 const SINGLE = Number(process.env.MESHQ_BENCH_SINGLE ?? 200_000);
 const POINTS = Number(process.env.MESHQ_BENCH_POINTS ?? 100_000);
 const json = process.argv.includes('--json');
 const log = (...a) => { if (!json) console.log(...a); };
-
-/** Median wall time in ms of `runs` calls of `f`, after one warm-up call (builds, loads). */
-function time(f, runs) {
-  f();
-  const times = [];
-  for (let i = 0; i < runs; i++) {
-    const t0 = performance.now();
-    f();
-    times.push(performance.now() - t0);
-  }
-  times.sort((a, b) => a - b);
-  return times[Math.floor(times.length / 2)];
-}
-
-/**
- * Best wall times in ms of `ours` and `theirs` over `rounds` rounds, after one warm-up call of
- * each: every round times one call of each, back to back, so that a slow spell of a shared
- * machine falls on both sides alike (timed apart, one side's runs could land in it alone).
- */
-function paired(ours, theirs, rounds = 5) {
-  ours();
-  theirs();
-  let [best, peerBest] = [Infinity, Infinity];
-  for (let i = 0; i < rounds; i++) {
-    let t0 = performance.now();
-    ours();
-    best = Math.min(best, performance.now() - t0);
-    t0 = performance.now();
-    theirs();
-    peerBest = Math.min(peerBest, performance.now() - t0);
-  }
-  return [best, peerBest];
-}
 
 const results = [];
 function report(workload, meshqMs, peerMs, count, unit) {
@@ -94,16 +63,7 @@ const random = meshq.randomRays(bounds, 1, RAYS);
 const camera = meshq.cameraRays(bounds, 1024, 1024);
 const points = meshq.queryPoints(bounds, 1, POINTS);
 
-function peerFirstHits(rays, count) {
-  const ray = new THREE.Ray();
-  let hits = 0;
-  for (let k = 0; k < count; k++) {
-    ray.origin.set(rays[6 * k], rays[6 * k + 1], rays[6 * k + 2]);
-    ray.direction.set(rays[6 * k + 3], rays[6 * k + 4], rays[6 * k + 5]);
-    if (peer.raycastFirst(ray, THREE.DoubleSide)) hits++;
-  }
-  return hits;
-}
+const peerFirstHits = (rays, count) => firstHits(THREE, peer, rays, count);
 
 function batch(rays) {
   const n = rays.length / 6;
@@ -135,6 +95,12 @@ function batch(rays) {
 const nRandom = RAYS;
 report('random rays, batched vs raycastFirst',
   ...paired(batch(random), () => peerFirstHits(random, nRandom)), nRandom, 'rays');
+{
+  // three-mesh-bvh's SAH tree (`strategy: SAH`) answers its rays faster than its default one.
+  const peerSah = new MeshBVH(sahGeometry, { strategy: SAH });
+  report('random rays, batched vs raycastFirst on an SAH tree',
+    ...paired(batch(random), () => firstHits(THREE, peerSah, random, nRandom)), nRandom, 'rays');
+}
 {
   const n = nRandom;
   const distances = new Float32Array(n);
