@@ -109,6 +109,7 @@ MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_POINTS=4000 node bench/node/pool-balance.mjs
 
 step "browser benchmark runs in headless Chromium (small counts; the real run is node bench/browser/bench.mjs)"
 MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_POINTS=2000 MESHQ_BENCH_ROUNDS=2 node bench/browser/bench.mjs
+node bench/browser/first.mjs 1
 
 step "fuzz blob parsing briefly"
 if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null 2>&1; then

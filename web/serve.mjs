@@ -1,6 +1,7 @@
 // Serves the demo on 127.0.0.1 and prints its URL. Port: MESHQ_PORT (default 8173; 0 or a
 // taken port: a free one the OS picks). A page asked for with `?isolated` is served
-// cross-origin isolated (COOP and COEP headers). GET /__meshq-demo answers "meshq-demo <token>" so a test can check that this server,
+// cross-origin isolated (COOP and COEP headers). MESHQ_CACHE=1: responses may be cached (by
+// default none is). GET /__meshq-demo answers "meshq-demo <token>" so a test can check that this server,
 // not another one on the same port, is the one answering.
 import { createServer } from 'node:http';
 import { createReadStream, statSync } from 'node:fs';
@@ -9,6 +10,7 @@ import { fileURLToPath } from 'node:url';
 
 const root = fileURLToPath(new URL('.', import.meta.url));
 const token = process.env.MESHQ_SERVER_TOKEN ?? 'meshq';
+const cacheable = process.env.MESHQ_CACHE === '1';
 const types = {
   '.html': 'text/html; charset=utf-8',
   '.js': 'text/javascript; charset=utf-8',
@@ -56,7 +58,9 @@ const server = createServer((request, response) => {
   const worker = /worker\.m?js$/.test(file);
   response.writeHead(200, {
     'content-type': types[extname(file)] ?? 'application/octet-stream',
-    'cache-control': 'no-store',
+    // MESHQ_CACHE=1 lets the browser keep what it fetched (and V8 its compiled WebAssembly
+    // with it), as a deployed site would; by default every load is fresh, for development.
+    'cache-control': cacheable ? 'max-age=3600' : 'no-store',
     ...(isolated ? { 'cross-origin-opener-policy': 'same-origin' } : {}),
     ...(isolated || worker ? { 'cross-origin-embedder-policy': 'require-corp' } : {}),
   });

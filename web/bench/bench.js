@@ -119,6 +119,14 @@ async function run(positions, index, { rays = 1_000_000, points = 100_000, round
     // Every core: the worker pool, each worker holding the blob (shared memory where the page
     // is cross-origin isolated, as the runner serves it), against the peer on this thread.
     const pool = await MeshqPool.fromBlob(blob);
+    // Its answers are the single-thread batch's, bit for bit, before it is timed.
+    const wantT = new Float32Array(nRandom);
+    const wantTri = new Uint32Array(nRandom);
+    bvh.raycastBatch(random, 0, Infinity, wantT, wantTri);
+    const got = await pool.raycastBatch(random, 0, Infinity);
+    if (!got.triangles.every((x, k) => x === wantTri[k] && Object.is(got.t[k], wantT[k]))) {
+      throw new Error(`pool of ${pool.size}: other answers than one thread's`);
+    }
     const [ours, theirs] = await pairedAsync(() => pool.raycastBatch(random, 0, Infinity),
       () => peerFirstHits(THREE, peer, random, nRandom), rounds);
     report(`random rays, pool of ${pool.size} workers${pool.shared ? ' (shared memory)' : ''} vs raycastFirst`,

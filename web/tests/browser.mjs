@@ -31,12 +31,23 @@ export async function startServer(dir, label) {
   return { url, server };
 }
 
+const launchOptions = () => ({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  timeout: 60000,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+
 /** Headless Chromium with a fresh temporary profile and no background networking. */
 export function launchChromium() {
-  return chromium.launch({
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    timeout: 60000,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
+  return chromium.launch(launchOptions());
+}
+
+/**
+ * Headless Chromium keeping its profile in `dir` (its HTTP cache and V8's code cache among
+ * it) for as long as the returned browser context lives, as a returning visitor's browser
+ * does.
+ */
+export function launchChromiumWithProfile(dir) {
+  return chromium.launchPersistentContext(dir, { ...launchOptions(), headless: true });
 }
