@@ -13,18 +13,24 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import meshq from '../../wasm/pkg/node/meshq_wasm.js';
-import { index, positions } from '../node/bunny.mjs';
 import { launchChromiumWithProfile, startServer } from '../../web/tests/browser.mjs';
+import { fail, loadMesh, positiveInteger } from './args.mjs';
 
-const samples = Number(process.argv.slice(2).find((a) => !a.startsWith('--')) ?? 7);
+const samples = positiveInteger('samples', process.argv.slice(2).find((a) => !a.startsWith('--')), 7);
+const { index, positions } = await loadMesh();
 const STAY_MS = 3000;
 const web = fileURLToPath(new URL('../../web/', import.meta.url));
 // The blob goes where the demo's server serves it (web/assets/ holds build outputs only).
 const blobName = `first-${process.pid}.meshq`;
 const blobPath = join(web, 'assets', blobName);
-const bvh = meshq.MeshBvh.build(positions, index);
-const blob = bvh.toBlob();
-bvh.free();
+let blob;
+try {
+  const bvh = meshq.MeshBvh.build(positions, index);
+  blob = bvh.toBlob();
+  bvh.free();
+} catch (e) {
+  fail(`cannot build the mesh: ${e.message}`);
+}
 writeFileSync(blobPath, blob);
 
 process.env.MESHQ_CACHE = '1';
