@@ -58,8 +58,9 @@ const server = createServer((request, response) => {
   const worker = /worker\.m?js$/.test(file);
   response.writeHead(200, {
     'content-type': types[extname(file)] ?? 'application/octet-stream',
-    // MESHQ_CACHE=1 lets the browser keep what it fetched (and V8 its compiled WebAssembly
-    // with it), as a deployed site would; by default every load is fresh, for development.
+    // MESHQ_CACHE=1 lets the browser keep what it fetched (and V8 the compiled code of a
+    // WebAssembly module it has optimised enough), as a deployed site would; by default every
+    // load is fresh, for development.
     'cache-control': cacheable ? 'max-age=3600' : 'no-store',
     ...(isolated ? { 'cross-origin-opener-policy': 'same-origin' } : {}),
     ...(isolated || worker ? { 'cross-origin-embedder-policy': 'require-corp' } : {}),

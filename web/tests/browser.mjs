@@ -44,9 +44,9 @@ export function launchChromium() {
 }
 
 /**
- * Headless Chromium keeping its profile in `dir` (its HTTP cache and V8's code cache among
- * it) for as long as the returned browser context lives, as a returning visitor's browser
- * does.
+ * Headless Chromium with its profile (its HTTP cache and V8's code cache among it) in `dir`,
+ * which outlives the returned browser context: a later launch on the same `dir` finds what
+ * this one kept, as a returning visitor's browser does.
  */
 export function launchChromiumWithProfile(dir) {
   return chromium.launchPersistentContext(dir, { ...launchOptions(), headless: true });
