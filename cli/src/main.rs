@@ -1,6 +1,7 @@
 //! `meshq`: bake acceleration-structure blobs offline, inspect them, run ray and
 //! closest-point queries from files, and remesh meshes.
 
+mod allocator;
 mod atomic;
 mod bake;
 mod check;

