@@ -1,14 +1,14 @@
 //! The command's memory allocator: mimalloc, for the pages it asks the kernel for.
 //!
 //! A ray reads a few dozen cache lines of nodes and triangles scattered over the whole
-//! structure. With 4 KiB pages nearly each of those lines sits on a page of its own, and the
-//! processor's first-level address cache (a few dozen pages) misses on most of them; with
-//! 2 MiB pages a bunny's structure fits in two of them. On Linux the kernel grants such pages
-//! (transparent huge pages) to memory marked for them (`madvise`, the common default), and
-//! the system allocator marks none. mimalloc marks the large blocks it maps, so a built or
-//! loaded structure lands on huge pages wherever the kernel allows; Embree's allocator marks
-//! its trees the same way. Answers do not depend on the allocator, only the time a query
-//! waits for its memory.
+//! structure. On a large mesh (tens of megabytes) with 4 KiB pages nearly each of those lines
+//! sits on a page of its own, and most of them miss the processor's caches of page
+//! translations; with 2 MiB pages the same structure spans a few dozen pages. On Linux the
+//! kernel grants such pages (transparent huge pages) to memory marked for them (`madvise`, the
+//! common default), and the system allocator marks none. mimalloc marks the large blocks it
+//! maps, so a built or loaded structure lands on huge pages wherever the kernel allows;
+//! Embree's allocator marks its trees the same way. Answers do not depend on the allocator,
+//! only the time a query waits for its memory.
 
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
