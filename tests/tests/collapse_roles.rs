@@ -30,10 +30,20 @@ enum Lane {
     Inner(Aabb, Vec<Lane>),
 }
 
-/// The lanes of the wide node at inner node `at`, from the roles by the format's rules: a
-/// leaf is a leaf lane, role 1 an inner lane, role 2 a leaf over its subtree's slots, role 0
-/// opens the node. Recursive, written from the description, not from the crate's walk.
+/// The lanes of the wide node at inner node `at`, from the roles by the format's rules, in the
+/// order `WideNode8` documents: the inner lanes first, then the leaves, each in the tree's
+/// left-to-right order.
 fn decode(nodes: &[BvhNode], roles: &[u8], at: usize) -> Vec<Lane> {
+    let (inner, leaves): (Vec<Lane>, Vec<Lane>) = left_to_right(nodes, roles, at)
+        .into_iter()
+        .partition(|lane| matches!(lane, Lane::Inner(..)));
+    inner.into_iter().chain(leaves).collect()
+}
+
+/// The lanes [`decode`] orders, left to right: a leaf is a leaf lane, role 1 an inner lane,
+/// role 2 a leaf over its subtree's slots, role 0 opens the node. Recursive, written from the
+/// description, not from the crate's walk.
+fn left_to_right(nodes: &[BvhNode], roles: &[u8], at: usize) -> Vec<Lane> {
     let mut lanes = Vec::new();
     let node = nodes[at];
     for child in [node.first as usize, node.first as usize + 1] {
@@ -49,7 +59,7 @@ fn decode(nodes: &[BvhNode], roles: &[u8], at: usize) -> Vec<Lane> {
                 lanes.push(Lane::Leaf(c.aabb(), first, end - first));
             }
             // Opened: its children's lanes in its place.
-            0 => lanes.extend(decode(nodes, roles, child)),
+            0 => lanes.extend(left_to_right(nodes, roles, child)),
             r => panic!("role {r}"),
         }
     }

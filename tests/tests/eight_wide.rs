@@ -64,6 +64,16 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
         for (i, node) in eight.nodes().iter().enumerate() {
             let used = node.lanes();
             assert!((1..=8).contains(&used), "{name} node {i}: {used} lanes");
+            // The walk computes inner lane `l`'s node as lane 0's plus `l`: inner lanes first,
+            // their nodes consecutive.
+            let inner = node.count[..used].iter().take_while(|&&n| n == 0).count();
+            assert!(
+                node.count[inner..used].iter().all(|&n| n > 0),
+                "{name} node {i}: a leaf lane before an inner one"
+            );
+            for l in 0..inner {
+                assert_eq!(node.child[l], node.child[0] + l as u32, "{name} node {i}");
+            }
             for lane in 0..8 {
                 let aabb = node.bounds.lane(lane);
                 if lane >= used {

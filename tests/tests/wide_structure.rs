@@ -64,6 +64,20 @@ fn check_against_binary(bvh: &Bvh<'_>, wide: &WideBvh<'_>, what: &str) -> usize 
             (if single_leaf { 1..=1 } else { 2..=4 }).contains(&lanes),
             "{what}: node {index} has {lanes} lanes"
         );
+        // The walk computes inner lane `l`'s node as lane 0's plus `l`: inner lanes first,
+        // their nodes consecutive.
+        let inner = node.count[..lanes].iter().take_while(|&&n| n == 0).count();
+        assert!(
+            node.count[inner..lanes].iter().all(|&n| n > 0),
+            "{what}: node {index} has a leaf lane before an inner one"
+        );
+        for l in 0..inner {
+            assert_eq!(
+                node.child[l],
+                node.child[0] + l as u32,
+                "{what}: node {index}"
+            );
+        }
         for lane in lanes..4 {
             let unused = node.bounds.lane(lane);
             assert!(unused.min.x == f32::INFINITY && unused.max.x == f32::NEG_INFINITY);

@@ -118,8 +118,9 @@ pub(crate) fn collapse_planned_vec<N: CollapsedNode + Clone, const W: usize>(
 /// (in any order), and returns how many there are. The same plan always gives the same nodes.
 ///
 /// Each wide node covers an inner binary node's subtree with the lanes the plan chose for it
-/// ([`CollapsePlan::lanes`]). Children of one node get consecutive indices, in lane order; the
-/// nodes are numbered depth first, the last inner child's subtree first.
+/// ([`CollapsePlan::lanes`]), inner children in its first lanes ([`wide_node`]). Inner children
+/// of one node get consecutive indices, in lane order; the nodes are numbered depth first, the
+/// last inner child's subtree first.
 pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
     mut sink: impl FnMut(usize, N),
@@ -155,12 +156,19 @@ pub(super) fn collapse_from<N: CollapsedNode, const W: usize>(
     })
 }
 
-/// The wide node of `children` (an [`open`]ed node's lanes), its inner children numbered
-/// `first, first + 1, …` in lane order.
+/// The wide node of `children` (an [`open`]ed node's lanes, left to right): the inner
+/// children first, in their order, numbered `first, first + 1, …`, then the leaves in theirs.
+///
+/// Inner lane `i` therefore holds node `first + i`, which the walk computes from lane 0's
+/// child word instead of reading lane `i`'s after the box test
+/// ([`LaneNode::first_inner`](super::traverse::LaneNode::first_inner)). Lane order only
+/// breaks ties between equal keys in the walk, and no answer depends on the walk's order.
 pub(super) fn wide_node<N: CollapsedNode>(children: &[(u32, BvhNode)], first: u32) -> N {
     let mut node = N::EMPTY;
     let mut next = first;
-    for (lane, (_, child)) in children.iter().enumerate() {
+    let inner = children.iter().filter(|(_, c)| !c.is_leaf());
+    let leaves = children.iter().filter(|(_, c)| c.is_leaf());
+    for (lane, (_, child)) in inner.chain(leaves).enumerate() {
         if child.is_leaf() {
             node.set_lane(lane, &child.aabb(), child.first, child.count);
         } else {

@@ -18,7 +18,7 @@ use crate::math::Aabb4;
 /// | 40–55 | `child` | as [`WideNode::child`] |
 /// | 56–59 | `count` | as [`WideNode::count`] (leaves hold at most 255 triangles) |
 ///
-/// Bytes 39 and 60–63 are padding.
+/// Bytes 39 and 60–63 are padding. Lanes are in the [`WideNode`]'s order (inner lanes first).
 ///
 /// Lane `i`'s box along axis `a` decodes as `origin[a] + lo[a][i] · 2^e[a]` to
 /// `origin[a] + hi[a][i] · 2^e[a]`, in `f32`, a product (exact) then a sum (one rounding), the

@@ -13,8 +13,10 @@ use crate::math::{Aabb, Aabb8};
 ///
 /// - an inner node: `count == 0`, `child` is its index in the node array (never 0, the root);
 /// - a leaf: `count > 0` triangles in order slots `child..child + count`;
-/// - unused: an empty box (`min = +∞`, `max = −∞`), `child == 0`, `count == 0`. Used lanes
-///   come first.
+/// - unused: an empty box (`min = +∞`, `max = −∞`), `child == 0`, `count == 0`.
+///
+/// Inner lanes come first, then leaves, then unused lanes; inner lane `i`'s node index is
+/// lane 0's plus `i` (a node's inner children are consecutive in the node array).
 #[repr(C, align(64))]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WideNode8 {

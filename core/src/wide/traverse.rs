@@ -6,10 +6,16 @@ use crate::bvh::MAX_DEPTH;
 use crate::math::{Aabb, Aabb4};
 use crate::query::{LeafTriangleIds, Traverse, Visitor};
 
-/// A child to visit: an inner node (`count == 0`, `child` its index) or a leaf.
+/// A child to visit: an inner node (`count == 0`) or a leaf.
 #[derive(Clone, Copy)]
 struct Child {
-    child: u32,
+    /// A leaf's first order slot: the lane's child word.
+    slot: u32,
+    /// An inner child's node index, computed as its parent's first child plus its lane (see
+    /// [`LaneNode::first_inner`]) rather than read from its lane: the next node's address then
+    /// waits only on the box test, not on a load after it.
+    node: u32,
+    /// A leaf's triangle count; 0 for an inner node.
     count: u32,
     key: f32,
     /// Where the child's box is: its parent node's index times the lane count plus its lane
@@ -21,7 +27,8 @@ struct Child {
 impl Child {
     /// The root node (also a placeholder: it is never anyone's child).
     const ROOT: Self = Self {
-        child: 0,
+        slot: 0,
+        node: 0,
         count: 0,
         key: 0.0,
         parent_lane: u32::MAX,
@@ -59,6 +66,16 @@ pub(super) trait LaneNode {
     fn lane_box(&self, lane: usize) -> Aabb;
     /// Lane `lane`'s node index or first order slot (0 when unused).
     fn child(&self, lane: usize) -> u32;
+    /// The node index of lane 0's child when it is an inner node. A collapse puts a node's
+    /// inner children in its first lanes, numbered consecutively ([`wide_node`]), so inner
+    /// lane `i`'s index is this plus `i`; meaningless for a node whose lanes are all leaves,
+    /// where no lane is read as inner.
+    ///
+    /// [`wide_node`]: super::collapse::wide_node
+    #[inline(always)]
+    fn first_inner(&self) -> u32 {
+        self.child(0)
+    }
     /// Lane `lane`'s triangle count (0 for an inner or unused lane).
     fn count(&self, lane: usize) -> u32;
 }
@@ -196,7 +213,7 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
     loop {
         if at.count > 0 {
             if let Some(tris) =
-                LeafTriangleIds::in_order(order, at.child as usize, at.count as usize)
+                LeafTriangleIds::in_order(order, at.slot as usize, at.count as usize)
             {
                 let boxed = visitor.wants_leaf_boxes();
                 let (parent, lane) = (at.parent_lane >> shift, at.parent_lane & lane_bits);
@@ -208,11 +225,13 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
                     return;
                 }
             }
-        } else if let Some(node) = nodes.get(at.child as usize) {
+        } else if let Some(node) = nodes.get(at.node as usize) {
+            // Read before the verdict, so that it is there when a lane is chosen.
+            let first = node.first_inner();
             let (mask, keys) = node.judge(visitor);
             if mask != 0 {
                 let parent = at
-                    .child
+                    .node
                     .checked_mul(N::LANES)
                     .unwrap_or(u32::MAX - lane_bits);
                 let lane_of = |lane: u32| -> Child {
@@ -221,7 +240,8 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
                     let lane = lane & lane_bits;
                     let at = lane as usize;
                     Child {
-                        child: node.child(at),
+                        slot: node.child(at),
+                        node: first.wrapping_add(lane),
                         count: node.count(at),
                         key: N::key(&keys, lane),
                         parent_lane: parent | lane,
