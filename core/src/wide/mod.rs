@@ -40,5 +40,6 @@ pub use node8::WideNode8;
 pub use plan::{CollapsePlan, NODE_COST, PlanEntry, plan_capacity};
 pub use roles::{CollapseRoles, MERGED_LEAF_MAX};
 pub use sizing::wide_node_capacity;
+pub use traverse::WARM_TREE_BYTES;
 pub use tree::WideBvh;
 pub use tree8::WideBvh8;

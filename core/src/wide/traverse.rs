@@ -78,7 +78,20 @@ pub(super) trait LaneNode {
     }
     /// Lane `lane`'s triangle count (0 for an inner or unused lane).
     fn count(&self, lane: usize) -> u32;
+    /// One word from each cache line of the node that the walk reads, combined. The value
+    /// means nothing: reading it starts those lines on their way (see [`WARM_TREE_BYTES`]).
+    fn touch(&self) -> u32;
 }
+
+/// The size of a wide tree's nodes, in bytes, from which every walk over it reads a node's
+/// first two inner children (one word of each of their cache lines) as soon as the node is
+/// reached, before the node's own boxes are tested. The answers are the same either way.
+///
+/// Why: such a tree lives mostly beyond the second-level cache, where waiting for a node's
+/// lines is most of a walk's time, and one of those children is often the next node; its
+/// lines are then on their way during the box test. In smaller trees the reads were measured
+/// to cost more than they gave (`docs/benchmarks.md`, 2026-11-28 night).
+pub const WARM_TREE_BYTES: usize = 4 << 20;
 
 /// [`LaneNode::judge`] of a four-lane node with boxes `boxes`.
 #[inline(always)]
@@ -121,6 +134,11 @@ impl LaneNode for WideNode {
     fn count(&self, lane: usize) -> u32 {
         self.count.get(lane).copied().unwrap_or(0)
     }
+    /// Its two lines: the first holds `min_x`, the second the child words.
+    #[inline(always)]
+    fn touch(&self) -> u32 {
+        self.bounds.min_x[0].to_bits() ^ self.child[0]
+    }
 }
 
 impl LaneNode for CompactNode {
@@ -150,6 +168,11 @@ impl LaneNode for CompactNode {
     #[inline(always)]
     fn count(&self, lane: usize) -> u32 {
         CompactNode::count(self, lane)
+    }
+    /// Its one line.
+    #[inline(always)]
+    fn touch(&self) -> u32 {
+        self.child[0]
     }
 }
 
@@ -209,6 +232,7 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
     let mut stack = heapless::Vec::<Child, STACK>::new();
     // Lanes per node are a power of two: lane = parent_lane mod lanes.
     let (shift, lane_bits) = (N::LANES.trailing_zeros(), N::LANES - 1);
+    let warm = nodes.len().saturating_mul(core::mem::size_of::<N>()) >= WARM_TREE_BYTES;
     let mut at = Child::ROOT;
     loop {
         if at.count > 0 {
@@ -228,6 +252,18 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
         } else if let Some(node) = nodes.get(at.node as usize) {
             // Read before the verdict, so that it is there when a lane is chosen.
             let first = node.first_inner();
+            if warm {
+                // The first two inner children, which are consecutive nodes; only read, their
+                // values kept from the optimiser and not used. (Where the node has fewer inner
+                // lanes, or none, and `first` names a leaf's slot, the reads are wasted.) One
+                // child gained less on a 1.1M-triangle mesh's random rays, four cost its
+                // camera rays more.
+                for next in [first, first.wrapping_add(1)] {
+                    if let Some(next) = nodes.get(next as usize) {
+                        core::hint::black_box(next.touch());
+                    }
+                }
+            }
             let (mask, keys) = node.judge(visitor);
             if mask != 0 {
                 let parent = at
@@ -411,6 +447,13 @@ impl LaneNode for WideNode8 {
     #[inline(always)]
     fn count(&self, lane: usize) -> u32 {
         self.count.get(lane).copied().unwrap_or(0)
+    }
+    /// Its four lines: 64 bytes apart, two planes of eight lanes to a line, then the child
+    /// words.
+    #[inline(always)]
+    fn touch(&self) -> u32 {
+        let b = &self.bounds;
+        b.min_x[0].to_bits() ^ b.min_z[0].to_bits() ^ b.max_y[0].to_bits() ^ self.child[0]
     }
 }
 
