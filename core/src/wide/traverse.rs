@@ -90,7 +90,7 @@ pub(super) trait LaneNode {
 /// Why: such a tree lives mostly beyond the second-level cache, where waiting for a node's
 /// lines is most of a walk's time, and one of those children is often the next node; its
 /// lines are then on their way during the box test. In smaller trees the reads were measured
-/// to cost more than they gave (`docs/benchmarks.md`, 2026-11-28 night).
+/// to cost more than they gave (`docs/benchmarks.md`).
 pub const WARM_TREE_BYTES: usize = 4 << 20;
 
 /// [`LaneNode::judge`] of a four-lane node with boxes `boxes`.
