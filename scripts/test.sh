@@ -44,9 +44,9 @@ step "the wide trees built for AVX2 (eight lanes in one instruction), against br
 # SSSE3 without `std` checksums blobs by byte shuffles (`crc_lanes`), not by tables.
 if grep -qw avx2 /proc/cpuinfo 2>/dev/null && [ "$(uname -m)" = x86_64 ]; then
   RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=target/x86-64-v3 \
-    cargo test --locked -p meshq-tests --test eight_wide --test compact_nodes \
-    --test raycast_vs_brute_force --test query_layer --test spatial_splits --test large_trees \
-    --test blob_corruption --test blob_round_trip
+    cargo test --locked -p meshq-tests --test integration -- eight_wide:: compact_nodes:: \
+    raycast_vs_brute_force:: query_layer:: spatial_splits:: large_trees:: \
+    blob_corruption:: blob_round_trip::
   RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=target/x86-64-v3 \
     cargo test --locked -p meshq --features blob,alloc --lib blob::
 else

@@ -5,7 +5,7 @@
 //! brute-force scan over all triangles; the in-memory BVH, its four-wide collapse and blob
 //! views in every mesh layout must give the same digest, and the file must record exactly that
 //! digest. After an intended change of results, rewrite the file with
-//! `MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test parity_golden`.
+//! `MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test integration parity_golden::`.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;

@@ -5,7 +5,7 @@
 //! [`Remeshed::of`], the core [`remesh`] over tight caller buffers projecting onto an
 //! in-memory BVH, and the same projecting onto a blob view of the input (what the firmware
 //! does from flash). After an intended change of results, rewrite the file with
-//! `MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test remesh_golden`.
+//! `MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test integration remesh_golden::`.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;

@@ -1,0 +1,36 @@
+//! Every integration test over real meshes, in one test binary: each file of this folder is
+//! one module. One binary links and instantiates the core's generic walks once, where a binary
+//! per file compiled and linked them 31 times over. Run one file's tests by its module name:
+//! `cargo test -p meshq-tests --test integration eight_wide::`.
+
+mod blob_corruption;
+mod blob_round_trip;
+mod cell_blobs;
+mod cell_structures;
+mod closest_point_vs_brute_force;
+mod collapse_plan;
+mod collapse_roles;
+mod collide;
+mod compact_nodes;
+mod edge_cases;
+mod eight_wide;
+mod geom_properties;
+mod large_trees;
+mod mesh_index;
+mod module_layering;
+mod overlap_and_refit;
+mod parallel;
+mod parity_golden;
+mod query_layer;
+mod raycast_ties;
+mod raycast_vs_brute_force;
+mod remesh;
+mod remesh_creases;
+mod remesh_golden;
+mod remesh_invariants;
+mod remesh_topology;
+mod sorted_batches;
+mod spatial_splits;
+mod structure;
+mod watertight;
+mod wide_structure;
