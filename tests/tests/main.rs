@@ -34,3 +34,25 @@ mod spatial_splits;
 mod structure;
 mod watertight;
 mod wide_structure;
+
+/// With `autotests = false` a file of this folder runs only if it is declared above: every `.rs`
+/// file here but this one must be, or a new test file would be skipped without a word.
+#[test]
+fn every_test_file_is_a_module() {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let declared = include_str!("main.rs");
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(&folder).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if let Some(stem) = name.strip_suffix(".rs")
+            && stem != "main"
+            && !declared.lines().any(|l| l == format!("mod {stem};"))
+        {
+            missing.push(name);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not declared in tests/tests/main.rs: {missing:?}"
+    );
+}
