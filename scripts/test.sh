@@ -86,6 +86,13 @@ CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
 step "the npm package (wasm-pack for browsers and Node, one package) and the demo"
 MESHQ_BIN=target/debug/meshq ./scripts/build-web.sh
 
+step "demo end to end in headless Chromium: started in the background, beside the Node steps below"
+# One browser and Node's single-threaded tests share the two cores; each e2e step has its own
+# budget (web/tests/e2e.mjs), sized for that.
+e2e_log=target/e2e-run.log
+MESHQ_BIN=target/debug/meshq node web/tests/e2e.mjs >"$e2e_log" 2>&1 </dev/null &
+e2e_pid=$!
+
 step "npm pack: the tarball installed in a fresh directory, used from Node and through the demo's import map"
 node web/tests/pack.mjs
 
@@ -101,8 +108,14 @@ node web/tests/three-dropin.mjs
 step "the Node package under misuse: bad arguments refused by name, nothing left borrowed"
 node web/tests/misuse.mjs
 
-step "demo end to end in headless Chromium"
-MESHQ_BIN=target/debug/meshq node web/tests/e2e.mjs
+step "demo end to end in headless Chromium: its result"
+e2e_status=0
+wait "$e2e_pid" || e2e_status=$?
+cat "$e2e_log"
+if [ "$e2e_status" -ne 0 ]; then
+  echo "demo end to end: failed (exit $e2e_status)" >&2
+  exit "$e2e_status"
+fi
 
 step "Node benchmark runs (small counts; the real run is node bench/node/bench.mjs)"
 MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_SINGLE=5000 MESHQ_BENCH_POINTS=2000 node bench/node/bench.mjs

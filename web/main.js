@@ -119,10 +119,18 @@ function updateBoxes() {
   const flat = state.bvh.levelBoxes(level);
   const n = flat.length / 6;
   const lines = new Float32Array(n * 72);
-  const edges = [[0, 1], [1, 3], [3, 2], [2, 0], [4, 5], [5, 7], [7, 6], [6, 4], [0, 4], [1, 5], [2, 6], [3, 7]];
+  // Corner k of a box takes max x where bit 0 is set, max y for bit 1, max z for bit 2. The
+  // coordinates are written straight into the array: a deep octree level has tens of
+  // thousands of boxes, and an array per corner made drawing it take seconds.
+  const ends = [0, 1, 1, 3, 3, 2, 2, 0, 4, 5, 5, 7, 7, 6, 6, 4, 0, 4, 1, 5, 2, 6, 3, 7];
+  let at = 0;
   for (let i = 0; i < n; i++) {
-    const corner = (k) => [flat[6 * i + (k & 1 ? 3 : 0)], flat[6 * i + 1 + (k & 2 ? 3 : 0)], flat[6 * i + 2 + (k & 4 ? 3 : 0)]];
-    edges.forEach(([p, q], e) => lines.set([...corner(p), ...corner(q)], i * 72 + e * 6));
+    const base = 6 * i;
+    for (const k of ends) {
+      lines[at++] = flat[base + (k & 1 ? 3 : 0)];
+      lines[at++] = flat[base + 1 + (k & 2 ? 3 : 0)];
+      lines[at++] = flat[base + 2 + (k & 4 ? 3 : 0)];
+    }
   }
   boxes.geometry.dispose();
   boxes.geometry = new THREE.BufferGeometry();

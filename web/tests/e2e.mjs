@@ -35,17 +35,34 @@ assert.deepEqual(
   'odd paths',
 );
 
-// Never hang CI: whatever happens, stop after three minutes.
-const watchdog = setTimeout(() => {
-  console.error('e2e: timed out');
-  server.kill();
-  process.exit(1);
-}, 180000);
+// Never hang CI, and say where time went: each step has a budget of its own, sized for a
+// cold Chromium on a machine whose other core is busy, and its time is printed as it ends.
+let watchdog = null;
+let current = null;
+const stepTimes = [];
+function step(name, budgetSeconds) {
+  endStep();
+  current = { name, started: performance.now() };
+  watchdog = setTimeout(() => {
+    console.error(`e2e: step "${name}" took more than its ${budgetSeconds} s`);
+    server.kill();
+    process.exit(1);
+  }, budgetSeconds * 1000);
+}
+function endStep() {
+  clearTimeout(watchdog);
+  if (current === null) return;
+  const seconds = (performance.now() - current.started) / 1000;
+  stepTimes.push(`${current.name} ${seconds.toFixed(1)} s`);
+  console.log(`  [${seconds.toFixed(1)} s] ${current.name}`);
+  current = null;
+}
 
 // launch() gives the browser a fresh temporary profile (--user-data-dir) of its own.
 let browser = null;
 const errors = [];
 try {
+  step('start Chromium and load the demo with the bunny blob', 150);
   browser = await launchChromium();
   const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
@@ -55,6 +72,7 @@ try {
   assert.equal(await page.evaluate(() => window.meshqDemo.error), undefined);
   assert.equal(await page.textContent('#stat-triangles'), '69,451');
 
+  step('centre click against the native answer', 60);
   // Click the canvas centre: the camera looks at the bunny's centre, so this hits it.
   const box = await page.locator('#view').boundingBox();
   await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
@@ -84,6 +102,7 @@ try {
   assert.equal(shownDistance, nativeDistance.toPrecision(9), 'displayed distance = native');
   console.log(`centre click: triangle ${shownTriangle}, distance ${shownDistance} — equal to native`);
 
+  step('BVH boxes and the benchmark button (1M rays)', 180);
   // The BVH view and the benchmark button.
   await page.check('#bvh-show');
   assert.match(await page.textContent('#bvh-level-text'), /level \d+: \d+ boxes/);
@@ -95,6 +114,7 @@ try {
   console.log(`benchmark button: ${(bench.raysPerSecond / 1e6).toFixed(2)} M rays/s in headless Chromium`);
   await page.screenshot({ path: join(out, 'demo-bunny.png') });
 
+  step('k-d tree, octree and grid: build, draw, pick', 240);
   // The structure selector: each structure built in the page draws its cells and picks the
   // triangle the native BVH picks, at the same distance bits.
   for (const structure of ['kdtree', 'octree', 'grid']) {
@@ -111,6 +131,7 @@ try {
     console.log(`${structure}: ${await page.textContent('#bvh-level-text')}, pick equal to native`);
   }
 
+  step('collision mode against meshq check, before and after a drag', 180);
   // Collision mode: a second copy of the bunny beside the first; the pairs where they meet and
   // the crossing segments equal the native check's for the same f32 placement, before and
   // after dragging the copy with the mouse.
@@ -144,6 +165,7 @@ try {
   console.log(`collide mode: ${placed.pairs} pairs, dragged: ${dragged.pairs} pairs (${dragged.ms.toFixed(1)} ms), equal to native`);
   await page.uncheck('#collide');
 
+  step('another blob through the file input', 90);
   // Another blob through the file input: spot, baked by the command.
   const spot = join(scratch, 'spot.meshq');
   execFileSync(meshq, ['bake', join(root, 'assets/spot.obj'), '-o', spot]);
@@ -154,6 +176,7 @@ try {
   await page.waitForFunction(() => window.meshqDemo.lastHit !== null);
   await page.screenshot({ path: join(out, 'demo-spot.png') });
 
+  step('remesh button against the native command', 180);
   // The remesh button on spot: the result equals the native command's, bit for bit.
   await page.click('#remesh');
   await page.waitForFunction(() => window.meshqDemo.remesh || window.meshqDemo.remeshError, null, { timeout: 120000 });
@@ -181,10 +204,12 @@ try {
   await page.uncheck('#remesh-before');
   await page.screenshot({ path: join(out, 'demo-spot-remeshed.png') });
   console.log(`remesh button: ${remeshed.triangles} triangles in ${(remeshed.ms / 1000).toFixed(2)} s, equal to native`);
+  endStep();
   assert.deepEqual(errors, [], 'no console errors');
   console.log(`end to end in Chromium: ok (screenshots in ${out})`);
 } finally {
-  clearTimeout(watchdog);
+  endStep();
+  if (stepTimes.length > 0) console.log(`e2e steps: ${stepTimes.join('; ')}`);
   await browser?.close();
   server.kill();
   rmSync(scratch, { recursive: true, force: true });
