@@ -15,6 +15,7 @@ use criterion::{
     BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main, measurement::WallTime,
 };
 use meshq::owned::{MeshIndex, StructureKind};
+use meshq::query::MeshQuery;
 use meshq_tests::{LoadedMesh, in_stadium, load_mesh, load_obj, workload};
 
 const RANDOM_RAYS: usize = 50_000;

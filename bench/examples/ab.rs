@@ -86,7 +86,7 @@ fn main() {
         .expect("four-wide nodes");
     let (packed, wide) = (owned.packed(), owned4.wide().expect("wide nodes"));
     let mut compact_nodes = vec![meshq::wide::CompactNode::EMPTY; wide.nodes().len()];
-    let compact = meshq::wide::CompactWideBvh::build(&wide, &mut compact_nodes).expect("compact");
+    let compact = meshq::wide::WideBvh::quantize(&wide, &mut compact_nodes).expect("compact");
     let per_triangle = |bytes: usize| bytes as f64 / mesh.triangle_count() as f64;
     println!(
         "{} binary nodes -> {} wide nodes: {:.1} bytes per triangle, compact {:.1}",
@@ -99,7 +99,8 @@ fn main() {
     let mut plan8 = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
     let plan8 = meshq::wide::CollapsePlan::<8>::new(&bvh, &mut plan8).expect("plan");
     let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; plan8.node_count()];
-    let wide8 = meshq::wide::WideBvh8::build(&plan8, &mut nodes8).expect("wide8");
+    let wide8 =
+        meshq::wide::WideBvh::<meshq::wide::WideNode8>::build(&plan8, &mut nodes8).expect("wide8");
     println!(
         "eight-wide: {} nodes, {:.1} bytes per triangle",
         wide8.nodes().len(),

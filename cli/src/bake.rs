@@ -15,7 +15,7 @@ use crate::atomic::AtomicFile;
 use crate::mesh_file::read_mesh;
 use crate::output::say;
 use crate::quality::Quality;
-use crate::structure_arg::StructureArg;
+use crate::structure_arg::structure_parser;
 use crate::threads::Threads;
 use crate::{output, progress};
 
@@ -31,8 +31,8 @@ pub struct BakeArgs {
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// The acceleration structure.
-    #[arg(long, value_enum, default_value_t = StructureArg::Bvh)]
-    pub structure: StructureArg,
+    #[arg(long, value_parser = structure_parser(), default_value = "bvh")]
+    pub structure: StructureKind,
     /// Build quality (BVH only; the others use their default configs).
     #[arg(long, value_enum, default_value_t = Quality::Balanced)]
     pub quality: Quality,
@@ -83,12 +83,12 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
     let config = args.quality.config();
     let spatial = crate::quality::spatial_splits(args.spatial_splits)?;
-    if spatial.is_some() && args.structure.kind() != StructureKind::Bvh {
+    if spatial.is_some() && args.structure != StructureKind::Bvh {
         anyhow::bail!("--spatial-splits applies to a BVH");
     }
     let threads = Threads::new(args.threads)?;
     let n = mesh.triangle_count();
-    let kind = args.structure.kind();
+    let kind = args.structure;
     spinner.set_message(format!("building a {kind} over {n} triangles"));
     let start = Instant::now();
     let scene = match kind {

@@ -6,6 +6,7 @@ use std::time::Instant;
 use anyhow::Result;
 use clap::Args;
 use meshq::math::Vec3;
+use meshq::query::MeshQuery;
 use serde::Serialize;
 
 use crate::output::say;

@@ -11,7 +11,7 @@ use meshq::blob::{BlobHeader, BlobStructure, BlobTree, MAGIC};
 use meshq::bvh::BuildConfig;
 use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
 use meshq::mesh::MeshRef;
-use meshq::owned::MeshIndex;
+use meshq::owned::{MeshIndex, StructureKind};
 use serde::Serialize;
 
 use crate::inspect_cells::{cell_blob_report, print_cell_blob};
@@ -19,7 +19,7 @@ use crate::mesh_file::read_mesh;
 use crate::output;
 use crate::output::say;
 use crate::structure::check_blob_kind;
-use crate::structure_arg::StructureArg;
+use crate::structure_arg::structure_parser;
 
 #[derive(Args, Debug)]
 #[command(after_help = "Examples:\n  \
@@ -30,8 +30,8 @@ pub struct InspectArgs {
     pub blob: PathBuf,
     /// For a mesh file: the structure to build and describe (default bvh). For a blob: the
     /// structure it must hold.
-    #[arg(long, value_enum)]
-    pub structure: Option<StructureArg>,
+    #[arg(long, value_parser = structure_parser())]
+    pub structure: Option<StructureKind>,
     /// Print everything as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -258,7 +258,7 @@ fn inspect_mesh(args: &InspectArgs) -> Result<()> {
     let mesh = MeshRef::new(&data.positions, &data.triangles)
         .validate()
         .with_context(|| format!("{}: invalid mesh", args.blob.display()))?;
-    let kind = args.structure.unwrap_or_default().kind();
+    let kind = args.structure.unwrap_or_default();
     let start = Instant::now();
     let index = MeshIndex::build(&mesh, kind)?;
     let build_seconds = start.elapsed().as_secs_f64();

@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use meshq::math::{Ray, RayHit, Vec3};
 use meshq::owned::MeshIndex;
 use meshq::parallel;
-use meshq::query::{RayOptions, sorts_ray_batch};
+use meshq::query::{MeshQuery, RayOptions, sorts_ray_batch};
 use rayon::prelude::*;
 use serde::Serialize;
 

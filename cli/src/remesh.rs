@@ -6,8 +6,8 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 use meshq::mesh::MeshRef;
-use meshq::owned::{Remeshed, mean_edge_length};
-use meshq::remesh::{MeshQuality, RemeshConfig};
+use meshq::owned::Remeshed;
+use meshq::remesh::{EdgeTarget, MeshQuality, RemeshConfig};
 use serde::Serialize;
 
 use crate::mesh_file::read_mesh;
@@ -95,18 +95,28 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
     let mesh = MeshRef::new(&data.positions, &data.triangles)
         .validate()
         .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
-    let mut config = RemeshConfig {
-        target_length: args.target_length.unwrap_or(0.0),
+    let target = match (args.target_length, args.target_ratio) {
+        (Some(length), _) => {
+            anyhow::ensure!(
+                length > 0.0 && length.is_finite(),
+                "--target-length must be positive"
+            );
+            EdgeTarget::Length(length)
+        }
+        (None, Some(ratio)) => {
+            anyhow::ensure!(
+                ratio > 0.0 && ratio.is_finite(),
+                "--target-ratio must be positive"
+            );
+            EdgeTarget::MeanEdgeTimes(ratio)
+        }
+        (None, None) => EdgeTarget::default(),
+    };
+    let config = RemeshConfig {
+        target,
         iterations: args.iterations,
         feature_angle: args.feature_angle,
     };
-    if let Some(ratio) = args.target_ratio {
-        anyhow::ensure!(
-            ratio > 0.0 && ratio.is_finite(),
-            "--target-ratio must be positive"
-        );
-        config.target_length = ratio * mean_edge_length(&mesh);
-    }
     let bar = progress::bar(Some(u64::from(config.iterations)), "iterations");
     let start = Instant::now();
     let remeshed =
@@ -123,11 +133,8 @@ pub fn run(args: &RemeshArgs) -> Result<()> {
     )?;
     let r = remeshed.report;
     let summary = Summary {
-        target_length: if config.target_length > 0.0 {
-            config.target_length
-        } else {
-            remeshed.before.mean_edge
-        },
+        // The mean the run resolved its target from: the same figure, bit for bit.
+        target_length: config.target.length(remeshed.before.mean_edge),
         iterations: r.iterations,
         splits: r.splits,
         collapses: r.collapses,

@@ -15,7 +15,7 @@ use meshq::owned::{MeshBvh, MeshIndex, StructureKind};
 
 use crate::mesh_file::{MeshData, read_mesh};
 use crate::quality::Quality;
-use crate::structure_arg::StructureArg;
+use crate::structure_arg::structure_parser;
 use crate::threads::Threads;
 
 /// What a query command gets: the mesh with its trees, and how long preparing them took
@@ -88,8 +88,8 @@ pub struct QueryInput {
     pub spatial_splits: Option<f32>,
     /// The structure to build when INPUT is a mesh (default bvh). For a blob, the structure
     /// it must hold.
-    #[arg(long, value_enum)]
-    pub structure: Option<StructureArg>,
+    #[arg(long, value_parser = structure_parser())]
+    pub structure: Option<StructureKind>,
     /// Threads answering the queries: 1 (the default) on this thread; N spread over N threads
     /// (0: one per core). The records are the same whatever the count.
     #[arg(long, value_name = "N", default_value_t = 1,
@@ -155,7 +155,7 @@ pub fn with_structure<R>(
                 input.display()
             );
         }
-        let kind = args.structure.unwrap_or_default().kind();
+        let kind = args.structure.unwrap_or_default();
         let spatial = crate::quality::spatial_splits(args.spatial_splits)?;
         if spatial.is_some() && kind != StructureKind::Bvh {
             bail!("--spatial-splits applies to a BVH");
@@ -195,10 +195,10 @@ fn relaid(
 /// Refuses a blob that holds another structure than `--structure` names.
 pub fn check_blob_kind(
     bytes: &[u8],
-    wanted: Option<StructureArg>,
+    wanted: Option<StructureKind>,
     input: &std::path::Path,
 ) -> Result<()> {
-    let Some(wanted) = wanted.map(StructureArg::kind) else {
+    let Some(wanted) = wanted else {
         return Ok(());
     };
     let header =

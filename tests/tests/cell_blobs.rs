@@ -153,7 +153,7 @@ fn a_cell_blob_is_one_postcard_message() {
             let (words, items, bounds, references, depth): (Vec<u32>, Vec<u32>, Aabb, u32, u32) =
                 match &built {
                     MeshIndex::KdTree(s) => {
-                        let t = s.tree();
+                        let t = s.structure();
                         let w: (u32, u32, f32, f32, f32, u32) = take(&mut rest);
                         let k = s.config();
                         assert_eq!(
@@ -172,7 +172,7 @@ fn a_cell_blob_is_one_postcard_message() {
                         (words, t.items().to_vec(), *t.bounds(), w.5, depth)
                     }
                     MeshIndex::Octree(s) => {
-                        let t = s.tree();
+                        let t = s.structure();
                         let w: (u32, u32, u32) = take(&mut rest);
                         assert_eq!((w.0, w.1), (s.config().max_depth, s.config().max_items));
                         assert_eq!(c.node_count as usize, t.node_count());
@@ -181,7 +181,7 @@ fn a_cell_blob_is_one_postcard_message() {
                         (words, t.items().to_vec(), *t.root(), w.2, depth)
                     }
                     MeshIndex::Grid(s) => {
-                        let g = s.grid();
+                        let g = s.structure();
                         let w: (f32, u32, [u32; 3], u32) = take(&mut rest);
                         assert_eq!(
                             (w.0, w.1, w.2),

@@ -49,9 +49,17 @@ fn grid_answers_every_query_as_brute_force() {
             assert_eq!(grid.items().len(), sizes.items, "{name}: measured exactly");
             // The owned grid finds its arrays in one pass of its own: the same arrays.
             let owned = MeshGrid::build(&mesh, &config).unwrap();
-            assert_eq!(owned.grid().layout(), grid.layout(), "{name} λ={lambda}");
-            assert_eq!(owned.grid().offsets(), grid.offsets(), "{name} λ={lambda}");
-            assert_eq!(owned.grid().items(), grid.items(), "{name} λ={lambda}");
+            assert_eq!(
+                owned.structure().layout(),
+                grid.layout(),
+                "{name} λ={lambda}"
+            );
+            assert_eq!(
+                owned.structure().offsets(),
+                grid.offsets(),
+                "{name} λ={lambda}"
+            );
+            assert_eq!(owned.structure().items(), grid.items(), "{name} λ={lambda}");
             let checked = Grid::from_parts(
                 *grid.layout(),
                 grid.offsets(),

@@ -10,7 +10,7 @@ use meshq::error::{BufferKind, BuildError};
 use meshq::math::Aabb;
 use meshq::mesh::MeshRef;
 use meshq::wide::{
-    CollapsePlan, MERGED_LEAF_MAX, NODE_COST, PlanEntry, WideBvh, WideBvh8, WideNode, WideNode8,
+    CollapsePlan, MERGED_LEAF_MAX, NODE_COST, PlanEntry, WideBvh, WideNode, WideNode8,
     plan_capacity,
 };
 use meshq_tests::{MESHES, load_mesh};
@@ -184,7 +184,7 @@ fn no_collapse_of_a_small_tree_is_cheaper_than_the_planned_one() {
             let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
             let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
             let mut nodes = vec![WideNode8::EMPTY; plan.node_count()];
-            let eight = WideBvh8::build(&plan, &mut nodes).unwrap();
+            let eight = WideBvh::<WideNode8>::build(&plan, &mut nodes).unwrap();
             let written = evaluated_cost(&bvh, &lanes!(eight.nodes()));
             let optimum = exhaustive_optimum(&bvh, 8);
             assert!(
@@ -221,7 +221,7 @@ fn the_planned_collapse_of_real_meshes_costs_what_it_says_and_beats_the_trivial_
         let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
         let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
         let mut nodes = vec![WideNode8::EMPTY; plan.node_count()];
-        let eight = WideBvh8::build(&plan, &mut nodes).unwrap();
+        let eight = WideBvh::<WideNode8>::build(&plan, &mut nodes).unwrap();
         let written = evaluated_cost(&bvh, &lanes!(eight.nodes()));
         assert!(close(written, f64::from(plan.cost())), "{name}: {written}");
         assert!(written < trivial, "{name}: {written} vs trivial {trivial}");

@@ -10,7 +10,7 @@ use meshq::error::BlobError;
 use meshq::math::Aabb;
 use meshq::owned::MeshIndex;
 use meshq::wide::{
-    CollapsePlan, CollapseRoles, MERGED_LEAF_MAX, PlanEntry, WideBvh8, WideNode8, plan_capacity,
+    CollapsePlan, CollapseRoles, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideNode8, plan_capacity,
     wide_node_capacity,
 };
 use meshq_tests::oracle::BruteForce;
@@ -104,7 +104,10 @@ fn planned_roles(bvh: &Bvh<'_>) -> (Vec<u8>, usize) {
 /// The wide nodes of `plan`.
 fn collapsed(plan: &CollapsePlan<'_, '_, 8>, triangles: usize) -> Vec<WideNode8> {
     let mut out = vec![WideNode8::EMPTY; wide_node_capacity(triangles)];
-    let n = WideBvh8::build(plan, &mut out).unwrap().nodes().len();
+    let n = WideBvh::<WideNode8>::build(plan, &mut out)
+        .unwrap()
+        .nodes()
+        .len();
     out.truncate(n);
     out
 }

@@ -1,4 +1,4 @@
-//! Quantized wide nodes (`CompactNode`, `CompactWideBvh`, `MeshBvh::with_compact_nodes`): each
+//! Quantized wide nodes (`CompactNode`, `WideBvh<CompactNode>`, `MeshBvh::with_compact_nodes`): each
 //! decoded box holds the box it was made from and is the tightest the 8-bit grid allows, the
 //! tree keeps the wide tree's shape, and every query answers as a brute-force scan does.
 
@@ -8,7 +8,7 @@ use meshq::MeshBvh;
 use meshq::bvh::BuildConfig;
 use meshq::math::{Aabb, Aabb4, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse};
-use meshq::wide::{CompactNode, CompactWideBvh, WideNode};
+use meshq::wide::{CompactNode, WideBvh, WideNode};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, load_mesh, workload};
 
@@ -71,7 +71,7 @@ fn every_node_holds_its_boxes_tightly_on_every_mesh() {
             .unwrap();
         let wide = owned.wide().unwrap();
         let mut storage = vec![CompactNode::EMPTY; wide.nodes().len()];
-        let compact = CompactWideBvh::build(&wide, &mut storage).unwrap();
+        let compact = WideBvh::quantize(&wide, &mut storage).unwrap();
         assert_eq!(compact.nodes().len(), wide.nodes().len());
         for (i, (w, c)) in wide.nodes().iter().zip(compact.nodes()).enumerate() {
             check_node(w, c, &format!("{name} node {i}"));

@@ -1,4 +1,4 @@
-//! The eight-wide BVH (`WideBvh8`, `MeshBvh::with_eight_wide_nodes`): the collapse keeps the
+//! The eight-wide BVH (`WideBvh<WideNode8>`, `MeshBvh::with_eight_wide_nodes`): the collapse keeps the
 //! binary tree's leaves under boxes that hold them, and every query answers as a brute-force
 //! scan does — one ray per call, batches (packets for rays from one origin), any hit, closest
 //! points and overlaps.
@@ -12,8 +12,7 @@ use meshq::geom::CullMode;
 use meshq::math::{Aabb, Ray, RayHit, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse, TriangleTest};
 use meshq::wide::{
-    CollapsePlan, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideBvh8, WideNode8, plan_capacity,
-    wide_node_capacity,
+    CollapsePlan, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideNode8, plan_capacity, wide_node_capacity,
 };
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, load_mesh, workload};
@@ -40,7 +39,7 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
         let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
         let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
         let mut storage = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
-        let eight = WideBvh8::build(&plan, &mut storage).unwrap();
+        let eight = WideBvh::<WideNode8>::build(&plan, &mut storage).unwrap();
         assert_eq!(eight.nodes().len(), plan.node_count(), "{name}");
         let owned4 = owned.clone().with_four_wide_nodes().unwrap();
         let four = owned4.wide().unwrap();
@@ -193,7 +192,7 @@ fn a_lone_leaf_and_a_too_small_buffer() {
     let mut no_entries = vec![PlanEntry::EMPTY; plan_capacity(&none_bvh)];
     let none_plan = CollapsePlan::<8>::new(&none_bvh, &mut no_entries).unwrap();
     assert_eq!(
-        WideBvh8::build(&none_plan, &mut no_nodes)
+        WideBvh::<WideNode8>::build(&none_plan, &mut no_nodes)
             .unwrap()
             .nodes()
             .len(),
@@ -207,10 +206,10 @@ fn a_lone_leaf_and_a_too_small_buffer() {
     let big_plan = CollapsePlan::<8>::new(&big_bvh, &mut big_entries).unwrap();
     let needed = big_plan.node_count();
     let mut short = vec![WideNode8::EMPTY; needed - 1];
-    assert!(WideBvh8::build(&big_plan, &mut short).is_err());
+    assert!(WideBvh::<WideNode8>::build(&big_plan, &mut short).is_err());
     let mut exact = vec![WideNode8::EMPTY; needed];
     assert_eq!(
-        WideBvh8::build(&big_plan, &mut exact)
+        WideBvh::<WideNode8>::build(&big_plan, &mut exact)
             .unwrap()
             .nodes()
             .len(),
@@ -360,7 +359,7 @@ fn the_default_tree_is_the_targets_and_every_choice_answers_alike() {
     let mut entries8 = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
     let plan8 = CollapsePlan::<8>::new(&bvh, &mut entries8).unwrap();
     let mut storage8 = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
-    let eight = WideBvh8::build(&plan8, &mut storage8).unwrap();
+    let eight = WideBvh::<WideNode8>::build(&plan8, &mut storage8).unwrap();
     let eight_by_default = cfg!(any(
         target_feature = "sse2",
         target_feature = "neon",

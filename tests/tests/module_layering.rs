@@ -3,8 +3,10 @@
 //! - between top-level modules, every `crate::<module>` path is an edge, and the graph must be
 //!   acyclic, with the query layer below every structure and structures independent of each
 //!   other (the wide BVH, collapsed from the binary one, is the one exception);
-//! - between files, every `use` path is resolved to the file that defines the item (through
-//!   `pub use` re-exports), and no file may reach itself.
+//! - between files, every `use` path and every path written inline in code (`super::x::f()`,
+//!   `crate::query::SplitRefs::NONE`) is resolved to the file that defines the item (through
+//!   `pub use` re-exports), and no file may reach itself. A synthetic crate with an injected
+//!   circle shows that the check finds one made by either kind of path.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -176,6 +178,33 @@ fn use_paths(code: &str) -> Vec<Vec<String>> {
     out
 }
 
+/// The paths written inline in `code` outside `use` declarations that start at `crate`,
+/// `super` or `self` (`super::check::check(..)` gives `super::check::check`).
+fn inline_paths(code: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    for start in ["crate::", "super::", "self::"] {
+        for (at, _) in code.match_indices(start) {
+            let before = code[..at].chars().last();
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                continue; // inside a longer path (`super::super::`) or a word
+            }
+            let text: String = code[at..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                .collect();
+            let path: Vec<String> = text
+                .split("::")
+                .filter(|s| !s.is_empty())
+                .map(String::from)
+                .collect();
+            if path.len() > 1 {
+                out.push(path);
+            }
+        }
+    }
+    out
+}
+
 /// A module: its directory and the file that holds its code.
 #[derive(Clone, Debug)]
 struct Module {
@@ -259,27 +288,39 @@ fn resolve(path: &[String], at: &Module, root: &Path, depth: usize) -> Option<Pa
     Some(m.file.clone())
 }
 
-#[test]
-fn core_files_have_no_import_circle() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../core/src")
-        .canonicalize()
-        .unwrap();
+/// File (relative to `root`) → the files its `use` lines and inline paths name.
+fn file_graph(root: &Path) -> BTreeMap<String, BTreeSet<String>> {
     let mut files = Vec::new();
-    rust_files(&root, &mut files);
+    rust_files(root, &mut files);
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    let name = |p: &Path| p.strip_prefix(&root).unwrap().display().to_string();
+    let name = |p: &Path| p.strip_prefix(root).unwrap().display().to_string();
     for file in &files {
-        let at = module_of(file, &root);
+        let at = module_of(file, root);
         let deps = graph.entry(name(file)).or_default();
-        for path in use_paths(&code_of(file)) {
-            if let Some(target) = resolve(&path, &at, &root, 0)
+        let code = code_of(file);
+        for path in use_paths(&code).into_iter().chain(inline_paths(&code)) {
+            if let Some(target) = resolve(&path, &at, root, 0)
                 && target != *file
             {
                 deps.insert(name(&target));
             }
         }
     }
+    graph
+}
+
+/// The files of `graph` that reach themselves, with what each uses.
+fn circular(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<(&String, &BTreeSet<String>)> {
+    graph.iter().filter(|(f, _)| reaches(graph, f, f)).collect()
+}
+
+#[test]
+fn core_files_have_no_import_circle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../core/src")
+        .canonicalize()
+        .unwrap();
+    let graph = file_graph(&root);
     assert!(
         graph["query/ray.rs"].contains("query/traverse.rs"),
         "{graph:?}"
@@ -288,12 +329,48 @@ fn core_files_have_no_import_circle() {
         graph["bvh/traverse.rs"].contains("bvh/sizing.rs"),
         "{graph:?}"
     );
-    let circular: Vec<(&String, &BTreeSet<String>)> = graph
-        .iter()
-        .filter(|(f, _)| reaches(&graph, f, f))
-        .collect();
+    // An inline path is an edge too: the grid's tree calls its check by path.
+    assert!(graph["grid/tree.rs"].contains("grid/check.rs"), "{graph:?}");
+    let circular = circular(&graph);
     assert!(
         circular.is_empty(),
         "files that reach themselves (file -> what it uses): {circular:?}"
     );
+}
+
+/// The check on a crate made here: `tree.rs` imports nothing from `check.rs` but calls it by
+/// an inline path, and `check.rs` imports `tree.rs`'s type, the shape of the circle the k-d
+/// tree and octree once had. Without the inline edge it goes unseen; with it, both files are
+/// named.
+#[test]
+fn an_injected_circle_through_an_inline_path_is_found() {
+    let root = std::env::temp_dir().join(format!("meshq-layering-{}", std::process::id()));
+    let _ = fs::remove_dir_all(&root);
+    fs::create_dir_all(root.join("octree")).unwrap();
+    let write = |rel: &str, text: &str| fs::write(root.join(rel), text).unwrap();
+    write("lib.rs", "pub mod octree;\n");
+    write(
+        "octree/mod.rs",
+        "mod check;\nmod tree;\npub use tree::Octree;\n",
+    );
+    write(
+        "octree/tree.rs",
+        "pub struct Octree;\nimpl Octree {\n    pub fn from_parts() -> Self {\n        \
+         super::check::check(&Octree);\n        Octree\n    }\n}\n",
+    );
+    write(
+        "octree/check.rs",
+        "use super::Octree;\npub(super) fn check(_: &Octree) {}\n",
+    );
+    let graph = file_graph(&root);
+    let found: Vec<&String> = circular(&graph).into_iter().map(|(f, _)| f).collect();
+    // Only `use` lines: check.rs → tree.rs, no way back.
+    assert!(
+        !use_paths(&code_of(&root.join("octree/tree.rs")))
+            .iter()
+            .any(|p| p.iter().any(|s| s == "check")),
+        "the circle is made by the inline path alone"
+    );
+    fs::remove_dir_all(&root).unwrap();
+    assert_eq!(found, ["octree/check.rs", "octree/tree.rs"], "{graph:?}");
 }

@@ -3,7 +3,7 @@
 
 use meshq::mesh::MeshRef;
 use meshq::owned::Remeshed;
-use meshq::remesh::RemeshConfig;
+use meshq::remesh::{EdgeTarget, RemeshConfig};
 
 /// Length of the fold, along x.
 const LENGTH: f32 = 4.0;
@@ -57,7 +57,7 @@ fn a_finely_sampled_fold_is_coarsened_and_stays_sharp_straight_and_whole() {
     let (positions, triangles) = folded_strip();
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     let config = RemeshConfig {
-        target_length: TARGET,
+        target: EdgeTarget::Length(TARGET),
         feature_angle: Some(45.0),
         ..RemeshConfig::default()
     };

@@ -17,7 +17,9 @@ use meshq::error::RemeshError;
 use meshq::mesh::ValidMesh;
 use meshq::owned::Remeshed;
 use meshq::query::MeshQuery;
-use meshq::remesh::{HalfEdgeBuffers, HalfEdgeMesh, RemeshCapacity, RemeshConfig, remesh};
+use meshq::remesh::{
+    EdgeTarget, HalfEdgeBuffers, HalfEdgeMesh, RemeshCapacity, RemeshConfig, remesh,
+};
 use meshq_tests::{bake, load_mesh};
 use meshq_workload::{MeshDigest, RemeshGolden, find_remesh_golden};
 
@@ -75,7 +77,7 @@ fn computed_line(name: &str) -> String {
 
     // Tight buffers: three times the output, far below the sizing estimate, so the
     // result cannot depend on how much room there is.
-    let estimate = RemeshCapacity::for_mesh(&mesh, 0.0);
+    let estimate = RemeshCapacity::for_mesh(&mesh, EdgeTarget::default());
     let tight = RemeshCapacity {
         vertices: (expected.vertices as usize * 3).max(mesh.vertex_count()) + 16,
         triangles: (expected.triangles as usize * 3).max(mesh.triangle_count()) + 32,

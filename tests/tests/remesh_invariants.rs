@@ -16,10 +16,10 @@ use meshq::Vec3;
 use meshq::bvh::BuildConfig;
 use meshq::math::cross;
 use meshq::mesh::MeshRef;
-use meshq::owned::{Remeshed, mean_edge_length};
+use meshq::owned::Remeshed;
 use meshq::remesh::{
-    HalfEdgeMesh, RemeshCapacity, RemeshConfig, RemeshObserver, RemeshReport, RemeshStep,
-    RemeshStorage, remesh_observed,
+    EdgeTarget, HalfEdgeMesh, RemeshCapacity, RemeshConfig, RemeshObserver, RemeshReport,
+    RemeshStep, RemeshStorage, remesh_observed,
 };
 use meshq_tests::{Topology, load_mesh, spot_patch};
 use std::collections::{HashMap, HashSet};
@@ -188,7 +188,7 @@ fn checked_run(
 ) -> RemeshReport {
     let input = MeshRef::new(positions, triangles).validate().unwrap();
     let reference = MeshBvh::build(&input, &BuildConfig::default()).unwrap();
-    let capacity = RemeshCapacity::for_mesh(&input, config.target_length);
+    let capacity = RemeshCapacity::for_mesh(&input, config.target);
     let mut storage = RemeshStorage::new(capacity).unwrap();
     let mut pairing = vec![0u32; capacity.pairing_scratch()];
     let mut mesh = HalfEdgeMesh::from_mesh(&input, storage.buffers(), &mut pairing).unwrap();
@@ -232,7 +232,7 @@ fn coarse(name: &str, ratio: f32, feature_angle: Option<f32>) -> Remeshed {
     let loaded = load_mesh(name);
     let mesh = loaded.valid();
     let config = RemeshConfig {
-        target_length: ratio * mean_edge_length(&mesh),
+        target: EdgeTarget::MeanEdgeTimes(ratio),
         feature_angle,
         ..RemeshConfig::default()
     };
@@ -282,7 +282,7 @@ fn coarse_fandisk_with_creases_stays_sound_after_every_edit() {
 fn the_coarse_bunny_with_its_holes_stays_sound_after_every_edit() {
     let input = coarse("stanford-bunny", 5.0, None);
     let config = RemeshConfig {
-        target_length: 0.8 * input.after.mean_edge,
+        target: EdgeTarget::Length(0.8 * input.after.mean_edge),
         ..RemeshConfig::default()
     };
     let report = checked_run("coarse bunny", &input.positions, &input.triangles, &config);

@@ -59,10 +59,10 @@ impl Storage {
                     }
                 }
             }
-            MeshIndex::KdTree(s) => s.tree().for_each_cell(level, &mut cell),
-            MeshIndex::Octree(s) => s.tree().for_each_cell(level, &mut cell),
+            MeshIndex::KdTree(s) => s.structure().for_each_cell(level, &mut cell),
+            MeshIndex::Octree(s) => s.structure().for_each_cell(level, &mut cell),
             MeshIndex::Grid(s) => {
-                let grid = s.grid();
+                let grid = s.structure();
                 let layout = grid.layout();
                 let [nx, ny, nz] = layout.resolution;
                 for k in 0..nz {

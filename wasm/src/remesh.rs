@@ -5,8 +5,8 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use js_sys::{Float32Array, Object, Uint32Array};
 use meshq::mesh::MeshRef;
-use meshq::owned::{Remeshed, mean_edge_length};
-use meshq::remesh::{MeshQuality, RemeshConfig};
+use meshq::owned::Remeshed;
+use meshq::remesh::{EdgeTarget, MeshQuality, RemeshConfig};
 use wasm_bindgen::prelude::*;
 
 use crate::args::{JsNumber, floats_or_numbers, range_error};
@@ -19,7 +19,7 @@ const REMESH_KEYS: &[&str] = &["targetLength", "targetRatio", "iterations", "fea
 
 /// Reads `{ targetLength?, targetRatio?, iterations?, featureAngle? }` (every field optional;
 /// `targetLength` and `targetRatio` not both), strictly (see [`crate::fields`]).
-fn config(options_in: &JsValue, mean_edge: impl FnOnce() -> f32) -> Result<RemeshConfig, JsValue> {
+fn config(options_in: &JsValue) -> Result<RemeshConfig, JsValue> {
     let mut config = RemeshConfig::default();
     let o = options(options_in, "options", REMESH_KEYS)?;
     let o = o.as_ref();
@@ -39,8 +39,8 @@ fn config(options_in: &JsValue, mean_edge: impl FnOnce() -> f32) -> Result<Remes
                 "options: give targetLength or targetRatio, not both",
             ));
         }
-        (Some(l), None) => config.target_length = l as f32,
-        (None, Some(r)) => config.target_length = r as f32 * mean_edge(),
+        (Some(l), None) => config.target = EdgeTarget::Length(l as f32),
+        (None, Some(r)) => config.target = EdgeTarget::MeanEdgeTimes(r as f32),
         (None, None) => {}
     }
     if let Some(n) = optional_whole(
@@ -136,7 +136,7 @@ pub fn remesh(
     let mesh = MeshRef::from_flat(&positions, &indices)
         .and_then(MeshRef::validate)
         .map_err(|e| JsError::new(&e.to_string()))?;
-    let config = config(&options, || mean_edge_length(&mesh))?;
+    let config = config(&options)?;
     let out = Remeshed::of(&mesh, &config).map_err(|e| JsError::new(&e.to_string()))?;
     let distance = out
         .distance_to(&mesh)

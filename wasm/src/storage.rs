@@ -98,9 +98,9 @@ impl Storage {
     pub fn bounds(&self) -> meshq::math::Aabb {
         match &self.scene {
             MeshIndex::Bvh(s) => s.bounds(),
-            MeshIndex::KdTree(s) => *s.tree().bounds(),
-            MeshIndex::Octree(s) => *s.tree().root(),
-            MeshIndex::Grid(s) => s.grid().layout().bounds,
+            MeshIndex::KdTree(s) => s.bounds(),
+            MeshIndex::Octree(s) => s.bounds(),
+            MeshIndex::Grid(s) => s.bounds(),
         }
     }
 }

@@ -160,6 +160,8 @@ impl Traverse for BlobView<'_> {
     }
 }
 
+impl crate::query::MeshQuery for BlobView<'_> {}
+
 impl LeafTriangles for BlobView<'_> {
     #[inline(always)]
     fn corners(&self, slot: usize, tri: u32) -> Option<Triangle> {

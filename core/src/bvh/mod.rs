@@ -3,6 +3,7 @@
 //!
 //! ```
 //! use meshq::prelude::*;
+//! use meshq::bvh::{self, BvhNode, PrimRef};
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
 //! // Caller-owned buffers, sized by the sizing functions...

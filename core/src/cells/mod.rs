@@ -7,7 +7,9 @@
 //! their count is only known once the cells are cut. Each structure therefore gives an exact
 //! sizing pass and a builder that stays within the buffers it is handed.
 
+mod cell_walk;
 mod check;
+mod mailbox;
 mod offer;
 mod pack;
 mod reference;
@@ -17,7 +19,9 @@ mod stats;
 mod tree_build;
 mod words;
 
+pub(crate) use cell_walk::{CellNode, CellTree, for_each_cell, stats};
 pub(crate) use check::{Visits, first_bad_reference};
+pub(crate) use mailbox::Mailbox;
 pub(crate) use offer::Offer;
 pub use pack::pack_references;
 pub(crate) use reference::ReferencePad;

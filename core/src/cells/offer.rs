@@ -2,7 +2,8 @@
 
 use core::ops::ControlFlow;
 
-use crate::query::{Cell, LeafTriangleIds, Mailbox, Visitor};
+use super::Mailbox;
+use crate::query::{Cell, LeafTriangleIds, Visitor};
 
 /// The leaf side of one traversal: a mailbox when the visitor lets repeats be skipped.
 pub(crate) struct Offer {
@@ -14,7 +15,7 @@ impl Offer {
     #[inline(always)]
     pub(crate) fn new<V: Visitor + ?Sized>(visitor: &V) -> Self {
         Self {
-            mailbox: visitor.skips_repeats().then(Mailbox::new),
+            mailbox: visitor.hints().skips_repeats.then(Mailbox::new),
         }
     }
 

@@ -4,12 +4,14 @@
 //! does with degenerate input (zero-length directions, zero-area triangles, parallel cases,
 //! NaN). Each one lives in its own file.
 
+pub(crate) mod aabb_lanes;
 mod clip_triangle_aabb;
 mod closest_point_plane;
 mod closest_point_segment;
 mod closest_point_triangle;
 mod closest_point_triangle_lanes;
 mod line_line;
+pub(crate) mod packet_aabb_lanes;
 mod point_in_triangle;
 mod point_on_segment;
 mod ray_aabb;

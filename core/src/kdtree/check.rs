@@ -3,12 +3,13 @@
 use super::{KdConfig, KdKind, KdTree};
 use crate::cells::{Visits, Words, first_bad_reference};
 use crate::error::StructureError;
+use crate::math::Aabb;
 use crate::query::Cell;
 
 /// Checks `tree` (see [`KdTree::from_parts`]). The walk counts visits and stops past the node
 /// count, so arrays that name the same children twice are refused in bounded time (and every
 /// later traversal is bounded by the node count).
-pub(super) fn check<N: Words, W: Words>(
+fn check<N: Words, W: Words>(
     tree: &KdTree<N, W>,
     triangle_count: usize,
 ) -> Result<(), StructureError> {
@@ -69,5 +70,31 @@ pub(super) fn check<N: Words, W: Words>(
     match first_bad_reference(tree.items, triangle_count) {
         Some((_, tri)) => Err(StructureError::TriangleOutOfRange { node: 0, tri }),
         None => Ok(()),
+    }
+}
+
+impl<N: Words, W: Words> KdTree<N, W> {
+    /// A k-d tree over arrays written earlier by [`KdTree::build`] (kept, copied or stored)
+    /// for a mesh of `triangle_count` triangles with bounds `bounds`, after checking they form
+    /// one: every node reachable exactly once, children after their parent, planes finite and
+    /// inside their cell, depth at most [`KdConfig::MAX_DEPTH`], leaf ranges inside `items`,
+    /// references naming triangles of the mesh. It does not check that each leaf lists exactly
+    /// the triangles touching it: one that lists others answers wrongly, never panics.
+    ///
+    /// # Errors
+    /// The first [`StructureError`] found.
+    pub fn from_parts(
+        bounds: Aabb,
+        nodes: N,
+        items: W,
+        triangle_count: usize,
+    ) -> Result<Self, StructureError> {
+        let tree = Self {
+            bounds,
+            nodes,
+            items,
+        };
+        check(&tree, triangle_count)?;
+        Ok(tree)
     }
 }

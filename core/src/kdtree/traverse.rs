@@ -21,7 +21,7 @@ impl<N: Words, W: Words> Traverse for KdTree<N, W> {
         let mut offer = Offer::new(visitor);
         match visitor.ray().copied() {
             // Ray queries rarely read cells: only work them out for a visitor that does.
-            Some(ray) if visitor.needs_cells() => {
+            Some(ray) if visitor.hints().needs_cells => {
                 self.march::<V, Cell, false>(&ray, visitor, &mut offer);
             }
             Some(ray) => self.march::<V, Untracked, false>(&ray, visitor, &mut offer),

@@ -2,8 +2,10 @@
 
 use super::split::KdSplitter;
 use super::{KdConfig, KdKind, KdNode};
-use crate::cells::{CellStats, ReferencePad, TreeSizes, Words, build_tree};
-use crate::error::{BuildError, StructureError};
+use crate::cells::{
+    self, CellNode, CellStats, CellTree, ReferencePad, TreeSizes, Words, build_tree,
+};
+use crate::error::BuildError;
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 use crate::query::Cell;
@@ -103,30 +105,6 @@ fn splitter<'m>(mesh: &'m ValidMesh<'m>, config: &KdConfig) -> KdSplitter<'m> {
 }
 
 impl<N: Words, W: Words> KdTree<N, W> {
-    /// A k-d tree over arrays written earlier by [`KdTree::build`] (kept, copied or stored)
-    /// for a mesh of `triangle_count` triangles with bounds `bounds`, after checking they form
-    /// one: every node reachable exactly once, children after their parent, planes finite and
-    /// inside their cell, depth at most [`KdConfig::MAX_DEPTH`], leaf ranges inside `items`,
-    /// references naming triangles of the mesh. It does not check that each leaf lists exactly
-    /// the triangles touching it: one that lists others answers wrongly, never panics.
-    ///
-    /// # Errors
-    /// The first [`StructureError`] found.
-    pub fn from_parts(
-        bounds: Aabb,
-        nodes: N,
-        items: W,
-        triangle_count: usize,
-    ) -> Result<Self, StructureError> {
-        let tree = Self {
-            bounds,
-            nodes,
-            items,
-        };
-        super::check::check(&tree, triangle_count)?;
-        Ok(tree)
-    }
-
     /// Wraps arrays this crate built or checked itself, without checking again.
     #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     pub(crate) const fn from_validated(bounds: Aabb, nodes: N, items: W) -> Self {
@@ -182,47 +160,50 @@ impl<N: Words, W: Words> KdTree<N, W> {
     /// their depth (the root is 0): every leaf at depth `stop_depth` or less, with its
     /// `(first, count)` range of references, and every inner node at depth `stop_depth`, with
     /// `None`. Together they tile the root; depth first, lower child first.
-    pub fn for_each_cell(
-        &self,
-        stop_depth: u32,
-        mut each: impl FnMut(Cell, u32, Option<(u32, u32)>),
-    ) {
-        let mut stack = [(0u32, Cell::root(self.bounds), 0u32); KdConfig::MAX_DEPTH as usize + 2];
-        let mut top = 1usize;
-        while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied())
-        {
-            top -= 1;
-            match self.node(node as usize).map(|n| n.kind()) {
-                Some(KdKind::Leaf { first, count }) => each(cell, depth, Some((first, count))),
-                Some(KdKind::Inner { .. }) if depth >= stop_depth => each(cell, depth, None),
-                Some(KdKind::Inner {
-                    axis,
-                    split,
-                    first_child,
-                }) => {
-                    let (below, above) = cell.split(axis, split);
-                    for (k, c) in [(1, above), (0, below)] {
-                        if let Some(slot) = stack.get_mut(top) {
-                            *slot = (first_child + k, c, depth + 1);
-                            top += 1;
-                        }
-                    }
-                }
-                None => {}
-            }
-        }
+    pub fn for_each_cell(&self, stop_depth: u32, each: impl FnMut(Cell, u32, Option<(u32, u32)>)) {
+        cells::for_each_cell::<_, WALK_STACK>(self, stop_depth, each);
     }
 
     /// Nodes, leaf cells, empty cells, references, depth.
     #[must_use]
     pub fn stats(&self, triangles: usize) -> CellStats {
-        let mut stats = CellStats {
-            nodes: self.node_count(),
-            references: self.items.len(),
-            triangles,
-            ..CellStats::default()
-        };
-        self.for_each_leaf(|_, depth, _, count| stats.add_cell(depth, count as usize));
-        stats
+        cells::stats::<_, WALK_STACK>(self, triangles)
+    }
+}
+
+/// Deferred cells of a walk over every cell: one per level below the depth limit, plus two.
+const WALK_STACK: usize = KdConfig::MAX_DEPTH as usize + 2;
+
+impl<N: Words, W: Words> CellTree for KdTree<N, W> {
+    fn root_cell(&self) -> Cell {
+        Cell::root(self.bounds)
+    }
+
+    fn cell_node(&self, node: u32) -> Option<CellNode> {
+        Some(match self.node(node as usize)?.kind() {
+            KdKind::Leaf { first, count } => CellNode::Leaf { first, count },
+            KdKind::Inner { .. } => CellNode::Inner,
+        })
+    }
+
+    fn children(&self, node: u32, cell: &Cell, _depth: u32, mut child: impl FnMut(u32, Cell)) {
+        if let Some(KdKind::Inner {
+            axis,
+            split,
+            first_child,
+        }) = self.node(node as usize).map(|n| n.kind())
+        {
+            let (below, above) = cell.split(axis, split);
+            child(first_child + 1, above);
+            child(first_child, below);
+        }
+    }
+
+    fn node_count(&self) -> usize {
+        KdTree::node_count(self)
+    }
+
+    fn reference_count(&self) -> usize {
+        self.items.len()
     }
 }

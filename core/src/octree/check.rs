@@ -4,10 +4,11 @@ use super::tree::STACK;
 use super::{Octree, OctreeConfig};
 use crate::cells::{Visits, Words, first_bad_reference};
 use crate::error::StructureError;
+use crate::math::Aabb;
 
 /// Checks `tree` (see [`Octree::from_parts`]). The walk counts visits and stops past the node
 /// count, so arrays that name the same children twice are refused in bounded time.
-pub(super) fn check<N: Words, W: Words>(
+fn check<N: Words, W: Words>(
     tree: &Octree<N, W>,
     triangle_count: usize,
 ) -> Result<(), StructureError> {
@@ -57,5 +58,27 @@ pub(super) fn check<N: Words, W: Words>(
     match first_bad_reference(tree.items, triangle_count) {
         Some((_, tri)) => Err(StructureError::TriangleOutOfRange { node: 0, tri }),
         None => Ok(()),
+    }
+}
+
+impl<N: Words, W: Words> Octree<N, W> {
+    /// An octree over arrays written earlier by [`Octree::build`] (kept, copied or stored),
+    /// with root cube `root`, for a mesh of `triangle_count` triangles, after checking they form
+    /// one: every node reachable exactly once, children after their parent, depth at most
+    /// [`OctreeConfig::MAX_DEPTH`], leaf ranges inside `items`, references naming triangles of
+    /// the mesh. It does not check that each leaf lists exactly the triangles touching it: one
+    /// that lists others answers wrongly, never panics.
+    ///
+    /// # Errors
+    /// The first [`StructureError`] found.
+    pub fn from_parts(
+        root: Aabb,
+        nodes: N,
+        items: W,
+        triangle_count: usize,
+    ) -> Result<Self, StructureError> {
+        let tree = Self { root, nodes, items };
+        check(&tree, triangle_count)?;
+        Ok(tree)
     }
 }

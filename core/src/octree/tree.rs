@@ -2,8 +2,10 @@
 
 use super::split::{OctreeSplitter, octants, root_cube};
 use super::{OctreeConfig, OctreeNode};
-use crate::cells::{CellStats, ReferencePad, TreeSizes, Words, build_tree};
-use crate::error::{BuildError, StructureError};
+use crate::cells::{
+    self, CellNode, CellStats, CellTree, ReferencePad, TreeSizes, Words, build_tree,
+};
+use crate::error::BuildError;
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 use crate::query::Cell;
@@ -98,26 +100,6 @@ fn splitter<'m>(mesh: &'m ValidMesh<'m>, config: &OctreeConfig) -> OctreeSplitte
 }
 
 impl<N: Words, W: Words> Octree<N, W> {
-    /// An octree over arrays written earlier by [`Octree::build`] (kept, copied or stored),
-    /// with root cube `root`, for a mesh of `triangle_count` triangles, after checking they form
-    /// one: every node reachable exactly once, children after their parent, depth at most
-    /// [`OctreeConfig::MAX_DEPTH`], leaf ranges inside `items`, references naming triangles of
-    /// the mesh. It does not check that each leaf lists exactly the triangles touching it: one
-    /// that lists others answers wrongly, never panics.
-    ///
-    /// # Errors
-    /// The first [`StructureError`] found.
-    pub fn from_parts(
-        root: Aabb,
-        nodes: N,
-        items: W,
-        triangle_count: usize,
-    ) -> Result<Self, StructureError> {
-        let tree = Self { root, nodes, items };
-        super::check::check(&tree, triangle_count)?;
-        Ok(tree)
-    }
-
     /// Wraps arrays this crate built or checked itself, without checking again.
     #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     pub(crate) const fn from_validated(root: Aabb, nodes: N, items: W) -> Self {
@@ -169,45 +151,49 @@ impl<N: Words, W: Words> Octree<N, W> {
     /// their depth (the root is 0): every leaf at depth `stop_depth` or less, with its
     /// `(first, count)` range of references, and every inner node at depth `stop_depth`, with
     /// `None`. Together they tile the root; depth first, lower child first.
-    pub fn for_each_cell(
-        &self,
-        stop_depth: u32,
-        mut each: impl FnMut(Cell, u32, Option<(u32, u32)>),
-    ) {
-        let mut stack = [(0u32, Cell::root(self.root), 0u32); STACK];
-        let mut top = 1usize;
-        while let Some((node, cell, depth)) = top.checked_sub(1).and_then(|i| stack.get(i).copied())
-        {
-            top -= 1;
-            let Some(n) = self.node(node as usize) else {
-                continue;
-            };
-            match n.first_child() {
-                None => each(cell, depth, Some((n.a, n.b))),
-                Some(_) if depth >= stop_depth => each(cell, depth, None),
-                Some(first) if depth < OctreeConfig::MAX_DEPTH => {
-                    for (k, c) in octants(&cell).into_iter().enumerate().rev() {
-                        if let Some(slot) = stack.get_mut(top) {
-                            *slot = (first + k as u32, c, depth + 1);
-                            top += 1;
-                        }
-                    }
-                }
-                Some(_) => {}
-            }
-        }
+    pub fn for_each_cell(&self, stop_depth: u32, each: impl FnMut(Cell, u32, Option<(u32, u32)>)) {
+        cells::for_each_cell::<_, STACK>(self, stop_depth, each);
     }
 
     /// Nodes, leaf cells, empty cells, references, depth.
     #[must_use]
     pub fn stats(&self, triangles: usize) -> CellStats {
-        let mut stats = CellStats {
-            nodes: self.node_count(),
-            references: self.items.len(),
-            triangles,
-            ..CellStats::default()
-        };
-        self.for_each_leaf(|_, depth, _, count| stats.add_cell(depth, count as usize));
-        stats
+        cells::stats::<_, STACK>(self, triangles)
+    }
+}
+
+impl<N: Words, W: Words> CellTree for Octree<N, W> {
+    fn root_cell(&self) -> Cell {
+        Cell::root(self.root)
+    }
+
+    fn cell_node(&self, node: u32) -> Option<CellNode> {
+        let n = self.node(node as usize)?;
+        Some(match n.first_child() {
+            None => CellNode::Leaf {
+                first: n.a,
+                count: n.b,
+            },
+            Some(_) => CellNode::Inner,
+        })
+    }
+
+    fn children(&self, node: u32, cell: &Cell, depth: u32, mut child: impl FnMut(u32, Cell)) {
+        let first = self.node(node as usize).and_then(|n| n.first_child());
+        if let Some(first) = first
+            && depth < OctreeConfig::MAX_DEPTH
+        {
+            for (k, c) in octants(cell).into_iter().enumerate().rev() {
+                child(first + k as u32, c);
+            }
+        }
+    }
+
+    fn node_count(&self) -> usize {
+        Octree::node_count(self)
+    }
+
+    fn reference_count(&self) -> usize {
+        self.items.len()
     }
 }

@@ -6,7 +6,8 @@ use alloc::vec::Vec;
 
 use super::blob::unshared_mesh;
 use super::cell_scene::CellScene;
-use super::{MeshBvh, MeshGrid, MeshIndex, MeshKdTree, MeshOctree};
+use super::mesh_cells::{GridArrays, KdArrays, OctreeArrays};
+use super::{CellKind, MeshBvh, MeshCells, MeshIndex};
 use crate::blob::{
     BlobSource, BlobStructure, BlobView, MeshLayout, StructureConfig, encode_structure_into,
     structure_encoded_len,
@@ -56,33 +57,39 @@ impl MeshIndex {
             (BlobStructure::KdTree(t), StructureConfig::KdTree(config)) => {
                 let nodes = (0..t.node_count()).filter_map(|i| t.node(i)).collect();
                 let items = words(t.items());
-                Self::KdTree(MeshKdTree {
+                Self::KdTree(MeshCells {
                     scene: scene_of(view, &items)?,
-                    bounds: *t.bounds(),
-                    nodes,
-                    items,
+                    arrays: KdArrays {
+                        bounds: *t.bounds(),
+                        nodes,
+                        items,
+                    },
                     config,
                 })
             }
             (BlobStructure::Octree(t), StructureConfig::Octree(config)) => {
                 let nodes = (0..t.node_count()).filter_map(|i| t.node(i)).collect();
                 let items = words(t.items());
-                Self::Octree(MeshOctree {
+                Self::Octree(MeshCells {
                     scene: scene_of(view, &items)?,
-                    root: *t.root(),
-                    nodes,
-                    items,
+                    arrays: OctreeArrays {
+                        root: *t.root(),
+                        nodes,
+                        items,
+                    },
                     config,
                 })
             }
             (BlobStructure::Grid(g), StructureConfig::Grid { config, .. }) => {
                 let items = words(g.items());
                 let layout: GridLayout = *g.layout();
-                Self::Grid(MeshGrid {
+                Self::Grid(MeshCells {
                     scene: scene_of(view, &items)?,
-                    layout,
-                    offsets: words(g.offsets()),
-                    items,
+                    arrays: GridArrays {
+                        layout,
+                        offsets: words(g.offsets()),
+                        items,
+                    },
                     config,
                 })
             }
@@ -125,9 +132,9 @@ impl MeshIndex {
     ) -> Result<T, BlobError> {
         match self {
             Self::Bvh(s) => f(&BlobSource::Bvh(&s.bvh(), *s.config(), None), &s.mesh()),
-            Self::KdTree(s) => f(&BlobSource::KdTree(&s.tree(), s.config), &s.mesh()),
-            Self::Octree(s) => f(&BlobSource::Octree(&s.tree(), s.config), &s.mesh()),
-            Self::Grid(s) => f(&BlobSource::Grid(&s.grid(), s.config), &s.mesh()),
+            Self::KdTree(s) => f(&BlobSource::KdTree(&s.structure(), s.config), &s.mesh()),
+            Self::Octree(s) => f(&BlobSource::Octree(&s.structure(), s.config), &s.mesh()),
+            Self::Grid(s) => f(&BlobSource::Grid(&s.structure(), s.config), &s.mesh()),
         }
     }
 }
@@ -173,45 +180,14 @@ fn scene_of(view: &BlobView<'_>, items: &[u32]) -> Result<CellScene, BlobError> 
     Ok(scene)
 }
 
-impl MeshKdTree {
-    /// [`MeshIndex::to_blob`] for a k-d tree.
+impl<K: CellKind> MeshCells<K> {
+    /// [`MeshIndex::to_blob`] for a cell structure.
     ///
     /// # Errors
     /// What [`encode_structure_into`] reports.
     pub fn to_blob(&self, layout: MeshLayout) -> Result<Vec<u8>, BlobError> {
-        encode(
-            &BlobSource::KdTree(&self.tree(), self.config),
-            &self.mesh(),
-            layout,
-        )
-    }
-}
-
-impl MeshOctree {
-    /// [`MeshIndex::to_blob`] for an octree.
-    ///
-    /// # Errors
-    /// What [`encode_structure_into`] reports.
-    pub fn to_blob(&self, layout: MeshLayout) -> Result<Vec<u8>, BlobError> {
-        encode(
-            &BlobSource::Octree(&self.tree(), self.config),
-            &self.mesh(),
-            layout,
-        )
-    }
-}
-
-impl MeshGrid {
-    /// [`MeshIndex::to_blob`] for a grid.
-    ///
-    /// # Errors
-    /// What [`encode_structure_into`] reports.
-    pub fn to_blob(&self, layout: MeshLayout) -> Result<Vec<u8>, BlobError> {
-        encode(
-            &BlobSource::Grid(&self.grid(), self.config),
-            &self.mesh(),
-            layout,
-        )
+        let view = self.structure();
+        encode(&K::source(&view, self.config), &self.mesh(), layout)
     }
 }
 

@@ -13,10 +13,7 @@ use crate::query::{
 use crate::wide::collapse::{collapse_planned_vec, collapse_vec};
 #[cfg(feature = "parallel")]
 use crate::wide::parallel_collapse::collapse_vec_parallel;
-use crate::wide::{
-    CollapsePlan, CollapseRoles, CompactNode, CompactWideBvh, WideBvh, WideBvh8, WideNode,
-    WideNode8,
-};
+use crate::wide::{CollapsePlan, CollapseRoles, CompactNode, WideBvh, WideNode, WideNode8};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
 /// (nodes and order), the triangles packed in leaf order, and the tree collapsed for queries
@@ -28,9 +25,9 @@ use crate::wide::{
 /// custom visitors ([`Traverse`]). Queries walk the wide tree over the packed triangles; every
 /// answer is exactly what the binary tree over the mesh gives, bit for bit, on every target,
 /// whichever wide tree it is. [`MeshBvh::with_compact_nodes`] trades the wide nodes for
-/// quantized four-wide ones ([`CompactWideBvh`]), half the bytes of four-wide nodes;
+/// quantized four-wide ones ([`WideBvh`] of [`CompactNode`]), half the bytes of four-wide nodes;
 /// [`MeshBvh::with_eight_wide_nodes`] and [`MeshBvh::with_four_wide_nodes`] pick the
-/// eight-wide ([`WideBvh8`]) or four-wide ([`WideBvh`]) tree whatever the target.
+/// eight-wide ([`WideBvh`] of [`WideNode8`]) or four-wide ([`WideBvh`]) tree whatever the target.
 /// [`MeshBvh::bvh`], [`MeshBvh::wide`], [`MeshBvh::compact`], [`MeshBvh::eight_wide`],
 /// [`MeshBvh::packed`] and [`MeshBvh::mesh`] lend the views for code that wants a particular
 /// one.
@@ -57,7 +54,7 @@ pub(super) enum WideNodes {
 }
 
 impl MeshBvh {
-    /// Whether queries walk the eight-wide tree ([`WideBvh8`]) unless told otherwise (by
+    /// Whether queries walk the eight-wide tree ([`WideBvh`] of [`WideNode8`]) unless told otherwise (by
     /// [`MeshBvh::with_four_wide_nodes`] or [`MeshBvh::with_compact_nodes`]): fixed when the
     /// crate is compiled, true for targets with 128-bit SIMD or wider — x86 with SSE2 (every
     /// x86-64), AArch64 and other targets with NEON, and wasm32 — where eight lanes are one
@@ -275,11 +272,11 @@ impl MeshBvh {
         })
     }
 
-    /// This structure with its wide nodes quantized ([`CompactWideBvh`]): the same answers,
+    /// This structure with its wide nodes quantized ([`WideBvh`] of [`CompactNode`]): the same answers,
     /// bit for bit, from nodes half the size. Deterministic. Already compact: unchanged.
     ///
     /// # Errors
-    /// Never for a structure built or loaded by this crate (see [`CompactWideBvh::build`]).
+    /// Never for a structure built or loaded by this crate (see [`WideBvh::quantize`]).
     pub fn with_compact_nodes(mut self) -> Result<Self, BuildError> {
         self.compact_nodes()?;
         Ok(self)
@@ -294,13 +291,13 @@ impl MeshBvh {
             WideNodes::Compact(_) => return Ok(()),
             WideNodes::Full(nodes) => {
                 let mut compact = vec![CompactNode::EMPTY; nodes.len()];
-                CompactWideBvh::build(&WideBvh::from_validated(nodes, &self.order), &mut compact)?;
+                WideBvh::quantize(&WideBvh::from_validated(nodes, &self.order), &mut compact)?;
                 compact
             }
             WideNodes::Eight(_) => {
                 let nodes = four_wide_of(&self.bvh())?;
                 let mut compact = vec![CompactNode::EMPTY; nodes.len()];
-                CompactWideBvh::build(&WideBvh::from_validated(&nodes, &self.order), &mut compact)?;
+                WideBvh::quantize(&WideBvh::from_validated(&nodes, &self.order), &mut compact)?;
                 compact
             }
         };
@@ -308,14 +305,14 @@ impl MeshBvh {
         Ok(())
     }
 
-    /// This structure with its tree collapsed eight-wide ([`WideBvh8`]) for queries to walk
+    /// This structure with its tree collapsed eight-wide ([`WideBvh`] of [`WideNode8`]) for queries to walk
     /// instead of the four-wide (or compact) nodes: the same answers, bit for bit, with about
     /// a third fewer node visits per query, each testing eight boxes. The default where
     /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is true. Deterministic. Already eight-wide:
     /// unchanged.
     ///
     /// # Errors
-    /// Never for a structure built or loaded by this crate (see [`WideBvh8::build`]).
+    /// Never for a structure built or loaded by this crate (see [`WideBvh::build`]).
     pub fn with_eight_wide_nodes(mut self) -> Result<Self, BuildError> {
         self.eight_wide_nodes()?;
         Ok(self)
@@ -401,10 +398,11 @@ impl MeshBvh {
     /// [`MeshBvh::EIGHT_WIDE_BY_DEFAULT`] is true, or after [`MeshBvh::with_eight_wide_nodes`]);
     /// `None` while the nodes are four-wide or compact.
     #[must_use]
-    pub fn eight_wide(&self) -> Option<WideBvh8<'_>> {
+    pub fn eight_wide(&self) -> Option<WideBvh<'_, WideNode8>> {
         match &self.wide {
             WideNodes::Eight(nodes) => Some(
-                WideBvh8::from_validated(nodes, &self.order).with_split_refs(self.split_refs()),
+                WideBvh::<WideNode8>::from_validated(nodes, &self.order)
+                    .with_split_refs(self.split_refs()),
             ),
             WideNodes::Full(_) | WideNodes::Compact(_) => None,
         }
@@ -413,11 +411,11 @@ impl MeshBvh {
     /// The same tree four-wide with quantized nodes, which queries walk after
     /// [`MeshBvh::with_compact_nodes`]; `None` before.
     #[must_use]
-    pub fn compact(&self) -> Option<CompactWideBvh<'_>> {
+    pub fn compact(&self) -> Option<WideBvh<'_, CompactNode>> {
         match &self.wide {
             WideNodes::Full(_) | WideNodes::Eight(_) => None,
             WideNodes::Compact(nodes) => Some(
-                CompactWideBvh::from_validated(nodes, &self.order)
+                WideBvh::<CompactNode>::from_validated(nodes, &self.order)
                     .with_split_refs(self.split_refs()),
             ),
         }
@@ -465,17 +463,16 @@ impl Traverse for MeshBvh {
         match &self.wide {
             WideNodes::Full(nodes) => WideBvh::from_validated(nodes, &self.order).traverse(visitor),
             WideNodes::Compact(nodes) => {
-                CompactWideBvh::from_validated(nodes, &self.order).traverse(visitor);
+                WideBvh::<CompactNode>::from_validated(nodes, &self.order).traverse(visitor);
             }
             WideNodes::Eight(nodes) => {
-                WideBvh8::from_validated(nodes, &self.order).traverse(visitor);
+                WideBvh::<WideNode8>::from_validated(nodes, &self.order).traverse(visitor);
             }
         }
     }
 
     #[inline(always)]
-    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
-        self.traverse(visitor);
+    fn walks_packets(&self) -> bool {
         true
     }
 
@@ -495,6 +492,8 @@ impl Traverse for MeshBvh {
         })
     }
 }
+
+impl crate::query::MeshQuery for MeshBvh {}
 
 impl LeafTriangles for MeshBvh {
     #[inline(always)]

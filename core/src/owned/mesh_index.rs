@@ -107,9 +107,9 @@ impl Traverse for MeshIndex {
 
     /// The BVH walks packets; the cell structures march one ray at a time.
     #[inline]
-    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
+    fn walks_packets(&self) -> bool {
         match self {
-            Self::Bvh(s) => s.traverse_packet(visitor),
+            Self::Bvh(s) => s.walks_packets(),
             Self::KdTree(_) | Self::Octree(_) | Self::Grid(_) => false,
         }
     }

@@ -1,17 +1,15 @@
-//! [`MeshIndex`]'s ray and point queries, each answered by the structure it holds.
-//!
-//! `MeshIndex` is a [`MeshQuery`] like every structure paired with its triangles, and a
-//! generic caller gets that implementation: each node visit and each leaf read goes through
-//! the enum. The methods here have the same names, signatures and answers; they pick the
-//! structure once per call and run its own query, so a walk reads its leaves from the
-//! structure directly. Method resolution prefers them wherever the type is `MeshIndex`.
+//! [`MeshQuery`] for [`MeshIndex`]: every query picks the structure once per call and runs
+//! that structure's own query, so node visits and leaf reads go straight to it. The answers
+//! are the trait's, bit for bit (each structure answers exactly as brute force does).
+
+use core::ops::ControlFlow;
 
 use super::MeshIndex;
 use crate::error::BatchError;
-use crate::math::{ClosestPoint, Ray, RayHit, Vec3};
-use crate::query::{MeshQuery, RayHits, RayOptions};
+use crate::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle, Vec3};
+use crate::query::{MeshQuery, OverlapCount, RayHits, RayOptions, ShapeCast};
 
-/// Runs `$query` on the structure `$index` holds, bound to `$s`.
+/// Runs `$query` with `$s` bound to the structure `$index` holds.
 macro_rules! on_structure {
     ($index:expr, $s:ident => $query:expr) => {
         match $index {
@@ -23,51 +21,37 @@ macro_rules! on_structure {
     };
 }
 
-impl MeshIndex {
-    /// [`MeshQuery::raycast`], run by the structure it holds (the same answer).
-    #[must_use]
+impl MeshQuery for MeshIndex {
     #[inline]
-    pub fn raycast(&self, ray: &Ray) -> Option<RayHit> {
+    fn raycast(&self, ray: &Ray) -> Option<RayHit> {
         on_structure!(self, s => s.raycast(ray))
     }
 
-    /// [`MeshQuery::raycast_with`], run by the structure it holds (the same answer).
-    #[must_use]
     #[inline]
-    pub fn raycast_with(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
+    fn raycast_with(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
         on_structure!(self, s => s.raycast_with(ray, options))
     }
 
-    /// [`MeshQuery::raycast_any`], run by the structure it holds (the same answer).
-    #[must_use]
     #[inline]
-    pub fn raycast_any(&self, ray: &Ray) -> bool {
+    fn raycast_any(&self, ray: &Ray) -> bool {
         on_structure!(self, s => s.raycast_any(ray))
     }
 
-    /// [`MeshQuery::raycast_any_with`], run by the structure it holds (the same answer).
-    #[must_use]
     #[inline]
-    pub fn raycast_any_with(&self, ray: &Ray, options: &RayOptions) -> bool {
+    fn raycast_any_with(&self, ray: &Ray, options: &RayOptions) -> bool {
         on_structure!(self, s => s.raycast_any_with(ray, options))
     }
 
-    /// [`MeshQuery::raycast_all`], run by the structure it holds (the same hits in `out`).
-    pub fn raycast_all(&self, ray: &Ray, options: &RayOptions, out: &mut [RayHit]) -> RayHits {
+    fn raycast_all(&self, ray: &Ray, options: &RayOptions, out: &mut [RayHit]) -> RayHits {
         on_structure!(self, s => s.raycast_all(ray, options, out))
     }
 
-    /// [`MeshQuery::closest_point`], run by the structure it holds (the same answer).
-    #[must_use]
-    pub fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
+    #[inline]
+    fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
         on_structure!(self, s => s.closest_point(point, max_distance))
     }
 
-    /// [`MeshQuery::closest_points`], run by the structure it holds (the same answers).
-    ///
-    /// # Errors
-    /// As [`MeshQuery::closest_points`].
-    pub fn closest_points(
+    fn closest_points(
         &self,
         points: &[Vec3],
         max_distance: f32,
@@ -77,11 +61,7 @@ impl MeshIndex {
         on_structure!(self, s => s.closest_points(points, max_distance, keys, out))
     }
 
-    /// [`MeshQuery::raycast_batch`], run by the structure it holds (the same answers).
-    ///
-    /// # Errors
-    /// As [`MeshQuery::raycast_batch`].
-    pub fn raycast_batch(
+    fn raycast_batch(
         &self,
         rays: &[Ray],
         options: &RayOptions,
@@ -91,11 +71,7 @@ impl MeshIndex {
         on_structure!(self, s => s.raycast_batch(rays, options, keys, out))
     }
 
-    /// [`MeshQuery::raycast_any_batch`], run by the structure it holds (the same answers).
-    ///
-    /// # Errors
-    /// As [`MeshQuery::raycast_any_batch`].
-    pub fn raycast_any_batch(
+    fn raycast_any_batch(
         &self,
         rays: &[Ray],
         options: &RayOptions,
@@ -103,5 +79,50 @@ impl MeshIndex {
         out: &mut [bool],
     ) -> Result<(), BatchError> {
         on_structure!(self, s => s.raycast_any_batch(rays, options, keys, out))
+    }
+
+    fn overlap_aabb<F: FnMut(u32) -> ControlFlow<()>>(&self, aabb: &Aabb, report: F) {
+        on_structure!(self, s => s.overlap_aabb(aabb, report));
+    }
+
+    fn overlap_sphere<F: FnMut(u32) -> ControlFlow<()>>(
+        &self,
+        center: Vec3,
+        radius: f32,
+        report: F,
+    ) {
+        on_structure!(self, s => s.overlap_sphere(center, radius, report));
+    }
+
+    fn overlap_aabb_into(&self, aabb: &Aabb, out: &mut [u32]) -> OverlapCount {
+        on_structure!(self, s => s.overlap_aabb_into(aabb, out))
+    }
+
+    fn overlap_sphere_into(&self, center: Vec3, radius: f32, out: &mut [u32]) -> OverlapCount {
+        on_structure!(self, s => s.overlap_sphere_into(center, radius, out))
+    }
+
+    fn overlap_triangle<F: FnMut(u32) -> ControlFlow<()>>(&self, query: &Triangle, report: F) {
+        on_structure!(self, s => s.overlap_triangle(query, report));
+    }
+
+    fn overlap_obb<F: FnMut(u32) -> ControlFlow<()>>(&self, obb: &Obb, report: F) {
+        on_structure!(self, s => s.overlap_obb(obb, report));
+    }
+
+    fn overlap_triangle_into(&self, query: &Triangle, out: &mut [u32]) -> OverlapCount {
+        on_structure!(self, s => s.overlap_triangle_into(query, out))
+    }
+
+    fn overlap_obb_into(&self, obb: &Obb, out: &mut [u32]) -> OverlapCount {
+        on_structure!(self, s => s.overlap_obb_into(obb, out))
+    }
+
+    fn shapecast<C: ShapeCast + ?Sized>(&self, cast: &mut C) {
+        on_structure!(self, s => s.shapecast(cast));
+    }
+
+    fn shapecast_once<C: ShapeCast + ?Sized>(&self, cast: &mut C, seen: &mut [u64]) {
+        on_structure!(self, s => s.shapecast_once(cast, seen));
     }
 }

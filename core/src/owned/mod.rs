@@ -1,5 +1,6 @@
-//! The owned API (feature `alloc`): [`MeshBvh`], [`MeshKdTree`], [`MeshOctree`] and
-//! [`MeshGrid`], each one value that sizes, owns and builds every buffer of its structure, and
+//! The owned API (feature `alloc`): [`MeshBvh`] and [`MeshCells`] (a k-d tree, octree or grid:
+//! [`MeshKdTree`], [`MeshOctree`], [`MeshGrid`]), each one value that sizes, owns and builds
+//! every buffer of its structure, and
 //! [`MeshIndex`], any of them picked at run time — for code with an allocator (tools, the
 //! browser package, tests).
 //!
@@ -19,17 +20,16 @@ mod cell_scene;
 #[cfg(feature = "blob-cells")]
 mod index_blob;
 mod mesh_bvh;
+mod mesh_cells;
 mod mesh_grid;
 mod mesh_index;
 mod mesh_index_queries;
-mod mesh_kdtree;
-mod mesh_octree;
 mod remeshed;
 
 pub use crate::structure_kind::{StructureKind, UnknownStructure};
 pub use mesh_bvh::MeshBvh;
-pub use mesh_grid::MeshGrid;
+pub use mesh_cells::{
+    CellKind, GridCells, KdTreeCells, MeshCells, MeshGrid, MeshKdTree, MeshOctree, OctreeCells,
+};
 pub use mesh_index::MeshIndex;
-pub use mesh_kdtree::MeshKdTree;
-pub use mesh_octree::MeshOctree;
-pub use remeshed::{Remeshed, mean_edge_length};
+pub use remeshed::Remeshed;

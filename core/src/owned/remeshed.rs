@@ -55,7 +55,7 @@ impl Remeshed {
         config.validate()?;
         let reference = MeshBvh::build(mesh, &BuildConfig::default())
             .map_err(|error| RemeshError::ReferenceBvh { error })?;
-        let mut capacity = RemeshCapacity::for_mesh(mesh, config.target_length);
+        let mut capacity = RemeshCapacity::for_mesh(mesh, config.target);
         let too_big = |capacity| RemeshError::OutOfCapacity {
             buffer: RemeshBuffer::Scratch,
             capacity,
@@ -137,35 +137,5 @@ impl Remeshed {
         };
         let far = farthest(&output, &to_input).max(farthest(input, &to_output));
         Ok(if diagonal > 0.0 { far / diagonal } else { 0.0 })
-    }
-}
-
-/// The mean length of `mesh`'s edges, each counted once: the target length
-/// [`RemeshConfig::default`] remeshes toward (0 for a mesh without triangles), for callers that
-/// give a target as a multiple of it.
-#[must_use]
-pub fn mean_edge_length(mesh: &ValidMesh<'_>) -> f32 {
-    let edges: alloc::collections::BTreeSet<(u32, u32)> = mesh
-        .triangles()
-        .iter()
-        .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
-        .map(|(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    let point = |v: u32| {
-        mesh.positions()
-            .get(v as usize)
-            .map_or(glam::Vec3::ZERO, |&p| glam::Vec3::from_array(p))
-    };
-    let sum: f64 = edges
-        .iter()
-        .map(|&(a, b)| {
-            let d = point(b) - point(a);
-            f64::from(libm::sqrtf(crate::math::dot(d, d)))
-        })
-        .sum();
-    if edges.is_empty() {
-        0.0
-    } else {
-        (sum / edges.len() as f64) as f32
     }
 }

@@ -4,9 +4,9 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec3A, Vec4};
 
-use super::box_lanes::{MARGIN, enter_point};
 use super::leaf_batches::{LANES_PAY, for_each_batch};
-use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
+use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor, VisitorHints};
+use crate::geom::aabb_lanes::{MARGIN, enter_point};
 use crate::geom::closest_point_regions;
 use crate::math::{Aabb, Aabb4, ClosestPoint, Triangle, dot};
 
@@ -39,18 +39,17 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &crate::math::Aabb8) -> (u32, [f32; 8]) {
-        super::box_lanes::enter_point8(boxes, self.point, self.limit, MARGIN)
+        crate::geom::aabb_lanes::enter_point8(boxes, self.point, self.limit, MARGIN)
     }
 
+    /// Repeats skipped, no cells read; empty lanes never entered (the lane tests clear unused
+    /// lanes themselves).
     #[inline(always)]
-    fn skips_repeats(&self) -> bool {
-        true
-    }
-
-    /// True: the lane tests clear unused lanes themselves.
-    #[inline(always)]
-    fn never_enters_empty_lanes(&self) -> bool {
-        true
+    fn hints(&self) -> VisitorHints {
+        VisitorHints {
+            empty_lanes_never_entered: true,
+            ..VisitorHints::SKIP_REPEATS
+        }
     }
 
     #[inline(always)]

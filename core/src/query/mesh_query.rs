@@ -15,9 +15,12 @@ use crate::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle};
 
 /// The queries of meshq, answered by a structure together with the triangles it indexes.
 ///
-/// Implemented for every type that is both a [`Traverse`] structure and a [`LeafTriangles`]
-/// source: a structure paired with its triangles by [`Traverse::with`] (`bvh.with(&mesh)`), a
-/// blob's view (`BlobView`, feature `blob`), and the owned `MeshBvh` (feature `alloc`). Every
+/// Implemented for a structure paired with its triangles by [`Traverse::with`]
+/// (`bvh.with(&mesh)`), a blob's view (`BlobView`, feature `blob`) and the owned types (feature
+/// `alloc`). A type of your own that is both a [`Traverse`] structure and a [`LeafTriangles`]
+/// source gets every query with one line, `impl MeshQuery for MyStructure {}`: each method has
+/// its implementation here. Override one only to answer the same thing another way (`MeshIndex`
+/// picks its structure once per call, then runs that structure's query). Every
 /// answer is exactly what a linear scan over all triangles with the same primitive test would
 /// return, bits included, under the crate's tie rule: on equal `t` or distance the lower
 /// triangle index wins, so every structure and target returns the same answer. Degenerate
@@ -123,7 +126,7 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     /// box (where it enters and leaves it, quantized), so that rays crossing the same region
     /// run together and find its nodes and triangles in cache. Any other batch is cast in the
     /// given order. On structures that walk packets
-    /// ([`Traverse::traverse_packet`](crate::query::Traverse::traverse_packet): the wide
+    /// ([`Traverse::walks_packets`](crate::query::Traverse::walks_packets): the wide
     /// BVHs), each run of eight consecutive rays with one origin (bit for bit) and the same
     /// direction signs walks the tree together, so give a camera's rays in small tiles or
     /// rows. Buffers, errors and scratch (`keys` holds the order) as
@@ -240,4 +243,4 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     }
 }
 
-impl<T: Traverse + LeafTriangles + ?Sized> MeshQuery for T {}
+impl<T: Traverse + ?Sized, S: LeafTriangles + ?Sized> MeshQuery for super::With<'_, T, S> {}

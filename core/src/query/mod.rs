@@ -41,6 +41,18 @@
 //! [`Visitor::ray`] and stops at the first cell whose entry `t` fails `revisit`. Nothing else
 //! is needed: the queries, their batches and their tests come from the layer.
 //!
+//! # The visitor's contract
+//! A [`Visitor`] judges boxes ([`enter`](Visitor::enter) one, or a group of four or eight in
+//! SIMD lanes: [`enter_lanes`](Visitor::enter_lanes), [`enter_lanes8`](Visitor::enter_lanes8),
+//! [`enter_computed_lanes`](Visitor::enter_computed_lanes) for boxes the structure has just
+//! computed), decides whether deferred work is still worth doing
+//! ([`revisit`](Visitor::revisit)), takes leaves ([`leaf`](Visitor::leaf), or
+//! [`leaf_in`](Visitor::leaf_in) with the leaf's box) and, for structures that march cells
+//! along a ray, names its [`ray`](Visitor::ray). Everything a structure may skip for a
+//! particular query is said once, in [`VisitorHints`] ([`hints`](Visitor::hints)): whether empty
+//! lanes are ever entered, whether nearest-first order matters, whether repeats may be skipped,
+//! whether cells and leaf boxes are read. Only `enter` and `leaf` have no default.
+//!
 //! The smallest structure is a scan: one leaf holding every triangle. It answers every query,
 //! exactly as the BVH does:
 //!
@@ -78,17 +90,14 @@
 //! ```
 
 pub(crate) mod batch_order;
-mod box_lanes;
 mod cell;
 mod closest;
 mod closest_batch;
 mod leaf;
 mod leaf_batches;
-mod mailbox;
 mod mesh_query;
 mod overlap;
 mod overlap_shapes;
-mod packet_lanes;
 mod ray;
 mod ray_all;
 pub(crate) mod ray_order;
@@ -100,7 +109,6 @@ mod traverse;
 
 pub use cell::Cell;
 pub use leaf::{LeafTriangleIds, LeafTriangles, PackedTriangles};
-pub use mailbox::Mailbox;
 pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
@@ -108,4 +116,4 @@ pub use ray_all::RayHits;
 pub use ray_order::{sorts_ray_batch, sorts_ray_batches_of};
 pub use shapecast::{BoundsOverlap, ShapeCast};
 pub use split_refs::{SPLIT_REF_BYTES, SplitRef, SplitRefs};
-pub use traverse::{BatchHint, Traverse, Visitor, With};
+pub use traverse::{BatchHint, Traverse, Visitor, VisitorHints, With};

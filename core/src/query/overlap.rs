@@ -4,8 +4,8 @@ use core::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::box_lanes::MARGIN;
 use super::{LeafTriangleIds, LeafTriangles, SplitRefs, Traverse, Visitor};
+use crate::geom::aabb_lanes::MARGIN;
 use crate::geom::{clip_triangle_aabb, closest_point_regions, overlap_triangle_aabb};
 use crate::math::{Aabb, Triangle, dot};
 

@@ -4,9 +4,9 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec4};
 
-use super::box_lanes::{LaneRay, LaneRay8, MARGIN, near_far, near_far_values};
 use super::leaf_batches::{Batch, LANES_PAY, for_each_batch};
-use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
+use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor, VisitorHints};
+use crate::geom::aabb_lanes::{LaneRay, LaneRay8, MARGIN, near_far, near_far_values};
 use crate::geom::{
     CullMode, LaneHits, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore,
 };
@@ -307,25 +307,20 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for RayVisitor<'_, '
     }
 
     #[inline(always)]
-    fn skips_repeats(&self) -> bool {
-        true
-    }
-
-    /// True: an empty box's near plane is infinitely far, its far plane infinitely near.
-    #[inline(always)]
-    fn never_enters_empty_lanes(&self) -> bool {
-        true
-    }
-
-    #[inline(always)]
     fn revisit(&self, key: f32) -> bool {
         !G::PRUNES || within_reach(key, self.tester.slab.t_max)
     }
 
-    /// Only for a goal that prunes: any hit ends an any-hit walk, whichever comes first.
+    /// Repeats skipped, no cells read; empty lanes never entered (an empty box's near plane is
+    /// infinitely far, its far plane infinitely near); nearest first only for a goal that
+    /// prunes (any hit ends an any-hit walk, whichever comes first).
     #[inline(always)]
-    fn wants_nearest_first(&self) -> bool {
-        G::PRUNES
+    fn hints(&self) -> VisitorHints {
+        VisitorHints {
+            empty_lanes_never_entered: true,
+            nearest_first: G::PRUNES,
+            ..VisitorHints::SKIP_REPEATS
+        }
     }
 
     #[inline(always)]

@@ -13,12 +13,14 @@ use glam::{Vec3, Vec4};
 use wide::f32x8;
 
 use super::batch_order::query_index;
-use super::box_lanes::{MARGIN, near_far, near_far_values};
 use super::leaf_batches::for_each_batch;
-use super::packet_lanes::{PACKET_RAYS, PacketLanes, PacketRays};
 use super::ray::{Goal, Kernel, RayTester, moller_trumbore_kernel, walk, watertight, within_reach};
-use super::{LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor};
+use super::{
+    LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor, VisitorHints,
+};
 use crate::geom::SlabRay;
+use crate::geom::aabb_lanes::{MARGIN, near_far, near_far_values};
+use crate::geom::packet_aabb_lanes::{PACKET_RAYS, PacketLanes, PacketRays};
 use crate::math::{Aabb, Aabb4, Aabb8, Ray, max_f32, min_f32};
 
 /// Rays per packet.
@@ -97,24 +99,19 @@ impl<S: LeafTriangles + ?Sized, K: Kernel, G: Goal> Visitor for Packet<'_, S, K,
     }
 
     #[inline(always)]
-    fn skips_repeats(&self) -> bool {
-        true
-    }
-
-    /// True: an empty box's near plane is infinitely far, its far plane infinitely near.
-    #[inline(always)]
-    fn never_enters_empty_lanes(&self) -> bool {
-        true
-    }
-
-    #[inline(always)]
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
         self.leaf_for(None, tris)
     }
 
+    /// Repeats skipped, no cells read; empty lanes never entered (an empty box's near plane is
+    /// infinitely far, its far plane infinitely near); the box of each leaf read.
     #[inline(always)]
-    fn wants_leaf_boxes(&self) -> bool {
-        true
+    fn hints(&self) -> VisitorHints {
+        VisitorHints {
+            empty_lanes_never_entered: true,
+            leaf_boxes: true,
+            ..VisitorHints::SKIP_REPEATS
+        }
     }
 
     /// Only the rays that enter `aabb` on their own test the leaf.
@@ -339,6 +336,9 @@ where
     K: Kernel,
     G: Goal,
 {
+    if !tree.walks_packets() {
+        return false;
+    }
     // Built here, in place: a packet is a few kilobytes, and moving it cost more than the
     // walk of a small mesh.
     let slabs: [SlabRay; PACKET] = rays.each_ref().map(SlabRay::new);
@@ -356,9 +356,7 @@ where
         t_max8: f32x8::splat(f32::NEG_INFINITY),
     };
     packet.update_t_max();
-    if !tree.traverse_packet(&mut packet) {
-        return false;
-    }
+    tree.traverse(&mut packet);
     for (k, ray) in packet.rays.iter().enumerate() {
         take(k, &ray.goal);
     }

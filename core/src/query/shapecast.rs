@@ -3,7 +3,7 @@
 
 use core::ops::ControlFlow;
 
-use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
+use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor, VisitorHints};
 use crate::math::{Aabb, Triangle};
 
 /// How a shape meets a box.
@@ -75,8 +75,8 @@ impl<S: LeafTriangles + ?Sized, C: ShapeCast + ?Sized> Visitor for Cast<'_, S, C
         }
     }
 
-    fn skips_repeats(&self) -> bool {
-        true
+    fn hints(&self) -> VisitorHints {
+        VisitorHints::SKIP_REPEATS
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {

@@ -72,17 +72,6 @@ pub trait Visitor {
         )
     }
 
-    /// Whether [`enter_lanes`](Self::enter_lanes) and [`enter_lanes8`](Self::enter_lanes8)
-    /// never enter a lane whose box is [`Aabb4::EMPTY`]'s (`min = +∞`, `max = −∞` on every
-    /// axis), so that structures whose unused lanes hold exactly that box need not clear
-    /// them from the mask. The default, `false`, has structures clear them; the built-in ray
-    /// and closest-point visitors, whose box tests give such a box an empty interval or an
-    /// infinite distance, return `true`. Structures whose unused lanes hold other boxes (a
-    /// compact node's decoded lanes) clear them whatever this says.
-    fn never_enters_empty_lanes(&self) -> bool {
-        false
-    }
-
     /// Whether a box entered earlier with `key` and deferred is still worth visiting now (for
     /// example, not when a closer hit has been found since). Structures that walk in key order
     /// stop at the first `false`. The default visits everything.
@@ -91,50 +80,85 @@ pub trait Visitor {
         true
     }
 
-    /// Whether the order in which entered boxes are visited can change this query's answer or
-    /// its cost enough to sort them by key. When false, structures may visit a node's entered
-    /// children in lane order. The default, `true`, asks for nearest first; an any-hit ray,
-    /// whose answer is the same whichever hit ends it, returns `false`.
-    fn wants_nearest_first(&self) -> bool {
-        true
-    }
-
-    /// Whether this query may skip a triangle already offered earlier in the same traversal (a
-    /// ray or closest-point query, whose answer a repeat cannot change). Structures that
-    /// reference a triangle from several cells then skip repeats they remember (see
-    /// [`Mailbox`](super::Mailbox)). The default, `false`, offers every reference: a query that
-    /// reports triangles needs them all to pick the one [`Cell`](super::Cell) that reports each.
-    fn skips_repeats(&self) -> bool {
-        false
-    }
-
-    /// Whether this query reads the [`cell`](LeafTriangleIds::cell) of the leaves it is
-    /// offered. When false, structures may offer leaves without their cell (and skip working
-    /// cells out). The default is true exactly for queries that take every reference
-    /// ([`skips_repeats`](Self::skips_repeats) false): those that report triangles, which need
-    /// the cell to report each once.
-    fn needs_cells(&self) -> bool {
-        !self.skips_repeats()
-    }
-
     /// Visits a leaf (or a cell): its triangles as `(slot, mesh triangle index)` pairs, where
     /// the slot is what [`LeafTriangles::corners`] is asked for. `Break` ends the traversal.
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()>;
 
-    /// Whether this query reads the box [`leaf_in`](Self::leaf_in) is given. When false (the
-    /// default), structures may skip working the box out and call [`leaf`](Self::leaf).
-    fn wants_leaf_boxes(&self) -> bool {
-        false
-    }
-
     /// [`leaf`](Self::leaf), with the box the structure entered the leaf by: `aabb` holds the
     /// leaf's triangles, and [`enter`](Self::enter) or [`enter_lanes`](Self::enter_lanes)
-    /// accepted it. Structures that can name that box call this when
-    /// [`wants_leaf_boxes`](Self::wants_leaf_boxes) says so; a query of several rays uses it
+    /// accepted it. Structures that can name that box call this when the
+    /// [`hints`](Self::hints) ask for [`leaf_boxes`](VisitorHints::leaf_boxes); a query of
+    /// several rays uses it
     /// to let only the rays that enter the box test the leaf. The default calls `leaf`.
     fn leaf_in(&mut self, aabb: &Aabb, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
         let _ = aabb;
         self.leaf(tris)
+    }
+
+    /// What this query tells every structure, so that each may skip work the query does not
+    /// need (see [`VisitorHints`]); the default, [`VisitorHints::DEFAULT`], skips nothing.
+    /// The answer must not change during a traversal.
+    #[inline(always)]
+    fn hints(&self) -> VisitorHints {
+        VisitorHints::DEFAULT
+    }
+}
+
+/// What a [`Visitor`] tells every structure once, in one value: each field lets a structure
+/// skip work this query does not need. [`VisitorHints::DEFAULT`] holds the choice that is
+/// right for every query; a visitor changes a field only when what the field says is true of
+/// it (`VisitorHints { skips_repeats: true, needs_cells: false, ..VisitorHints::DEFAULT }`).
+/// No answer depends on the hints, only the work done to reach it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VisitorHints {
+    /// The lane verdicts ([`Visitor::enter_lanes`], [`Visitor::enter_lanes8`]) never enter a
+    /// lane whose box is [`Aabb4::EMPTY`]'s (`min = +∞`, `max = −∞` on every axis), so
+    /// structures whose unused lanes hold exactly that box need not clear them from the mask.
+    /// True of the built-in ray and closest-point visitors, whose box tests give such a box an
+    /// empty interval or an infinite distance. Structures whose unused lanes hold other boxes
+    /// (a compact node's decoded lanes) clear them whatever this says. Default `false`.
+    pub empty_lanes_never_entered: bool,
+    /// The order in which entered boxes are visited can change the answer or the cost enough
+    /// to sort them by key. When false, structures may visit a node's entered children in lane
+    /// order: an any-hit ray, whose answer is the same whichever hit ends it. Default `true`.
+    pub nearest_first: bool,
+    /// A triangle already offered earlier in the same traversal may be skipped (a ray or
+    /// closest-point query, whose answer a repeat cannot change). Structures that reference a
+    /// triangle from several cells then skip repeats they remember (a small mailbox of the
+    /// last ones offered). Default `false`: a query that reports triangles needs every
+    /// reference, to pick the one [`Cell`](super::Cell) that reports each.
+    pub skips_repeats: bool,
+    /// The query reads the [`cell`](LeafTriangleIds::cell) of the leaves it is offered. When
+    /// false, structures may offer leaves without their cell (and skip working cells out).
+    /// Default `true`; false only for a query that also skips repeats.
+    pub needs_cells: bool,
+    /// The query reads the box [`Visitor::leaf_in`] is given: structures that can name it
+    /// then call `leaf_in` instead of [`Visitor::leaf`]. Default `false`.
+    pub leaf_boxes: bool,
+}
+
+impl VisitorHints {
+    /// Right for every query: nothing skipped.
+    pub const DEFAULT: Self = Self {
+        empty_lanes_never_entered: false,
+        nearest_first: true,
+        skips_repeats: false,
+        needs_cells: true,
+        leaf_boxes: false,
+    };
+
+    /// A query whose answer a repeated triangle cannot change and that reads no cells (the
+    /// built-in ray, closest-point and shape-cast visitors), otherwise [`Self::DEFAULT`].
+    pub const SKIP_REPEATS: Self = Self {
+        skips_repeats: true,
+        needs_cells: false,
+        ..Self::DEFAULT
+    };
+}
+
+impl Default for VisitorHints {
+    fn default() -> Self {
+        Self::DEFAULT
     }
 }
 
@@ -169,18 +193,15 @@ pub trait Traverse {
         crate::query::SplitRefs::NONE
     }
 
-    /// Runs `visitor` as [`traverse`](Self::traverse) does, if this structure walks packets
-    /// well — visitors for several rays at once, which judge a node's boxes together
-    /// ([`Visitor::enter_lanes`], [`Visitor::enter_lanes8`]) and have no single
-    /// [`ray`](Visitor::ray) — and returns `true`;
-    /// otherwise does nothing and returns `false`. Ray batches
+    /// Whether this structure walks packets well: visitors for several rays at once, which
+    /// judge a node's boxes together ([`Visitor::enter_lanes`], [`Visitor::enter_lanes8`]) and
+    /// have no single [`ray`](Visitor::ray). Ray batches
     /// ([`MeshQuery::raycast_batch`](super::MeshQuery::raycast_batch)) then walk runs of rays
-    /// from one origin together, or one ray at a time; the answers are the same either way.
-    /// The default returns `false`; the wide BVHs (four-wide, eight-wide and compact nodes)
-    /// walk packets.
+    /// from one origin together, else one ray at a time; the answers are the same either way.
+    /// The default is `false`; the wide BVHs (four-wide, eight-wide and compact nodes) walk
+    /// packets.
     #[inline(always)]
-    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
-        let _ = visitor;
+    fn walks_packets(&self) -> bool {
         false
     }
 
@@ -268,8 +289,8 @@ impl<T: Traverse + ?Sized, S: ?Sized> Traverse for With<'_, T, S> {
     }
 
     #[inline(always)]
-    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
-        self.structure.traverse_packet(visitor)
+    fn walks_packets(&self) -> bool {
+        self.structure.walks_packets()
     }
 
     #[inline(always)]

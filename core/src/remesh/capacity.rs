@@ -1,7 +1,7 @@
 //! How much room a remeshing run needs.
 
 #[cfg(feature = "alloc")]
-use super::HalfEdgeBuffers;
+use super::{EdgeTarget, HalfEdgeBuffers};
 use crate::math::dot;
 use crate::mesh::ValidMesh;
 
@@ -24,10 +24,10 @@ pub struct RemeshCapacity {
 }
 
 impl RemeshCapacity {
-    /// The estimate for remeshing `mesh` toward `target_length` (0: the mean edge length of
-    /// its triangles, each triangle's three edges counted).
+    /// The estimate for remeshing `mesh` toward `target` (a multiple of the mean edge length
+    /// estimated here over each triangle's three edges).
     #[must_use]
-    pub fn for_mesh(mesh: &ValidMesh<'_>, target_length: f32) -> Self {
+    pub fn for_mesh(mesh: &ValidMesh<'_>, target: EdgeTarget) -> Self {
         let (mut area, mut edge_sum, mut edges) = (0.0f64, 0.0f64, 0usize);
         for t in 0..mesh.triangle_count() as u32 {
             let Some(tri) = mesh.triangle(t) else {
@@ -40,12 +40,14 @@ impl RemeshCapacity {
                 edges += 1;
             }
         }
-        let length = if target_length > 0.0 {
-            f64::from(target_length)
-        } else if edges > 0 {
+        let mean = if edges > 0 {
             edge_sum / edges as f64
         } else {
             0.0
+        };
+        let length = match target {
+            EdgeTarget::Length(length) => f64::from(length),
+            EdgeTarget::MeanEdgeTimes(ratio) => f64::from(ratio) * mean,
         };
         let expected = if length > 0.0 {
             area / (libm::sqrt(3.0) / 4.0 * length * length)

@@ -25,7 +25,7 @@ pub use capacity::RemeshCapacity;
 #[cfg(feature = "alloc")]
 pub use capacity::RemeshStorage;
 pub use check::HalfEdgeDefect;
-pub use config::RemeshConfig;
+pub use config::{EdgeTarget, RemeshConfig};
 pub use half_edges::{HalfEdgeBuffers, HalfEdgeMesh, NO_HALF_EDGE};
 pub use quality::MeshQuality;
 pub use remesher::{mean_edge_length, remesh, remesh_observed, remesh_with_progress};

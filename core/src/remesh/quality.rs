@@ -41,6 +41,53 @@ fn angles([p0, p1, p2]: [glam::Vec3; 3]) -> [f32; 3] {
     out
 }
 
+/// Sums over a mesh's edges, each counted once, in half-edge order.
+pub(super) struct EdgeLengths {
+    sum: f64,
+    sum_sq: f64,
+    count: usize,
+}
+
+impl EdgeLengths {
+    pub(super) fn of(mesh: &HalfEdgeMesh<'_>) -> Self {
+        let mut lengths = Self {
+            sum: 0.0,
+            sum_sq: 0.0,
+            count: 0,
+        };
+        for he in 0..mesh.half_edge_count() as u32 {
+            if mesh.twin(he).is_none_or(|g| he < g) {
+                let (a, b) = mesh.ends(he);
+                let d = mesh.position(b) - mesh.position(a);
+                let len = f64::from(libm::sqrtf(dot(d, d)));
+                lengths.sum += len;
+                lengths.sum_sq += len * len;
+                lengths.count += 1;
+            }
+        }
+        lengths
+    }
+
+    /// The mean length (0 with no edges).
+    pub(super) fn mean(&self) -> f64 {
+        if self.count == 0 {
+            0.0
+        } else {
+            self.sum / self.count as f64
+        }
+    }
+
+    /// The standard deviation divided by the mean (0 with no edges or a zero mean).
+    fn spread(&self) -> f64 {
+        let mean = self.mean();
+        if self.count == 0 || mean <= 0.0 {
+            return 0.0;
+        }
+        let variance = (self.sum_sq / self.count as f64 - mean * mean).max(0.0);
+        libm::sqrt(variance) / mean
+    }
+}
+
 impl MeshQuality {
     /// The figures of `mesh`.
     #[must_use]
@@ -66,17 +113,7 @@ impl MeshQuality {
                 min_angle = min_angle.min(smallest);
             }
         }
-        let (mut sum, mut sum_sq, mut edges) = (0.0f64, 0.0f64, 0usize);
-        for he in 0..mesh.half_edge_count() as u32 {
-            if mesh.twin(he).is_none_or(|g| he < g) {
-                let (a, b) = mesh.ends(he);
-                let d = mesh.position(b) - mesh.position(a);
-                let len = f64::from(libm::sqrtf(dot(d, d)));
-                sum += len;
-                sum_sq += len * len;
-                edges += 1;
-            }
-        }
+        let edges = EdgeLengths::of(mesh);
         let percent = |part: usize, whole: usize| {
             if whole == 0 {
                 0.0
@@ -84,26 +121,14 @@ impl MeshQuality {
                 (100.0 * part as f64 / whole as f64) as f32
             }
         };
-        let (mean, cv) = if edges == 0 {
-            (0.0, 0.0)
-        } else {
-            let mean = sum / edges as f64;
-            let variance = (sum_sq / edges as f64 - mean * mean).max(0.0);
-            let cv = if mean > 0.0 {
-                libm::sqrt(variance) / mean
-            } else {
-                0.0
-            };
-            (mean, cv)
-        };
         Self {
             triangles: mesh.triangle_count(),
             vertices: used,
             valence_6_percent: percent(six, interior),
             min_angle_off_boundary: min_angle,
             under_30_percent: percent(under_30, mesh.triangle_count()),
-            mean_edge: mean as f32,
-            edge_cv: cv as f32,
+            mean_edge: edges.mean() as f32,
+            edge_cv: edges.spread() as f32,
         }
     }
 }

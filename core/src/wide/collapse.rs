@@ -6,10 +6,13 @@ use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::{BufferKind, BuildError};
 use crate::math::Aabb;
 
-/// A node a collapse fills lane by lane.
-pub(crate) trait CollapsedNode: Sized {
+/// A node of `W` lanes that a collapse fills lane by lane (public in a private module: the
+/// bound of [`WideBvh::build`](super::WideBvh::build), not nameable outside).
+pub trait CollapsedNode<const W: usize>: Sized {
     /// A node with every lane unused.
     const EMPTY: Self;
+    /// True when every field of both nodes has the same bits (so `0.0` and `-0.0` differ).
+    fn same_bits(&self, other: &Self) -> bool;
     /// Writes lane `lane`'s box, child and triangle count (ignored past the last lane).
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32);
     /// Adds `by` (wrapping) to the node index of every inner child lane (used, count 0).
@@ -17,8 +20,11 @@ pub(crate) trait CollapsedNode: Sized {
     fn shift_inner(&mut self, by: u32);
 }
 
-impl CollapsedNode for WideNode {
+impl CollapsedNode<4> for WideNode {
     const EMPTY: Self = WideNode::EMPTY;
+    fn same_bits(&self, other: &Self) -> bool {
+        WideNode::same_bits(self, other)
+    }
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32) {
         WideNode::set_lane(self, lane, aabb, child, count);
     }
@@ -45,7 +51,7 @@ pub(super) fn shift_inner_lanes(child: &mut [u32], count: &[u32], by: u32) {
 /// # Errors
 /// [`BuildError::BufferTooSmall`] when `out` holds fewer than [`CollapsePlan::node_count`]
 /// nodes (nothing is written then), or the collapse's own errors.
-pub(super) fn collapse_into<N: CollapsedNode, const W: usize>(
+pub(super) fn collapse_into<N: CollapsedNode<W>, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
     out: &mut [N],
 ) -> Result<usize, BuildError> {
@@ -72,7 +78,7 @@ pub(super) fn collapse_into<N: CollapsedNode, const W: usize>(
 /// Plans the collapse of `tree` in a vector of its own and collapses it into nodes of `W`
 /// lanes (the owned types' collapse).
 #[cfg(feature = "alloc")]
-pub(crate) fn collapse_vec<N: CollapsedNode + Clone, const W: usize>(
+pub(crate) fn collapse_vec<N: CollapsedNode<W> + Clone, const W: usize>(
     tree: &crate::bvh::Bvh<'_>,
 ) -> Result<alloc::vec::Vec<N>, BuildError> {
     let mut entries = alloc::vec![super::PlanEntry::EMPTY; super::plan_capacity(tree)];
@@ -96,7 +102,7 @@ pub(crate) fn eight_wide_roles(
 /// [`collapse_to`] into a vector grown as nodes come (reserved up front when the plan bounds
 /// their count): one pass.
 #[cfg(feature = "alloc")]
-pub(crate) fn collapse_planned_vec<N: CollapsedNode + Clone, const W: usize>(
+pub(crate) fn collapse_planned_vec<N: CollapsedNode<W> + Clone, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
 ) -> Result<alloc::vec::Vec<N>, BuildError> {
     let mut nodes = alloc::vec::Vec::with_capacity(plan.node_bound());
@@ -121,7 +127,7 @@ pub(crate) fn collapse_planned_vec<N: CollapsedNode + Clone, const W: usize>(
 /// ([`CollapsePlan::lanes`]), inner children in its first lanes ([`wide_node`]). Inner children
 /// of one node get consecutive indices, in lane order; the nodes are numbered depth first, the
 /// last inner child's subtree first.
-pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
+pub(super) fn collapse_to<N: CollapsedNode<W>, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
     mut sink: impl FnMut(usize, N),
 ) -> Result<usize, BuildError> {
@@ -146,13 +152,13 @@ pub(super) fn collapse_to<N: CollapsedNode, const W: usize>(
 /// index 0 and its descendants are numbered from 1, as the whole collapse numbers them from
 /// where it reaches that node (so the parallel collapse can lay a subtree collapsed on its
 /// own down in place). Returns how many nodes it made.
-pub(super) fn collapse_from<N: CollapsedNode, const W: usize>(
+pub(super) fn collapse_from<N: CollapsedNode<W>, const W: usize>(
     plan: &CollapsePlan<'_, '_, W>,
     root: u32,
     mut sink: impl FnMut(usize, N),
 ) -> Result<usize, BuildError> {
     plan.for_each_node(root, |wide, lanes, first_inner| {
-        sink(wide as usize, wide_node::<N>(lanes, first_inner));
+        sink(wide as usize, wide_node::<N, W>(lanes, first_inner));
     })
 }
 
@@ -163,7 +169,10 @@ pub(super) fn collapse_from<N: CollapsedNode, const W: usize>(
 /// child word instead of reading lane `i`'s after the box test
 /// ([`LaneNode::first_inner`](super::traverse::LaneNode::first_inner)). Lane order only
 /// breaks ties between equal keys in the walk, and no answer depends on the walk's order.
-pub(super) fn wide_node<N: CollapsedNode>(children: &[(u32, BvhNode)], first: u32) -> N {
+pub(super) fn wide_node<N: CollapsedNode<W>, const W: usize>(
+    children: &[(u32, BvhNode)],
+    first: u32,
+) -> N {
     let mut node = N::EMPTY;
     let mut next = first;
     let inner = children.iter().filter(|(_, c)| !c.is_leaf());

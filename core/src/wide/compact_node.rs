@@ -6,7 +6,7 @@ use glam::Vec4;
 use super::WideNode;
 use crate::math::Aabb4;
 
-/// One node of a [`CompactWideBvh`](super::CompactWideBvh): a [`WideNode`] with its four child
+/// One node of a quantized [`WideBvh`](super::WideBvh): a [`WideNode`] with its four child
 /// boxes quantized to 8 bits per coordinate. 64 bytes, one cache line (a `WideNode` takes two).
 ///
 /// | bytes | field | meaning |

@@ -3,6 +3,8 @@
 //!
 //! ```
 //! use meshq::prelude::*;
+//! use meshq::bvh;
+//! use meshq::wide::{self, CollapsePlan, PlanEntry, WideBvh, WideNode};
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2], [0, 1, 3], [0, 2, 3]]).validate()?;
 //! let mut buffers = BvhBuffers::<3>::new();
@@ -20,7 +22,6 @@
 
 pub(crate) mod collapse;
 mod compact_node;
-mod compact_tree;
 mod node;
 mod node8;
 #[cfg(feature = "parallel")]
@@ -30,16 +31,13 @@ mod roles;
 mod sizing;
 mod traverse;
 mod tree;
-mod tree8;
 mod walk;
 
 pub use compact_node::CompactNode;
-pub use compact_tree::CompactWideBvh;
 pub use node::WideNode;
 pub use node8::WideNode8;
 pub use plan::{CollapsePlan, NODE_COST, PlanEntry, plan_capacity};
 pub use roles::{CollapseRoles, MERGED_LEAF_MAX};
 pub use sizing::wide_node_capacity;
 pub use traverse::WARM_TREE_BYTES;
-pub use tree::WideBvh;
-pub use tree8::WideBvh8;
+pub use tree::{WideBvh, WideNodeKind};

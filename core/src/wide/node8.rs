@@ -1,7 +1,7 @@
 use super::collapse::CollapsedNode;
 use crate::math::{Aabb, Aabb8};
 
-/// One node of a [`WideBvh8`](super::WideBvh8): the boxes of up to eight children side by side
+/// One node of an eight-wide [`WideBvh`](super::WideBvh): the boxes of up to eight children side by side
 /// (an [`Aabb8`], tested eight at a time), and what each child is. 256 bytes, four cache
 /// lines. Lanes mean what a [`WideNode`](super::WideNode)'s do:
 ///
@@ -51,8 +51,11 @@ impl WideNode8 {
     }
 }
 
-impl CollapsedNode for WideNode8 {
+impl CollapsedNode<8> for WideNode8 {
     const EMPTY: Self = WideNode8::EMPTY;
+    fn same_bits(&self, other: &Self) -> bool {
+        WideNode8::same_bits(self, other)
+    }
     fn set_lane(&mut self, lane: usize, aabb: &Aabb, child: u32, count: u32) {
         self.bounds.set_lane(lane, aabb);
         if let (Some(c), Some(n)) = (self.child.get_mut(lane), self.count.get_mut(lane)) {

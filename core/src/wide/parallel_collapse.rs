@@ -38,7 +38,7 @@ enum Piece<N, const W: usize> {
 /// ([`solve_parallel`]), else on this thread.
 pub(crate) fn collapse_vec_parallel<N, const W: usize>(tree: &Bvh<'_>) -> Result<Vec<N>, BuildError>
 where
-    N: CollapsedNode + Clone + Send,
+    N: CollapsedNode<W> + Clone + Send,
 {
     // Filled on the pool, as the owned build's other large buffers are: for 1.1M triangles
     // this is 36 MB of fresh pages, whose first writes took 20 ms on one thread here, more
@@ -154,7 +154,7 @@ fn collapse_piece<N, const W: usize>(
     binary: u32,
 ) -> Result<Piece<N, W>, BuildError>
 where
-    N: CollapsedNode + Clone + Send,
+    N: CollapsedNode<W> + Clone + Send,
 {
     let tree = plan.tree();
     let opened = if subtree_slots(tree, binary) > PARALLEL_FROM {
@@ -218,7 +218,7 @@ fn piece_len<N, const W: usize>(piece: &Piece<N, W>) -> usize {
 
 /// Lays `piece` down with its root at `at`, numbering its other nodes from `*next` as the
 /// sequential collapse does, and moves `*next` past them.
-fn place<N: CollapsedNode, const W: usize>(
+fn place<N: CollapsedNode<W>, const W: usize>(
     piece: Piece<N, W>,
     at: usize,
     out: &mut [N],

@@ -97,8 +97,8 @@ fn leaf_cost(node: &BvhNode, slots: u32) -> f32 {
 
 /// How the binary tree `tree` collapses into a wide tree of `W` lanes per node (4 or 8):
 /// computed once into caller scratch, then read by [`WideBvh::build`](super::WideBvh::build)
-/// (`W = 4`) or [`WideBvh8::build`](super::WideBvh8::build) (`W = 8`), which also learn from
-/// it how many nodes they write ([`node_count`](Self::node_count)).
+/// (four-wide nodes for `W = 4`, eight-wide for `W = 8`), which also learns from it how many
+/// nodes it writes ([`node_count`](Self::node_count)).
 ///
 /// Each wide node covers an inner binary node's subtree with at most `W` lanes, chosen to
 /// minimise the tree's surface-area cost: [`NODE_COST`] times the area of every wide node,

@@ -1,10 +1,10 @@
 //! Depth-first traversal of a four- or eight-wide BVH, nearest child first: the structure's
 //! half of every query (see [`Traverse`]).
 
-use super::{CompactNode, WideBvh, WideBvh8, WideNode, WideNode8};
+use super::{CompactNode, WideNode, WideNode8};
 use crate::bvh::MAX_DEPTH;
 use crate::math::{Aabb, Aabb4};
-use crate::query::{LeafTriangleIds, Traverse, Visitor};
+use crate::query::{LeafTriangleIds, Visitor};
 
 /// A child to visit: an inner node (`count == 0`) or a leaf.
 #[derive(Clone, Copy)]
@@ -40,11 +40,12 @@ impl Child {
 pub(super) const STACK4: usize = 3 * MAX_DEPTH as usize;
 
 /// The same for an eight-wide walk: at most seven per level.
-const STACK8: usize = 7 * MAX_DEPTH as usize;
+pub(super) const STACK8: usize = 7 * MAX_DEPTH as usize;
 
 /// A node as the traversal reads it: four lanes ([`WideNode`], or a [`CompactNode`] whose
-/// boxes are decoded on the way) or eight ([`WideNode8`]).
-pub(super) trait LaneNode {
+/// boxes are decoded on the way) or eight ([`WideNode8`]). Public in a private module: the
+/// sealed supertrait of [`WideNodeKind`], not nameable outside.
+pub trait LaneNode {
     /// Lanes per node: 4 or 8.
     const LANES: u32;
     /// Each entered lane's key, by lane.
@@ -78,6 +79,8 @@ pub(super) trait LaneNode {
     }
     /// Lane `lane`'s triangle count (0 for an inner or unused lane).
     fn count(&self, lane: usize) -> u32;
+    /// The union of the used lanes' boxes ([`Aabb::EMPTY`] when none is used).
+    fn union(&self) -> Aabb;
     /// One word from each cache line of the node that the walk reads, combined. The value
     /// means nothing: reading it starts those lines on their way (see [`WARM_TREE_BYTES`]).
     fn touch(&self) -> u32;
@@ -104,7 +107,7 @@ fn judge4<V: Visitor + ?Sized>(boxes: &Aabb4, visitor: &mut V) -> (u32, [f32; 4]
 /// enters an unused lane (the mask is then never read, and the compiler drops its loads).
 #[inline(always)]
 fn kept_lanes<V: Visitor + ?Sized>(visitor: &V, used: u32) -> u32 {
-    if visitor.never_enters_empty_lanes() {
+    if visitor.hints().empty_lanes_never_entered {
         u32::MAX
     } else {
         used
@@ -133,6 +136,10 @@ impl LaneNode for WideNode {
     #[inline(always)]
     fn count(&self, lane: usize) -> u32 {
         self.count.get(lane).copied().unwrap_or(0)
+    }
+    #[inline(always)]
+    fn union(&self) -> Aabb {
+        self.bounds.union()
     }
     /// Its two lines: the first holds `min_x`, the second the child words.
     #[inline(always)]
@@ -169,54 +176,14 @@ impl LaneNode for CompactNode {
     fn count(&self, lane: usize) -> u32 {
         CompactNode::count(self, lane)
     }
+    #[inline(always)]
+    fn union(&self) -> Aabb {
+        self.boxes().union()
+    }
     /// Its one line.
     #[inline(always)]
     fn touch(&self) -> u32 {
         self.child[0]
-    }
-}
-
-impl Traverse for WideBvh<'_> {
-    /// Depth first, each node's four child boxes judged at once
-    /// ([`Visitor::enter_lanes`]) and visited in ascending key order (the lower lane first on
-    /// equal keys), with a fixed stack and no allocation.
-    #[inline(always)]
-    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        traverse_wide::<_, _, STACK4>(self.nodes, self.order, visitor);
-    }
-
-    #[inline(always)]
-    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
-        self.splits
-    }
-
-    /// Yes: boxes are judged four at a time.
-    #[inline(always)]
-    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
-        self.traverse(visitor);
-        true
-    }
-}
-
-impl Traverse for WideBvh8<'_> {
-    /// Depth first, each node's eight child boxes judged at once
-    /// ([`Visitor::enter_lanes8`]) and visited in ascending key order (the lower lane first on
-    /// equal keys), with a fixed stack and no allocation.
-    #[inline(always)]
-    fn traverse<V: Visitor + ?Sized>(&self, visitor: &mut V) {
-        traverse_wide::<_, _, STACK8>(self.nodes, self.order, visitor);
-    }
-
-    #[inline(always)]
-    fn split_refs(&self) -> crate::query::SplitRefs<'_> {
-        self.splits
-    }
-
-    /// Yes: boxes are judged eight at a time.
-    #[inline(always)]
-    fn traverse_packet<V: Visitor + ?Sized>(&self, visitor: &mut V) -> bool {
-        self.traverse(visitor);
-        true
     }
 }
 
@@ -239,7 +206,7 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
             if let Some(tris) =
                 LeafTriangleIds::in_order(order, at.slot as usize, at.count as usize)
             {
-                let boxed = visitor.wants_leaf_boxes();
+                let boxed = visitor.hints().leaf_boxes;
                 let (parent, lane) = (at.parent_lane >> shift, at.parent_lane & lane_bits);
                 let flow = match nodes.get(parent as usize) {
                     Some(parent) if boxed => visitor.leaf_in(&parent.lane_box(lane as usize), tris),
@@ -288,7 +255,7 @@ pub(super) fn traverse_wide<N: LaneNode, V: Visitor + ?Sized, const STACK: usize
                     at = lane_of(mask.trailing_zeros());
                     continue;
                 }
-                if !visitor.wants_nearest_first() {
+                if !visitor.hints().nearest_first {
                     // Lane order: the lowest entered lane now, the others deferred.
                     let mut later = rest;
                     while later != 0 {
@@ -449,6 +416,10 @@ impl LaneNode for WideNode8 {
         self.count.get(lane).copied().unwrap_or(0)
     }
     /// Its four lines: 64 bytes apart, two planes of eight lanes to a line, then the child
+    #[inline(always)]
+    fn union(&self) -> Aabb {
+        (0..self.lanes()).fold(Aabb::EMPTY, |b, lane| b.union(self.bounds.lane(lane)))
+    }
     /// words.
     #[inline(always)]
     fn touch(&self) -> u32 {

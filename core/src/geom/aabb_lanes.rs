@@ -6,14 +6,14 @@
 use glam::{Vec3, Vec3A, Vec4};
 use wide::f32x8;
 
-use crate::geom::SlabRay;
+use super::SlabRay;
 use crate::math::{Aabb4, Aabb8};
 
 /// Relative slack on box distances (ray entry and exit `t`, squared point distances): a box is
 /// entered when it might hold an answer within a few thousand ulps of the current best, so
 /// rounding in a box test can never cull a triangle whose own rounded answer would win (ties
 /// included).
-pub(super) const MARGIN: f32 = 1.0 / 65_536.0;
+pub(crate) const MARGIN: f32 = 1.0 / 65_536.0;
 
 /// A ray's origin and padded inverse direction (from its [`SlabRay`]) spread over four lanes,
 /// computed once per ray, and its interval, with the [`MARGIN`] folded in where it can be.
@@ -275,7 +275,7 @@ impl LaneRay8 {
 /// each lane's widened entry: the end of every eight-lane ray test. As in `LaneRay::enter`, one
 /// product widens when `from_zero` (`t_min ≥ 0`: no entry is negative then).
 #[inline(always)]
-pub(super) fn widened_verdict8(
+pub(crate) fn widened_verdict8(
     entry: f32x8,
     exit: f32x8,
     from_zero: bool,
@@ -336,7 +336,7 @@ mod tests {
     /// An unused lane (an empty box, `min = +∞`, `max = −∞`) is never entered by the ray
     /// lane tests, one ray or a packet, four lanes or eight, whatever the ray: directions
     /// with zero components (the padded inverse), negative `t_min`, shrunk `t_max`. The ray
-    /// visitors rely on it (`never_enters_empty_lanes`), so structures keep such lanes in the
+    /// visitors rely on it (`VisitorHints::empty_lanes_never_entered`), so structures keep such lanes in the
     /// mask.
     #[test]
     fn empty_lanes_are_never_entered() {
@@ -380,13 +380,13 @@ mod tests {
             let (mask8, _) = LaneRay8::from_lanes(&lanes).enter(&boxes8);
             assert_eq!(mask8 & 0xFC, 0, "round {round}: {mask8:08b}");
             // A packet of rays from the same origin, with directions of the same signs.
-            let slabs: [SlabRay; crate::query::packet_lanes::PACKET_RAYS] =
+            let slabs: [SlabRay; crate::geom::packet_aabb_lanes::PACKET_RAYS] =
                 core::array::from_fn(|k| {
                     let mut r = ray;
                     r.dir *= 1.0 + k as f32 * 0.125;
                     SlabRay::new(&r)
                 });
-            if let Some(packet) = crate::query::packet_lanes::PacketLanes::new(&slabs) {
+            if let Some(packet) = crate::geom::packet_aabb_lanes::PacketLanes::new(&slabs) {
                 let t_max = Vec4::splat(ray.t_max);
                 let (mask, _) = packet.enter(&boxes, t_max, MARGIN, near_far);
                 assert_eq!(mask & 0b1100, 0, "round {round}: packet {mask:04b}");

@@ -1,7 +1,7 @@
 //! Remembering the triangles a traversal already offered, so a structure that references a
 //! triangle from several cells offers it once.
 
-use super::LeafTriangleIds;
+use crate::query::LeafTriangleIds;
 
 /// Slots of a [`Mailbox`]: enough to remember the triangles of the few cells a ray crosses
 /// before a repeat, small enough to clear on every query.

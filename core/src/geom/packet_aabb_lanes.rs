@@ -13,13 +13,13 @@
 use glam::Vec4;
 use wide::f32x8;
 
-use super::box_lanes::{Planes, near_far8, widened_verdict8};
-use crate::geom::SlabRay;
+use super::SlabRay;
+use super::aabb_lanes::{Planes, near_far8, widened_verdict8};
 use crate::math::{Aabb, Aabb4, Aabb8, max_f32, min_f32};
 
 /// A packet's shared origin and interval of padded inverse directions, spread over four lanes.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct PacketLanes {
+pub(crate) struct PacketLanes {
     origin: [Vec4; 3],
     /// Per axis, the smallest inverse direction in the packet.
     inv_lo: [Vec4; 3],
@@ -28,13 +28,13 @@ pub(super) struct PacketLanes {
     /// Per axis, whether the packet's inverse directions are negative (all of them, or none).
     negative: [bool; 3],
     /// The smallest `t_min` in the packet.
-    pub(super) t_min: f32,
+    pub(crate) t_min: f32,
 }
 
 impl PacketLanes {
     /// The packet of `rays`, or `None` when they do not share an origin (bit for bit) or a
     /// direction sign on some axis, or there are none.
-    pub(super) fn new(rays: &[SlabRay]) -> Option<Self> {
+    pub(crate) fn new(rays: &[SlabRay]) -> Option<Self> {
         let first = rays.first()?;
         let origin = first.origin.to_array().map(f32::to_bits);
         let negative = first.inv_dir.to_array().map(|i| i < 0.0);
@@ -73,7 +73,7 @@ impl PacketLanes {
     /// `planes` picks each axis's planes: by index for stored boxes, among values for
     /// computed ones.
     #[inline(always)]
-    pub(super) fn enter(
+    pub(crate) fn enter(
         &self,
         node: &Aabb4,
         t_max: Vec4,
@@ -113,7 +113,7 @@ impl PacketLanes {
     /// [`PacketLanes::enter`] for eight boxes, in eight-lane vectors: the same arithmetic lane
     /// for lane.
     #[inline(always)]
-    pub(super) fn enter8(&self, node: &Aabb8, t_max: f32x8, margin: f32) -> (u32, [f32; 8]) {
+    pub(crate) fn enter8(&self, node: &Aabb8, t_max: f32x8, margin: f32) -> (u32, [f32; 8]) {
         let splat = |v: &[Vec4; 3]| v.map(|x| f32x8::splat(x.x));
         let [ox, oy, oz] = splat(&self.origin);
         let [lx, ly, lz] = splat(&self.inv_lo);
@@ -138,12 +138,12 @@ impl PacketLanes {
 }
 
 /// Rays per [`PacketRays`]: two groups of four lanes.
-pub(super) const PACKET_RAYS: usize = 8;
+pub(crate) const PACKET_RAYS: usize = 8;
 
 /// Eight rays sharing an origin, each in a lane, for judging one box for all of them at once
 /// (a leaf's, before its triangles are tested): the single-ray slab test, ray by ray, in SIMD.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct PacketRays {
+pub(crate) struct PacketRays {
     origin: [f32; 3],
     /// Per axis, the rays' padded inverse directions, rays 0–3 then 4–7.
     inv: [[Vec4; 2]; 3],
@@ -153,7 +153,7 @@ pub(super) struct PacketRays {
 
 impl PacketRays {
     /// The lanes of `rays` (which share the origin of the first).
-    pub(super) fn new(rays: &[SlabRay; PACKET_RAYS]) -> Self {
+    pub(crate) fn new(rays: &[SlabRay; PACKET_RAYS]) -> Self {
         let group = |f: &dyn Fn(&SlabRay) -> f32, half: usize| {
             Vec4::from_array(core::array::from_fn(|k| {
                 rays.get(4 * half + k).map_or(0.0, f)
@@ -173,7 +173,7 @@ impl PacketRays {
     }
 
     /// Sets each ray's `t_max` (it shrinks as the ray finds hits).
-    pub(super) fn set_t_max(&mut self, t_max: [f32; PACKET_RAYS]) {
+    pub(crate) fn set_t_max(&mut self, t_max: [f32; PACKET_RAYS]) {
         let [a, b, c, d, e, f, g, h] = t_max;
         self.t_max = [Vec4::new(a, b, c, d), Vec4::new(e, f, g, h)];
     }
@@ -181,7 +181,7 @@ impl PacketRays {
     /// Bit `i` set for each ray `i` that enters `aabb` within its `[t_min, t_max]`, widened by
     /// `margin` (relative): the one-box slab test of a single ray, eight rays at a time.
     #[inline(always)]
-    pub(super) fn entering(&self, aabb: &Aabb, margin: f32) -> u32 {
+    pub(crate) fn entering(&self, aabb: &Aabb, margin: f32) -> u32 {
         let [ox, oy, oz] = self.origin;
         let (lo, hi) = (aabb.min, aabb.max);
         let mut mask = 0;
