@@ -103,8 +103,9 @@ echo "static RAM (.data + .bss): $((data + bss)) bytes"
 echo "stack high-water mark, validation and queries: BVH $stack bytes, octree $octree_stack bytes, BVH with spatial splits (spot) $spatial_stack bytes"
 echo "remeshing (--features remesh): code $remesh_code bytes; stack high-water $remesh_stack bytes, of which the mesh arrays $remesh_arrays"
 echo "heap: 0 bytes (no allocator linked)"
-# Code: 25 KiB (24 KiB until validation also checked that a BVH's order is a permutation and
-# named the section a cut blob ends in, which added about 400 bytes).
+# Code: 24 KiB. (Validation's permutation check of a BVH's order and the section a cut blob
+# ends in took it past that, to 25,210 bytes; the blob checksum half a byte at a time, with a
+# 64-byte table instead of 1 KiB, brought it back, to 24,242.)
 # Reading blobs with spatial splits is a feature (`spatial`, the core's `blob-spatial`), as
 # reading the cell structures' blobs is, so the BVH-only code stays within its budget.
 # The BVH keeps the 2 KiB stack budget, with and without spatial splits. The octree's walk keeps up to seven sibling cells per
@@ -112,10 +113,10 @@ echo "heap: 0 bytes (no allocator linked)"
 # Remeshing keeps its arrays on the stack: held to what it measured, 44 KiB of code (40 KiB
 # until the final angle pass, which moves single vertices to widen small angles, added about
 # 2.5 KiB) and 48 KiB of stack in the 64 KiB of RAM.
-if [ "$code" -gt 25600 ] || [ "$stack" -gt 2048 ] || [ "$spatial_stack" -gt 2048 ] ||
+if [ "$code" -gt 24576 ] || [ "$stack" -gt 2048 ] || [ "$spatial_stack" -gt 2048 ] ||
   [ "$octree_stack" -gt 8192 ] ||
   [ "$remesh_code" -gt 45056 ] || [ "$remesh_stack" -gt 49152 ]; then
-  echo "over budget: code must be <= 25 KiB, the BVH's stack <= 2 KiB (spatial splits too), the octree's <= 8 KiB," \
+  echo "over budget: code must be <= 24 KiB, the BVH's stack <= 2 KiB (spatial splits too), the octree's <= 8 KiB," \
     "remeshing's code <= 44 KiB and its stack <= 48 KiB" >&2
   exit 1
 fi

@@ -2,7 +2,7 @@
 //!
 //! Brings what the README's examples use: the traits whose methods the queries are
 //! ([`MeshQuery`], [`Traverse`]), the mesh types, the BVH with its buffers and config, the
-//! owned [`MeshBvh`] (feature `alloc`) and [`BlobView`] (feature `blob`), rays and results.
+//! owned `MeshBvh` (feature `alloc`) and `BlobView` (feature `blob`), rays and results.
 //! Everything else is in its module: [`bvh`](crate::bvh), [`wide`](crate::wide),
 //! [`kdtree`](crate::kdtree), [`query`](crate::query), …
 

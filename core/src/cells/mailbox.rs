@@ -11,7 +11,7 @@ const SLOTS: usize = 32;
 /// slot still holds it was offered earlier and need not be tested again.
 ///
 /// A structure that references a triangle from several cells (k-d tree, octree, grid) keeps one
-/// per traversal, for visitors whose [`skips_repeats`](super::Visitor::skips_repeats) is true,
+/// per traversal, for visitors whose [`skips_repeats`](crate::query::VisitorHints::skips_repeats) hint is true,
 /// and marks repeats with [`LeafTriangleIds::skipping`]. Triangle `t` lives in slot
 /// `hash(t) mod 32`, so a repeat is caught unless another triangle of the same slot came
 /// between: a triangle may be offered again, never wrongly skipped. No allocation; 128 bytes.

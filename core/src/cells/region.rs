@@ -33,7 +33,7 @@ impl Region for Cell {
     }
 }
 
-/// No cell tracked: for visitors whose [`needs_cells`](crate::query::Visitor::needs_cells) is
+/// No cell tracked: for visitors whose [`needs_cells`](crate::query::VisitorHints::needs_cells) hint is
 /// false.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Untracked;

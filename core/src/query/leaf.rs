@@ -88,7 +88,7 @@ impl<'a> LeafTriangleIds<'a> {
     /// The cell this leaf owns, when the structure may reference a triangle from several
     /// leaves (k-d tree, octree, grid); `None` for a structure that references each triangle
     /// once (a BVH), and possibly for a visitor whose
-    /// [`needs_cells`](super::Visitor::needs_cells) is false. A query that reports triangles
+    /// [`needs_cells`](super::VisitorHints::needs_cells) hint is false. A query that reports triangles
     /// must report each from one cell only: see [`Cell`].
     #[inline(always)]
     #[must_use]

@@ -1,7 +1,8 @@
 //! How much room a remeshing run needs.
 
+use super::EdgeTarget;
 #[cfg(feature = "alloc")]
-use super::{EdgeTarget, HalfEdgeBuffers};
+use super::HalfEdgeBuffers;
 use crate::math::dot;
 use crate::mesh::ValidMesh;
 
