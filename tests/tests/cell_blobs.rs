@@ -178,7 +178,7 @@ fn a_cell_blob_is_one_postcard_message() {
                         assert_eq!(c.node_count as usize, t.node_count());
                         let words = t.nodes().iter().flat_map(|n| [n.a, n.b]).collect();
                         let depth = s.stats().max_depth as u32;
-                        (words, t.items().to_vec(), *t.root(), w.2, depth)
+                        (words, t.items().to_vec(), *t.bounds(), w.2, depth)
                     }
                     MeshIndex::Grid(s) => {
                         let g = s.structure();

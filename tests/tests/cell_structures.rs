@@ -135,7 +135,7 @@ fn octree_answers_every_query_as_brute_force() {
             "{name}"
         );
         let checked = Octree::from_parts(
-            *tree.root(),
+            *tree.bounds(),
             tree.nodes(),
             tree.items(),
             mesh.triangle_count(),
@@ -181,7 +181,7 @@ impl Built {
             vec![0; sizes.work],
         );
         let oct = Octree::build(mesh, &OctreeConfig::default(), &mut onodes, &mut oitems).unwrap();
-        let root = *oct.root();
+        let root = *oct.bounds();
         oitems.truncate(sizes.items);
         Self {
             grid: (layout, offsets, items),
@@ -342,7 +342,7 @@ fn short_buffers_give_coarser_structures_that_still_answer_exactly() {
     ] {
         let (mut nodes, mut items) = (vec![OctreeNode::default(); nodes_len], vec![0; items_len]);
         let tree = Octree::build(&mesh, &OctreeConfig::default(), &mut nodes, &mut items).unwrap();
-        let (root, count, refs) = (*tree.root(), tree.node_count(), tree.items().len());
+        let (root, count, refs) = (*tree.bounds(), tree.node_count(), tree.items().len());
         assert!(count <= nodes_len && refs <= items_len);
         let tree = Octree::from_parts(root, &nodes[..count], &items[..refs], n).unwrap();
         check_all(

@@ -173,13 +173,64 @@ fn use_paths(code: &str) -> Vec<Vec<String>> {
         let Some(end) = code[at..].find(';') else {
             continue;
         };
-        expand(&[], &code[at + 4..at + end], &mut out);
+        let mut paths = Vec::new();
+        expand(&[], &code[at + 4..at + end], &mut paths);
+        out.extend(paths.into_iter().map(|p| from_file_module(code, at, p)));
     }
     out
 }
 
+/// How many inline modules (`mod tables { … }`) of `code` are open at byte `at`.
+fn inline_modules_open_at(code: &str, at: usize) -> usize {
+    let (mut depth, mut open) = (0usize, Vec::new());
+    let bytes = code.as_bytes();
+    for (i, &c) in bytes.iter().enumerate().take(at) {
+        match c {
+            b'{' => {
+                // `mod name {`: the word before the name is `mod`.
+                let head = code[..i].trim_end();
+                let name_start = head
+                    .rfind(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .map_or(0, |k| k + 1);
+                if head[..name_start].trim_end().ends_with("mod") && name_start < head.len() {
+                    open.push(depth);
+                }
+                depth += 1;
+            }
+            b'}' => {
+                depth = depth.saturating_sub(1);
+                if open.last() == Some(&depth) {
+                    open.pop();
+                }
+            }
+            _ => {}
+        }
+    }
+    open.len()
+}
+
+/// `path`, written at byte `at` of `code`, as seen from the file's own module: each leading
+/// `super` that leaves an inline module stays in the file (it becomes `self`).
+fn from_file_module(code: &str, at: usize, mut path: Vec<String>) -> Vec<String> {
+    if path.first().is_none_or(|s| s != "super") {
+        return path;
+    }
+    let mut inline = inline_modules_open_at(code, at);
+    let mut stripped = false;
+    while inline > 0 && path.first().is_some_and(|s| s == "super") {
+        path.remove(0);
+        inline -= 1;
+        stripped = true;
+    }
+    if stripped && path.first().is_some_and(|s| s != "super") {
+        path.insert(0, "self".to_owned());
+    }
+    path
+}
+
 /// The paths written inline in `code` outside `use` declarations that start at `crate`,
-/// `super` or `self` (`super::check::check(..)` gives `super::check::check`).
+/// `super` or `self` (`super::check::check(..)` gives `super::check::check`), as seen from
+/// the file's own module.
 fn inline_paths(code: &str) -> Vec<Vec<String>> {
     let mut out = Vec::new();
     for start in ["crate::", "super::", "self::"] {
@@ -198,7 +249,7 @@ fn inline_paths(code: &str) -> Vec<Vec<String>> {
                 .map(String::from)
                 .collect();
             if path.len() > 1 {
-                out.push(path);
+                out.push(from_file_module(code, at, path));
             }
         }
     }
@@ -341,7 +392,8 @@ fn core_files_have_no_import_circle() {
 /// The check on a crate made here: `tree.rs` imports nothing from `check.rs` but calls it by
 /// an inline path, and `check.rs` imports `tree.rs`'s type, the shape of the circle the k-d
 /// tree and octree once had. Without the inline edge it goes unseen; with it, both files are
-/// named.
+/// named, and nothing else: `super::` inside `check.rs`'s inline module names `check.rs`
+/// itself, not its parent.
 #[test]
 fn an_injected_circle_through_an_inline_path_is_found() {
     let root = std::env::temp_dir().join(format!("meshq-layering-{}", std::process::id()));
@@ -360,7 +412,8 @@ fn an_injected_circle_through_an_inline_path_is_found() {
     );
     write(
         "octree/check.rs",
-        "use super::Octree;\npub(super) fn check(_: &Octree) {}\n",
+        "use super::Octree;\npub(super) fn check(_: &Octree) {}\n\
+         mod inline {\n    pub(super) fn again() {\n        super::check(&super::Octree);\n    }\n}\n",
     );
     let graph = file_graph(&root);
     let found: Vec<&String> = circular(&graph).into_iter().map(|(f, _)| f).collect();

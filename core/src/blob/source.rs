@@ -57,7 +57,7 @@ impl BlobSource<'_> {
         match self {
             Self::Bvh(b, ..) => b.bounds(),
             Self::KdTree(t, _) => *t.bounds(),
-            Self::Octree(t, _) => *t.root(),
+            Self::Octree(t, _) => *t.bounds(),
             Self::Grid(g, _) => g.layout().bounds,
         }
     }
@@ -109,7 +109,7 @@ impl BlobSource<'_> {
                 KdTree::from_parts(*t.bounds(), t.nodes(), t.items(), n)?;
             }
             Self::Octree(t, _) => {
-                Octree::from_parts(*t.root(), t.nodes(), t.items(), n)?;
+                Octree::from_parts(*t.bounds(), t.nodes(), t.items(), n)?;
             }
             Self::Grid(g, _) => {
                 Grid::from_parts(*g.layout(), g.offsets(), g.items(), n)?;

@@ -84,7 +84,7 @@ impl GridLayout {
     /// The box of the cells `lo..hi` (per axis, `hi` exclusive).
     #[inline(always)]
     #[must_use]
-    pub fn range_box(&self, lo: [u32; 3], hi: [u32; 3]) -> Aabb {
+    pub(crate) fn range_box(&self, lo: [u32; 3], hi: [u32; 3]) -> Aabb {
         Aabb::new(
             Vec3::new(
                 self.boundary(0, lo[0]),
@@ -123,7 +123,7 @@ impl GridLayout {
     /// `x` is within rounding of a boundary: callers widen by one where that matters).
     #[inline(always)]
     #[must_use]
-    pub fn coordinate_cell(&self, axis: usize, x: f32) -> u32 {
+    pub(crate) fn coordinate_cell(&self, axis: usize, x: f32) -> u32 {
         let (lo, hi) = (self.bounds.min.to_array(), self.bounds.max.to_array());
         let (Some(&lo), Some(&hi), Some(&n)) =
             (lo.get(axis), hi.get(axis), self.resolution.get(axis))
@@ -142,7 +142,7 @@ impl GridLayout {
     /// the grid. Exact against [`boundary`](Self::boundary): the first guess from the
     /// coordinate is corrected by comparing with the boundaries themselves.
     #[must_use]
-    pub fn cells_touching(&self, aabb: &Aabb) -> ([u32; 3], [u32; 3]) {
+    pub(crate) fn cells_touching(&self, aabb: &Aabb) -> ([u32; 3], [u32; 3]) {
         let (mut lo, mut hi) = ([0u32; 3], [0u32; 3]);
         let (a, b) = (aabb.min.to_array(), aabb.max.to_array());
         let (min, max) = (self.bounds.min.to_array(), self.bounds.max.to_array());

@@ -20,7 +20,7 @@ pub use aabb::Aabb;
 pub use aabb4::Aabb4;
 pub use aabb8::Aabb8;
 pub use hit::{ClosestPoint, RayHit, TriangleFeature};
-pub use morton::morton_code;
+pub(crate) use morton::morton_code;
 pub use obb::Obb;
 pub use packed_triangle::PackedTriangle;
 pub use plane::Plane;

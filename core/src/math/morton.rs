@@ -12,7 +12,7 @@ const BITS: u32 = 10;
 /// the x cell, `3k + 1` of y and `3k` of z. Coordinates outside `bounds` go to the nearest
 /// border cell; an axis where `bounds` is flat (or empty, or a coordinate NaN) gives cell 0.
 #[must_use]
-pub fn morton_code(p: Vec3, bounds: &Aabb) -> u32 {
+pub(crate) fn morton_code(p: Vec3, bounds: &Aabb) -> u32 {
     let cells = (1u32 << BITS) as f32;
     let cell = |v: f32, lo: f32, hi: f32| -> u32 {
         let extent = hi - lo;

@@ -106,9 +106,9 @@ impl<N: Words, W: Words> Octree<N, W> {
         Self { root, nodes, items }
     }
 
-    /// The root cell's cube.
+    /// The root cell's box: the cube around the mesh bounds that the octants split.
     #[must_use]
-    pub const fn root(&self) -> &Aabb {
+    pub const fn bounds(&self) -> &Aabb {
         &self.root
     }
 

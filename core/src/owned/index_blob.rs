@@ -6,7 +6,7 @@ use alloc::vec::Vec;
 
 use super::blob::unshared_mesh;
 use super::cell_scene::CellScene;
-use super::mesh_cells::{GridArrays, KdArrays, OctreeArrays};
+use super::mesh_cells::{GridArrays, TreeArrays};
 use super::{CellKind, MeshBvh, MeshCells, MeshIndex};
 use crate::blob::{
     BlobSource, BlobStructure, BlobView, MeshLayout, StructureConfig, encode_structure_into,
@@ -59,7 +59,7 @@ impl MeshIndex {
                 let items = words(t.items());
                 Self::KdTree(MeshCells {
                     scene: scene_of(view, &items)?,
-                    arrays: KdArrays {
+                    arrays: TreeArrays {
                         bounds: *t.bounds(),
                         nodes,
                         items,
@@ -72,8 +72,8 @@ impl MeshIndex {
                 let items = words(t.items());
                 Self::Octree(MeshCells {
                     scene: scene_of(view, &items)?,
-                    arrays: OctreeArrays {
-                        root: *t.root(),
+                    arrays: TreeArrays {
+                        bounds: *t.bounds(),
                         nodes,
                         items,
                     },

@@ -162,128 +162,94 @@ impl<K: CellKind> LeafTriangles for MeshCells<K> {
     }
 }
 
-/// The k-d tree kind of [`MeshCells`] ([`MeshKdTree`]).
-#[derive(Clone, Copy, Debug)]
-pub struct KdTreeCells;
-
-/// The owned arrays of a k-d tree.
+/// The owned arrays of a tree of cells (k-d tree or octree): its root cell's box, its nodes
+/// and its references.
 #[doc(hidden)]
 #[derive(Clone, Debug)]
-pub struct KdArrays {
+pub struct TreeArrays<N> {
     pub(super) bounds: Aabb,
-    pub(super) nodes: Vec<KdNode>,
+    pub(super) nodes: Vec<N>,
     pub(super) items: Vec<u32>,
 }
 
-impl sealed::Sealed for KdTreeCells {}
+/// The [`CellKind`] of a tree of cells: the k-d tree and the octree differ only by their
+/// types (tree, node, config) and their blob source.
+macro_rules! tree_cell_kind {
+    ($kind:ident, $tree:ident, $node:ident, $config:ident, $what:literal, $alias:ident) => {
+        #[doc = concat!("The ", $what, " kind of [`MeshCells`] ([`", stringify!($alias), "`]).")]
+        #[derive(Clone, Copy, Debug)]
+        pub struct $kind;
 
-impl CellKind for KdTreeCells {
-    type Config = KdConfig;
-    type Arrays = KdArrays;
-    type View<'a> = KdTree<&'a [KdNode], &'a [u32]>;
+        impl sealed::Sealed for $kind {}
 
-    fn build(mesh: &ValidMesh<'_>, config: &KdConfig) -> Result<KdArrays, BuildError> {
-        let sizes = measure_fully(mesh.triangle_count(), |w| KdTree::measure(mesh, config, w))?;
-        let (mut nodes, mut items) = (vec![KdNode::default(); sizes.nodes], vec![0u32; sizes.work]);
-        let bounds = *KdTree::build(mesh, config, &mut nodes, &mut items)?.bounds();
-        items.truncate(sizes.items);
-        items.shrink_to_fit();
-        Ok(KdArrays {
-            bounds,
-            nodes,
-            items,
-        })
-    }
+        impl CellKind for $kind {
+            type Config = $config;
+            type Arrays = TreeArrays<$node>;
+            type View<'a> = $tree<&'a [$node], &'a [u32]>;
 
-    fn view(arrays: &KdArrays) -> Self::View<'_> {
-        KdTree::from_validated(arrays.bounds, &arrays.nodes, &arrays.items)
-    }
+            fn build(mesh: &ValidMesh<'_>, config: &$config) -> Result<Self::Arrays, BuildError> {
+                let sizes =
+                    measure_fully(mesh.triangle_count(), |w| $tree::measure(mesh, config, w))?;
+                let mut nodes = vec![$node::default(); sizes.nodes];
+                let mut items = vec![0u32; sizes.work];
+                let bounds = *$tree::build(mesh, config, &mut nodes, &mut items)?.bounds();
+                items.truncate(sizes.items);
+                items.shrink_to_fit();
+                Ok(TreeArrays {
+                    bounds,
+                    nodes,
+                    items,
+                })
+            }
 
-    fn items(arrays: &KdArrays) -> &[u32] {
-        &arrays.items
-    }
+            fn view(arrays: &Self::Arrays) -> Self::View<'_> {
+                $tree::from_validated(arrays.bounds, &arrays.nodes, &arrays.items)
+            }
 
-    fn bounds(arrays: &KdArrays) -> Aabb {
-        arrays.bounds
-    }
+            fn items(arrays: &Self::Arrays) -> &[u32] {
+                &arrays.items
+            }
 
-    fn structure_bytes(arrays: &KdArrays) -> usize {
-        8 * arrays.nodes.len() + 4 * arrays.items.len()
-    }
+            fn bounds(arrays: &Self::Arrays) -> Aabb {
+                arrays.bounds
+            }
 
-    fn stats(arrays: &KdArrays, triangles: usize) -> CellStats {
-        Self::view(arrays).stats(triangles)
-    }
+            /// Two words per node, one per reference.
+            fn structure_bytes(arrays: &Self::Arrays) -> usize {
+                8 * arrays.nodes.len() + 4 * arrays.items.len()
+            }
 
-    #[cfg(feature = "blob")]
-    fn source<'a, 'v: 'a>(
-        view: &'a Self::View<'v>,
-        config: Self::Config,
-    ) -> crate::blob::BlobSource<'a> {
-        crate::blob::BlobSource::KdTree(view, config)
-    }
+            fn stats(arrays: &Self::Arrays, triangles: usize) -> CellStats {
+                Self::view(arrays).stats(triangles)
+            }
+
+            #[cfg(feature = "blob")]
+            fn source<'a, 'v: 'a>(
+                view: &'a Self::View<'v>,
+                config: Self::Config,
+            ) -> crate::blob::BlobSource<'a> {
+                crate::blob::BlobSource::$tree(view, config)
+            }
+        }
+    };
 }
 
-/// The octree kind of [`MeshCells`] ([`MeshOctree`]).
-#[derive(Clone, Copy, Debug)]
-pub struct OctreeCells;
-
-/// The owned arrays of an octree.
-#[doc(hidden)]
-#[derive(Clone, Debug)]
-pub struct OctreeArrays {
-    pub(super) root: Aabb,
-    pub(super) nodes: Vec<OctreeNode>,
-    pub(super) items: Vec<u32>,
-}
-
-impl sealed::Sealed for OctreeCells {}
-
-impl CellKind for OctreeCells {
-    type Config = OctreeConfig;
-    type Arrays = OctreeArrays;
-    type View<'a> = Octree<&'a [OctreeNode], &'a [u32]>;
-
-    fn build(mesh: &ValidMesh<'_>, config: &OctreeConfig) -> Result<OctreeArrays, BuildError> {
-        let sizes = measure_fully(mesh.triangle_count(), |w| Octree::measure(mesh, config, w))?;
-        let (mut nodes, mut items) = (
-            vec![OctreeNode::default(); sizes.nodes],
-            vec![0u32; sizes.work],
-        );
-        let root = *Octree::build(mesh, config, &mut nodes, &mut items)?.root();
-        items.truncate(sizes.items);
-        items.shrink_to_fit();
-        Ok(OctreeArrays { root, nodes, items })
-    }
-
-    fn view(arrays: &OctreeArrays) -> Self::View<'_> {
-        Octree::from_validated(arrays.root, &arrays.nodes, &arrays.items)
-    }
-
-    fn items(arrays: &OctreeArrays) -> &[u32] {
-        &arrays.items
-    }
-
-    fn bounds(arrays: &OctreeArrays) -> Aabb {
-        arrays.root
-    }
-
-    fn structure_bytes(arrays: &OctreeArrays) -> usize {
-        8 * arrays.nodes.len() + 4 * arrays.items.len()
-    }
-
-    fn stats(arrays: &OctreeArrays, triangles: usize) -> CellStats {
-        Self::view(arrays).stats(triangles)
-    }
-
-    #[cfg(feature = "blob")]
-    fn source<'a, 'v: 'a>(
-        view: &'a Self::View<'v>,
-        config: Self::Config,
-    ) -> crate::blob::BlobSource<'a> {
-        crate::blob::BlobSource::Octree(view, config)
-    }
-}
+tree_cell_kind!(
+    KdTreeCells,
+    KdTree,
+    KdNode,
+    KdConfig,
+    "k-d tree",
+    MeshKdTree
+);
+tree_cell_kind!(
+    OctreeCells,
+    Octree,
+    OctreeNode,
+    OctreeConfig,
+    "octree",
+    MeshOctree
+);
 
 /// The uniform grid kind of [`MeshCells`] ([`MeshGrid`]).
 #[derive(Clone, Copy, Debug)]

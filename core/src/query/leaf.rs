@@ -15,7 +15,7 @@ use crate::mesh::ValidMesh;
 ///
 /// A structure that references a triangle from several cells passes the leaf's
 /// [`cell`](Self::cell), and may mark entries it already offered earlier in the same traversal
-/// as skipped (see [`skipping`](Self::skipping)): iteration leaves them out.
+/// as skipped: iteration leaves them out.
 #[derive(Clone, Debug)]
 pub struct LeafTriangleIds<'a> {
     next_slot: usize,
@@ -72,7 +72,7 @@ impl<'a> LeafTriangleIds<'a> {
     /// the first 64 entries can be skipped.
     #[inline(always)]
     #[must_use]
-    pub const fn skipping(mut self, mask: u64) -> Self {
+    pub(crate) const fn skipping(mut self, mask: u64) -> Self {
         self.skip = mask;
         self
     }
@@ -113,10 +113,11 @@ impl<'a> LeafTriangleIds<'a> {
         }
     }
 
-    /// The skip mask of the next (up to) 64 entries, as [`skipping`](Self::skipping) set it.
-    #[inline(always)]
+    /// The skip mask of the next (up to) 64 entries, as [`skipping`](Self::skipping) set it
+    /// (for the tests of the lane reads).
+    #[cfg(test)]
     #[must_use]
-    pub const fn skip_mask(&self) -> u64 {
+    pub(crate) const fn skip_mask(&self) -> u64 {
         self.skip
     }
 

@@ -88,8 +88,8 @@ pub trait Visitor {
     /// leaf's triangles, and [`enter`](Self::enter) or [`enter_lanes`](Self::enter_lanes)
     /// accepted it. Structures that can name that box call this when the
     /// [`hints`](Self::hints) ask for [`leaf_boxes`](VisitorHints::leaf_boxes); a query of
-    /// several rays uses it
-    /// to let only the rays that enter the box test the leaf. The default calls `leaf`.
+    /// several rays uses it to let only the rays that enter the box test the leaf. The default
+    /// calls `leaf`.
     fn leaf_in(&mut self, aabb: &Aabb, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
         let _ = aabb;
         self.leaf(tris)

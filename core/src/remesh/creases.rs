@@ -9,7 +9,7 @@ impl HalfEdgeMesh<'_> {
     /// The unnormalised normal of triangle `t` (twice its area long), from its corners in
     /// order.
     #[must_use]
-    pub fn triangle_normal(&self, t: u32) -> Vec3 {
+    pub(crate) fn triangle_normal(&self, t: u32) -> Vec3 {
         let [a, b, c] = self.triangle(t).map(|v| self.position(v));
         cross(b - a, c - a)
     }
@@ -17,7 +17,7 @@ impl HalfEdgeMesh<'_> {
     /// Marks as creases the interior edges whose two triangles' normals differ by more than
     /// `feature_angle` degrees, and clears every other edge's mark. Returns the number of
     /// crease edges. A triangle with no area has no normal: its edges are not marked.
-    pub fn mark_creases(&mut self, feature_angle: f32) -> usize {
+    pub(crate) fn mark_creases(&mut self, feature_angle: f32) -> usize {
         let cos_limit = libm::cosf(feature_angle.to_radians());
         let mut creases = 0usize;
         for he in 0..self.half_edge_count() as u32 {

@@ -91,7 +91,7 @@ impl HalfEdgeMesh<'_> {
 
     /// Calls `each` on every half-edge leaving vertex `v`, turning with
     /// [`rotate`](Self::rotate) from its own half-edge.
-    pub fn for_each_outgoing(&self, v: u32, mut each: impl FnMut(u32)) {
+    pub(crate) fn for_each_outgoing(&self, v: u32, mut each: impl FnMut(u32)) {
         let Some(start) = self.vertex_half_edge(v) else {
             return;
         };
@@ -106,7 +106,7 @@ impl HalfEdgeMesh<'_> {
     }
 
     /// Calls `each` on every neighbour of vertex `v` (each once, in fan order).
-    pub fn for_each_neighbour(&self, v: u32, mut each: impl FnMut(u32)) {
+    pub(crate) fn for_each_neighbour(&self, v: u32, mut each: impl FnMut(u32)) {
         let mut last = NO_HALF_EDGE;
         self.for_each_outgoing(v, |he| {
             each(self.origin(Self::next(he)));
@@ -120,7 +120,7 @@ impl HalfEdgeMesh<'_> {
 
     /// Whether vertices `a` and `b` share an edge.
     #[must_use]
-    pub fn has_edge(&self, a: u32, b: u32) -> bool {
+    pub(crate) fn has_edge(&self, a: u32, b: u32) -> bool {
         let mut found = false;
         self.for_each_neighbour(a, |n| found |= n == b);
         found
@@ -200,7 +200,7 @@ impl HalfEdgeMesh<'_> {
     /// Whether the edge of `he` may be flipped: interior, not a crease, both ends keeping at
     /// least three edges, and the two opposite corners not already joined.
     #[must_use]
-    pub fn can_flip(&self, he: u32) -> bool {
+    pub(crate) fn can_flip(&self, he: u32) -> bool {
         let Some(g) = self.twin(he) else {
             return false;
         };
@@ -221,7 +221,9 @@ impl HalfEdgeMesh<'_> {
     }
 
     /// Flips the edge of `he`: triangles (a, b, c) and (b, a, d) become (a, d, c) and
-    /// (d, b, c). Does nothing and returns false unless [`can_flip`](Self::can_flip).
+    /// (d, b, c). Does nothing and returns false unless the flip keeps the mesh manifold: the
+    /// edge is interior and not a crease, `a` and `b` can each lose an edge, and (c, d) is not
+    /// an edge already.
     pub fn flip_edge(&mut self, he: u32) -> bool {
         if !self.can_flip(he) {
             return false;
@@ -278,7 +280,7 @@ impl HalfEdgeMesh<'_> {
     /// condition (the only vertices both ends neighbour are the corners opposite the edge),
     /// so the result stays manifold with the same topology.
     #[must_use]
-    pub fn can_collapse(&self, he: u32) -> bool {
+    pub(crate) fn can_collapse(&self, he: u32) -> bool {
         let (a, b) = self.ends(he);
         if !self.may_remove(he) {
             return false;
@@ -306,7 +308,7 @@ impl HalfEdgeMesh<'_> {
     /// The line then runs from `a`'s other crease neighbour straight to `b`, where it
     /// nearly ran already. A corner where creases meet, or a crease's end, is never removed.
     #[must_use]
-    pub fn may_remove(&self, he: u32) -> bool {
+    pub(crate) fn may_remove(&self, he: u32) -> bool {
         let (a, b) = self.ends(he);
         if self.is_boundary_vertex(a) {
             return false;
@@ -325,7 +327,7 @@ impl HalfEdgeMesh<'_> {
     /// `None` for a vertex on no crease, a corner where creases meet, a crease's end or a
     /// sharp bend.
     #[must_use]
-    pub fn crease_line_through(&self, v: u32) -> Option<(u32, u32)> {
+    pub(crate) fn crease_line_through(&self, v: u32) -> Option<(u32, u32)> {
         if self.is_boundary_vertex(v) {
             return None;
         }
@@ -348,7 +350,7 @@ impl HalfEdgeMesh<'_> {
 
     /// Whether any edge at vertex `v` is a crease.
     #[must_use]
-    pub fn touches_crease(&self, v: u32) -> bool {
+    pub(crate) fn touches_crease(&self, v: u32) -> bool {
         if !self.has_creases {
             return false;
         }
@@ -360,8 +362,8 @@ impl HalfEdgeMesh<'_> {
     }
 
     /// Collapses the edge of `he` (from `a` to `b`): `a` is removed, `b` moves to `at`, and
-    /// the two triangles on the edge disappear. Does nothing and returns false unless
-    /// [`can_collapse`](Self::can_collapse). The last vertex and triangles move into the
+    /// the two triangles on the edge disappear. Does nothing and returns false unless the
+    /// collapse keeps the mesh manifold (the link condition) and `a` may be removed. The last vertex and triangles move into the
     /// freed slots, so indices of other elements may change.
     pub fn collapse_edge(&mut self, he: u32, at: Vec3) -> bool {
         if !self.can_collapse(he) {

@@ -21,7 +21,7 @@ pub struct HalfEdgeBuffers<'a> {
     /// One outgoing half-edge per vertex: at least one per vertex.
     pub vertex_half_edges: &'a mut [u32],
     /// Whether each half-edge lies on a kept crease: as long as `origins`. Written false by
-    /// [`HalfEdgeMesh::from_mesh`]; see [`HalfEdgeMesh::mark_creases`].
+    /// [`HalfEdgeMesh::from_mesh`]; a remesh marks them from its `feature_angle`.
     pub creases: &'a mut [bool],
 }
 
@@ -33,7 +33,7 @@ pub struct HalfEdgeBuffers<'a> {
 /// same edge in the neighbouring triangle; a boundary half-edge has none.
 ///
 /// Each vertex keeps one outgoing half-edge: on the boundary, the one without a twin, so a walk
-/// turning with [`rotate`](Self::rotate) from it covers the vertex's whole fan; a vertex no
+/// turning around the vertex from it covers the vertex's whole fan; a vertex no
 /// triangle uses keeps [`NO_HALF_EDGE`].
 #[derive(Debug)]
 pub struct HalfEdgeMesh<'a> {
@@ -299,7 +299,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// Whether half-edge `he` lies on a kept crease.
     #[must_use]
-    pub fn is_crease(&self, he: u32) -> bool {
+    pub(crate) fn is_crease(&self, he: u32) -> bool {
         self.creases.get(he as usize).copied().unwrap_or(false)
     }
 
@@ -312,7 +312,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// The positions of vertices `0..vertex_count()`.
     #[must_use]
-    pub fn used_positions(&self) -> &[[f32; 3]] {
+    pub(crate) fn used_positions(&self) -> &[[f32; 3]] {
         self.positions.get(..self.vertex_count).unwrap_or_default()
     }
 
@@ -381,7 +381,7 @@ impl<'a> HalfEdgeMesh<'a> {
     /// The next half-edge leaving the same vertex, turning across the edge that ends there in
     /// `he`'s triangle; `None` where that edge is on the boundary.
     #[must_use]
-    pub fn rotate(&self, he: u32) -> Option<u32> {
+    pub(crate) fn rotate(&self, he: u32) -> Option<u32> {
         self.twin(Self::prev(he))
     }
 
@@ -470,7 +470,7 @@ impl<'a> HalfEdgeMesh<'a> {
     /// The boundary half-edge that follows boundary half-edge `he` around its loop: the one
     /// leaving the vertex `he` ends at.
     #[must_use]
-    pub fn next_on_boundary(&self, he: u32) -> u32 {
+    pub(crate) fn next_on_boundary(&self, he: u32) -> u32 {
         // Turn around the end vertex until the fan's boundary half-edge.
         let mut out = Self::next(he);
         for _ in 0..self.half_edge_count() {
