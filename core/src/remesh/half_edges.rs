@@ -310,7 +310,8 @@ impl<'a> HalfEdgeMesh<'a> {
         [self.origin(h), self.origin(h + 1), self.origin(h + 2)]
     }
 
-    /// The positions of vertices `0..vertex_count()`.
+    /// The positions of vertices `0..vertex_count()` (the owned remesh's copy).
+    #[cfg(feature = "alloc")]
     #[must_use]
     pub(crate) fn used_positions(&self) -> &[[f32; 3]] {
         self.positions.get(..self.vertex_count).unwrap_or_default()

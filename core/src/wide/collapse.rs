@@ -88,7 +88,7 @@ pub(crate) fn collapse_vec<N: CollapsedNode<W> + Clone, const W: usize>(
 
 /// The roles of `tree`'s nodes in its eight-wide collapse, planned here
 /// ([`CollapsePlan::write_roles`]), for a blob to store.
-#[cfg(feature = "alloc")]
+#[cfg(all(feature = "alloc", feature = "blob"))]
 pub(crate) fn eight_wide_roles(
     tree: &crate::bvh::Bvh<'_>,
 ) -> Result<alloc::vec::Vec<u8>, BuildError> {
