@@ -14,7 +14,7 @@ use criterion::{
 };
 use glam::{Vec3, Vec3A};
 use meshq::MeshBvh;
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
+use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef};
 use meshq::math::Ray;
 use meshq::query::{RayOptions, TriangleTest};
 use meshq::{MeshQuery, Traverse};
@@ -267,7 +267,7 @@ fn build(c: &mut Criterion) {
     let n = mesh.triangle_count();
     let mut group = c.benchmark_group("build");
     configure(&mut group, n);
-    let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+    let mut nodes = vec![BvhNode::EMPTY; Bvh::measure(n, None).nodes];
     let mut order = vec![0u32; n];
     let mut scratch = vec![PrimRef::EMPTY; n];
     for (name, config) in [

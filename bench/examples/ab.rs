@@ -96,11 +96,11 @@ fn main() {
         per_triangle(compact.node_bytes()),
     );
 
-    let mut plan8 = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
-    let plan8 = meshq::wide::CollapsePlan::<8>::new(&bvh, &mut plan8).expect("plan");
-    let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; plan8.node_count()];
-    let wide8 =
-        meshq::wide::WideBvh::<meshq::wide::WideNode8>::build(&plan8, &mut nodes8).expect("wide8");
+    type Wide8<'a> = meshq::wide::WideBvh<'a, meshq::wide::WideNode8>;
+    let sizes8 = Wide8::measure(&bvh);
+    let mut plan8 = vec![meshq::wide::PlanEntry::EMPTY; sizes8.plan];
+    let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; sizes8.nodes];
+    let wide8 = Wide8::build(&bvh, &mut plan8, &mut nodes8).expect("wide8");
     println!(
         "eight-wide: {} nodes, {:.1} bytes per triangle",
         wide8.nodes().len(),

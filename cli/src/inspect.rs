@@ -114,7 +114,7 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
     let stats = TreeStats::of(tree, config);
     let nodes = 32 * h.node_count as usize;
     let order = 4 * h.reference_count as usize;
-    let split_refs = meshq::query::SPLIT_REF_BYTES * h.split_ref_count as usize;
+    let split_refs = meshq::advanced::SPLIT_REF_BYTES * h.split_ref_count as usize;
     let collapse_plan = tree.collapse_roles().map_or(0, |r| r.bytes().len());
     let leaf_sizes = (0..LEAF_HISTOGRAM_LEN)
         .filter_map(|k| {

@@ -94,6 +94,7 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+pub mod advanced;
 #[cfg(feature = "blob")]
 pub mod blob;
 pub mod bvh;

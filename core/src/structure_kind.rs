@@ -35,7 +35,8 @@ impl StructureKind {
 
     /// The kind with wire tag `tag`, if this build knows it.
     #[must_use]
-    pub const fn from_tag(tag: u32) -> Option<Self> {
+    #[cfg(feature = "blob")]
+    pub(crate) const fn from_tag(tag: u32) -> Option<Self> {
         match tag {
             0 => Some(Self::Bvh),
             1 => Some(Self::KdTree),

@@ -8,7 +8,7 @@ use core::ops::ControlFlow;
 use libfuzzer_sys::fuzz_target;
 use meshq::blob::{self, BlobHeader, BlobView};
 use meshq::bvh::BvhNode;
-use meshq::math::PackedTriangle;
+use meshq::advanced::PackedTriangle;
 use meshq::math::{Aabb, Ray, Vec3};
 use meshq::{MeshBvh, MeshQuery, Traverse};
 

@@ -6,9 +6,9 @@
 use std::ops::ControlFlow;
 
 use meshq::MeshBvh;
+use meshq::advanced::PackedTriangle;
 use meshq::blob::{BlobView, FORMAT_VERSION, MeshLayout, StructureKind, mesh_checksum};
 use meshq::bvh::{BuildConfig, BvhNode};
-use meshq::math::PackedTriangle;
 use meshq::math::{Aabb, ClosestPoint, RayHit, Vec3};
 use meshq::query::RayOptions;
 use meshq::{MeshQuery, Traverse};

@@ -414,9 +414,9 @@ fn buffers_too_small_for_the_root_are_refused() {
         BufferKind::References,
         n,
     );
-    let mut packed = vec![meshq::math::PackedTriangle::default(); 3];
+    let mut packed = vec![meshq::advanced::PackedTriangle::default(); 3];
     assert!(matches!(
-        meshq::cells::pack_references(&mesh, &[0, 1, 2, 3], &mut packed),
+        meshq::advanced::pack_references(&mesh, &[0, 1, 2, 3], &mut packed),
         Err(BuildError::BufferTooSmall {
             buffer: BufferKind::Packed,
             needed: 4,

@@ -3,9 +3,9 @@
 //! on the four-wide tree collapsed from it, one query at a time and in batches.
 
 use meshq::MeshBvh;
+use meshq::advanced::PackedTriangle;
 use meshq::bvh::BuildConfig;
 use meshq::error::{BatchBuffer, BatchError};
-use meshq::math::PackedTriangle;
 use meshq::math::{ClosestPoint, Vec3};
 use meshq::wide::{WideBvh, WideNode};
 use meshq::{MeshQuery, Traverse};
@@ -25,11 +25,10 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         let bvh = checked_bvh(&owned, &mesh).unwrap();
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-        let mut plan_entries =
-            vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
-        let plan = meshq::wide::CollapsePlan::<4>::new(&bvh, &mut plan_entries).unwrap();
-        let mut wide_nodes = vec![WideNode::EMPTY; plan.node_count()];
-        let wide = WideBvh::build(&plan, &mut wide_nodes).unwrap();
+        let sizes = WideBvh::<WideNode>::measure(&bvh);
+        let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; sizes.plan];
+        let mut wide_nodes = vec![WideNode::EMPTY; sizes.nodes];
+        let wide = WideBvh::build(&bvh, &mut plan_entries, &mut wide_nodes).unwrap();
         let brute = BruteForce::new(&mesh);
         let (_, r, _) = workload::centre_radius(&loaded.positions);
         let points = workload::closest_points(&loaded.positions, QUERIES, 0xC105E);

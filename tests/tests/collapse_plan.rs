@@ -5,14 +5,12 @@
 //! binary node). Plus the plan's buffer errors.
 
 use meshq::MeshBvh;
+use meshq::advanced::{CollapsePlan, MERGED_LEAF_MAX, NODE_COST, plan_capacity};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError};
 use meshq::math::Aabb;
 use meshq::mesh::MeshRef;
-use meshq::wide::{
-    CollapsePlan, MERGED_LEAF_MAX, NODE_COST, PlanEntry, WideBvh, WideNode, WideNode8,
-    plan_capacity,
-};
+use meshq::wide::{PlanEntry, WideBvh, WideNode, WideNode8};
 use meshq_tests::{MESHES, load_mesh};
 
 /// Half the surface area of `b`, in f64 from its corners.
@@ -169,7 +167,7 @@ fn no_collapse_of_a_small_tree_is_cheaper_than_the_planned_one() {
             let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
             let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
             let mut nodes = vec![WideNode::EMPTY; plan.node_count()];
-            let four = WideBvh::build(&plan, &mut nodes).unwrap();
+            let four = WideBvh::from_plan(&plan, &mut nodes).unwrap();
             let written = evaluated_cost(&bvh, &lanes!(four.nodes()));
             let optimum = exhaustive_optimum(&bvh, 4);
             assert!(
@@ -184,7 +182,7 @@ fn no_collapse_of_a_small_tree_is_cheaper_than_the_planned_one() {
             let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
             let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
             let mut nodes = vec![WideNode8::EMPTY; plan.node_count()];
-            let eight = WideBvh::<WideNode8>::build(&plan, &mut nodes).unwrap();
+            let eight = WideBvh::<WideNode8>::from_plan(&plan, &mut nodes).unwrap();
             let written = evaluated_cost(&bvh, &lanes!(eight.nodes()));
             let optimum = exhaustive_optimum(&bvh, 8);
             assert!(
@@ -221,7 +219,7 @@ fn the_planned_collapse_of_real_meshes_costs_what_it_says_and_beats_the_trivial_
         let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
         let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
         let mut nodes = vec![WideNode8::EMPTY; plan.node_count()];
-        let eight = WideBvh::<WideNode8>::build(&plan, &mut nodes).unwrap();
+        let eight = WideBvh::<WideNode8>::from_plan(&plan, &mut nodes).unwrap();
         let written = evaluated_cost(&bvh, &lanes!(eight.nodes()));
         assert!(close(written, f64::from(plan.cost())), "{name}: {written}");
         assert!(written < trivial, "{name}: {written} vs trivial {trivial}");

@@ -4,15 +4,13 @@
 //! and roles that break a rule are refused by every loader.
 
 use meshq::MeshBvh;
+use meshq::advanced::{CollapsePlan, CollapseRoles, MERGED_LEAF_MAX, plan_capacity};
 use meshq::blob::{self, BlobHeader, BlobView, EncodeOptions, MeshLayout, reseal};
 use meshq::bvh::{BuildConfig, Bvh, BvhNode, SpatialSplits};
 use meshq::error::BlobError;
 use meshq::math::Aabb;
 use meshq::owned::MeshIndex;
-use meshq::wide::{
-    CollapsePlan, CollapseRoles, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideNode8, plan_capacity,
-    wide_node_capacity,
-};
+use meshq::wide::{PlanEntry, WideBvh, WideNode8};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;
 use meshq_tests::{MESHES, load_mesh};
@@ -102,9 +100,9 @@ fn planned_roles(bvh: &Bvh<'_>) -> (Vec<u8>, usize) {
 }
 
 /// The wide nodes of `plan`.
-fn collapsed(plan: &CollapsePlan<'_, '_, 8>, triangles: usize) -> Vec<WideNode8> {
-    let mut out = vec![WideNode8::EMPTY; wide_node_capacity(triangles)];
-    let n = WideBvh::<WideNode8>::build(plan, &mut out)
+fn collapsed(plan: &CollapsePlan<'_, '_, 8>) -> Vec<WideNode8> {
+    let mut out = vec![WideNode8::EMPTY; WideBvh::<WideNode8>::measure(plan.tree()).nodes];
+    let n = WideBvh::<WideNode8>::from_plan(plan, &mut out)
         .unwrap()
         .nodes()
         .len();
@@ -141,7 +139,7 @@ fn stored_roles_rebuild_the_planned_collapse() {
             // Decoded by the format's rules, the roles give the solved plan's wide tree.
             let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
             let solved = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
-            let solved_nodes = collapsed(&solved, built.reference_count());
+            let solved_nodes = collapsed(&solved);
             assert_eq!(
                 decode(nodes, &roles, 0),
                 wide_lanes(&solved_nodes, 0),
@@ -159,11 +157,7 @@ fn stored_roles_rebuild_the_planned_collapse() {
             assert_eq!(stored.check(&bvh), Ok(count), "{name} {what}");
             let from_roles = CollapsePlan::<8>::from_roles(&bvh, stored).unwrap();
             assert_eq!(from_roles.node_count(), count);
-            assert_eq!(
-                collapsed(&from_roles, built.reference_count()),
-                solved_nodes,
-                "{name} {what}"
-            );
+            assert_eq!(collapsed(&from_roles), solved_nodes, "{name} {what}");
             // The roles of an eight-wide collapse are not a four-wide one (a node has more
             // than four lanes somewhere on these meshes).
             assert!(

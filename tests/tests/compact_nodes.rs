@@ -5,8 +5,9 @@
 use std::ops::ControlFlow;
 
 use meshq::MeshBvh;
+use meshq::advanced::Aabb4;
 use meshq::bvh::BuildConfig;
-use meshq::math::{Aabb, Aabb4, Vec3};
+use meshq::math::{Aabb, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse};
 use meshq::wide::{CompactNode, WideBvh, WideNode};
 use meshq_tests::oracle::BruteForce;

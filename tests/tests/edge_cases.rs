@@ -3,9 +3,9 @@
 
 use glam::Vec3;
 use meshq::MeshBvh;
-use meshq::bvh::{self, BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::advanced::PackedTriangle;
+use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef};
 use meshq::error::{BufferKind, BuildError, FlatSlice, MeshError};
-use meshq::math::PackedTriangle;
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
 use meshq::query::RayOptions;
@@ -25,7 +25,7 @@ fn one_element_short_buffers_are_errors_and_nothing_is_written() {
     let loaded = load_mesh("spot");
     let mesh = loaded.valid();
     let n = mesh.triangle_count();
-    let cap = bvh::node_capacity(n);
+    let cap = Bvh::measure(n, None).nodes;
     let cases = [
         (cap - 1, n, n, BufferKind::Nodes, cap),
         (cap, n - 1, n, BufferKind::Order, n),

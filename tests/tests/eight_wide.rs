@@ -7,13 +7,12 @@ use std::collections::BTreeSet;
 use std::ops::ControlFlow;
 
 use meshq::MeshBvh;
+use meshq::advanced::{CollapsePlan, MERGED_LEAF_MAX, plan_capacity};
 use meshq::bvh::BuildConfig;
 use meshq::geom::CullMode;
 use meshq::math::{Aabb, Ray, RayHit, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse, TriangleTest};
-use meshq::wide::{
-    CollapsePlan, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideNode8, plan_capacity, wide_node_capacity,
-};
+use meshq::wide::{PlanEntry, WideBvh, WideNode8};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, load_mesh, workload};
 
@@ -38,8 +37,8 @@ fn the_collapse_keeps_every_leaf_under_boxes_that_hold_it() {
         let bvh = owned.bvh();
         let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
         let plan = CollapsePlan::<8>::new(&bvh, &mut entries).unwrap();
-        let mut storage = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
-        let eight = WideBvh::<WideNode8>::build(&plan, &mut storage).unwrap();
+        let mut storage = vec![WideNode8::EMPTY; WideBvh::<WideNode8>::measure(&bvh).nodes];
+        let eight = WideBvh::<WideNode8>::from_plan(&plan, &mut storage).unwrap();
         assert_eq!(eight.nodes().len(), plan.node_count(), "{name}");
         let owned4 = owned.clone().with_four_wide_nodes().unwrap();
         let four = owned4.wide().unwrap();
@@ -192,7 +191,7 @@ fn a_lone_leaf_and_a_too_small_buffer() {
     let mut no_entries = vec![PlanEntry::EMPTY; plan_capacity(&none_bvh)];
     let none_plan = CollapsePlan::<8>::new(&none_bvh, &mut no_entries).unwrap();
     assert_eq!(
-        WideBvh::<WideNode8>::build(&none_plan, &mut no_nodes)
+        WideBvh::<WideNode8>::from_plan(&none_plan, &mut no_nodes)
             .unwrap()
             .nodes()
             .len(),
@@ -206,10 +205,10 @@ fn a_lone_leaf_and_a_too_small_buffer() {
     let big_plan = CollapsePlan::<8>::new(&big_bvh, &mut big_entries).unwrap();
     let needed = big_plan.node_count();
     let mut short = vec![WideNode8::EMPTY; needed - 1];
-    assert!(WideBvh::<WideNode8>::build(&big_plan, &mut short).is_err());
+    assert!(WideBvh::<WideNode8>::from_plan(&big_plan, &mut short).is_err());
     let mut exact = vec![WideNode8::EMPTY; needed];
     assert_eq!(
-        WideBvh::<WideNode8>::build(&big_plan, &mut exact)
+        WideBvh::<WideNode8>::from_plan(&big_plan, &mut exact)
             .unwrap()
             .nodes()
             .len(),
@@ -352,14 +351,14 @@ fn the_default_tree_is_the_targets_and_every_choice_answers_alike() {
     let loaded_blob = MeshBvh::from_blob(&blob).unwrap();
     let bvh = built.bvh();
     let mut storage4 =
-        vec![meshq::wide::WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
+        vec![meshq::wide::WideNode::EMPTY; WideBvh::<meshq::wide::WideNode>::measure(&bvh).nodes];
     let mut entries4 = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
     let plan4 = CollapsePlan::<4>::new(&bvh, &mut entries4).unwrap();
-    let four = WideBvh::build(&plan4, &mut storage4).unwrap();
+    let four = WideBvh::from_plan(&plan4, &mut storage4).unwrap();
     let mut entries8 = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
     let plan8 = CollapsePlan::<8>::new(&bvh, &mut entries8).unwrap();
-    let mut storage8 = vec![WideNode8::EMPTY; wide_node_capacity(mesh.triangle_count())];
-    let eight = WideBvh::<WideNode8>::build(&plan8, &mut storage8).unwrap();
+    let mut storage8 = vec![WideNode8::EMPTY; WideBvh::<WideNode8>::measure(&bvh).nodes];
+    let eight = WideBvh::<WideNode8>::from_plan(&plan8, &mut storage8).unwrap();
     let eight_by_default = cfg!(any(
         target_feature = "sse2",
         target_feature = "neon",

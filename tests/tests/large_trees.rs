@@ -4,10 +4,10 @@
 //! closest point, are a brute-force scan's.
 
 use meshq::MeshBvh;
+use meshq::advanced::WARM_TREE_BYTES;
 use meshq::bvh::BuildConfig;
 use meshq::math::RayHit;
 use meshq::query::{MeshQuery, RayOptions};
-use meshq::wide::WARM_TREE_BYTES;
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{load_mesh, subdivided, workload};
 

@@ -7,11 +7,12 @@
 
 use meshq::MeshBvh;
 use meshq::MeshQuery;
+use meshq::advanced::PackedTriangle;
 use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
-use meshq::bvh::{Bvh, BvhNode, PrimRef, node_capacity};
+use meshq::bvh::{Bvh, BvhNode, PrimRef};
 use meshq::error::{BatchBuffer, BatchError};
-use meshq::math::{ClosestPoint, PackedTriangle, RayHit};
+use meshq::math::{ClosestPoint, RayHit};
 use meshq::owned::{MeshIndex, StructureKind};
 use meshq::parallel::{self, RUN};
 use meshq::query::RayOptions;
@@ -157,7 +158,7 @@ fn the_parallel_build_is_the_sequential_build() {
             BuildConfig::balanced(),
             BuildConfig::high_quality(),
         ] {
-            let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+            let mut nodes = vec![BvhNode::EMPTY; Bvh::measure(n, None).nodes];
             let mut order = vec![0u32; n];
             let mut scratch = vec![PrimRef::EMPTY; n];
             let sequential =
@@ -168,7 +169,7 @@ fn the_parallel_build_is_the_sequential_build() {
                 sequential.depth(),
             );
             for threads in [1, 2, 3] {
-                let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+                let mut nodes = vec![BvhNode::EMPTY; Bvh::measure(n, None).nodes];
                 let mut order = vec![0u32; n];
                 let mut scratch = vec![PrimRef::EMPTY; n];
                 let parallel = pool(threads).install(|| {
@@ -237,7 +238,7 @@ fn the_parallel_build_is_the_sequential_build() {
     let loaded = load_mesh("spot");
     let mesh = loaded.valid();
     let n = mesh.triangle_count();
-    let mut nodes = vec![BvhNode::EMPTY; node_capacity(n) - 1];
+    let mut nodes = vec![BvhNode::EMPTY; Bvh::measure(n, None).nodes - 1];
     let (mut order, mut scratch) = (vec![7u32; n], vec![PrimRef::EMPTY; n]);
     assert!(
         Bvh::build_parallel(

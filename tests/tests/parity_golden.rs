@@ -134,10 +134,10 @@ fn computed_line(name: &str) -> String {
         in_memory, expected,
         "{name}: in-memory BVH against brute force"
     );
-    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
-    let plan = meshq::wide::CollapsePlan::<4>::new(&bvh, &mut plan_entries).unwrap();
-    let mut wide_nodes = vec![WideNode::EMPTY; plan.node_count()];
-    let wide = WideBvh::build(&plan, &mut wide_nodes).unwrap();
+    let sizes = WideBvh::<WideNode>::measure(&bvh);
+    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; sizes.plan];
+    let mut wide_nodes = vec![WideNode::EMPTY; sizes.nodes];
+    let wide = WideBvh::build(&bvh, &mut plan_entries, &mut wide_nodes).unwrap();
     // The root's child boxes are padded around their own triangles: inside the root's box.
     assert!(bounds.contains_aabb(&wide.bounds()), "{name}: wide bounds");
     let from_wide = run_parity(&spec, bounds, &mut Wide { wide, mesh });

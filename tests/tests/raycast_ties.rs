@@ -85,7 +85,8 @@ fn camera_packets_name_the_lower_twin() {
 fn a_triangle_numbered_u32_max_is_still_hit() {
     use glam::Vec3;
     use meshq::Traverse;
-    use meshq::math::{Aabb, PackedTriangle};
+    use meshq::advanced::PackedTriangle;
+    use meshq::math::Aabb;
     use meshq::query::{LeafTriangleIds, Visitor};
 
     struct OneLeaf<'a> {

@@ -4,9 +4,9 @@
 //! reading triangles from the mesh and from packed copies, one ray at a time and in batches.
 
 use meshq::MeshBvh;
+use meshq::advanced::PackedTriangle;
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::geom::CullMode;
-use meshq::math::PackedTriangle;
 use meshq::math::Ray;
 use meshq::mesh::ValidMesh;
 use meshq::query::{PackedTriangles, RayOptions, TriangleTest};
@@ -39,10 +39,10 @@ fn with_trees(name: &str, check: impl FnOnce(&LoadedMesh, &MeshBvh, &Trees<'_>))
     let bvh = checked_bvh(&owned, &mesh).unwrap();
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
     let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
-    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&bvh)];
-    let plan = meshq::wide::CollapsePlan::<4>::new(&bvh, &mut plan_entries).unwrap();
-    let mut wide_nodes = vec![WideNode::EMPTY; plan.node_count()];
-    let wide = WideBvh::build(&plan, &mut wide_nodes).unwrap();
+    let sizes = WideBvh::<WideNode>::measure(&bvh);
+    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; sizes.plan];
+    let mut wide_nodes = vec![WideNode::EMPTY; sizes.nodes];
+    let wide = WideBvh::build(&bvh, &mut plan_entries, &mut wide_nodes).unwrap();
     let brute = BruteForce::new(&mesh);
     let trees = Trees {
         bvh,

@@ -165,7 +165,7 @@ fn spatial_builds_are_deterministic_and_use_only_their_room() {
         assert_eq!(a.bvh().nodes(), b.bvh().nodes());
         assert_eq!(a.bvh().order(), b.bvh().order());
         assert_eq!(a.split_refs(), b.split_refs());
-        assert!(a.reference_count() <= spatial.reference_capacity(mesh.triangle_count()));
+        assert!(a.reference_count() <= Bvh::measure(mesh.triangle_count(), Some(&spatial)).order);
         assert!(a.reference_count() > mesh.triangle_count(), "extra {extra}");
     }
 }
@@ -176,9 +176,9 @@ fn the_spatial_builder_checks_its_buffers_and_settings() {
     let mesh = loaded.valid();
     let n = mesh.triangle_count();
     let spatial = SpatialSplits::DEFAULT;
-    let room = spatial.reference_capacity(n);
+    let room = Bvh::measure(n, Some(&spatial)).order;
     assert_eq!(room, 2 * n);
-    let splits_len = spatial.split_ref_capacity(n);
+    let splits_len = Bvh::measure(n, Some(&spatial)).split_refs;
     let build = |nodes: usize, order: usize, scratch: usize, splits: usize| {
         let mut nodes = vec![BvhNode::EMPTY; nodes];
         let mut order = vec![0u32; order];
@@ -195,7 +195,7 @@ fn the_spatial_builder_checks_its_buffers_and_settings() {
         )
         .map(|b| b.order().len())
     };
-    let nodes = meshq::bvh::node_capacity(room);
+    let nodes = Bvh::measure(room, None).nodes;
     assert!(build(nodes, room, room, splits_len).unwrap() > n);
     let short = |buffer, needed| {
         Err(BuildError::BufferTooSmall {

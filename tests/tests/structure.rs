@@ -127,7 +127,7 @@ fn every_config_on_every_mesh_builds_a_valid_exact_tree() {
             let bvh = checked_bvh(&owned, &mesh).unwrap();
             bvh.check(&mesh).unwrap();
             assert_permutation(bvh.order(), mesh.triangle_count());
-            assert!(bvh.nodes().len() <= meshq::bvh::node_capacity(mesh.triangle_count()));
+            assert!(bvh.nodes().len() <= Bvh::measure(mesh.triangle_count(), None).nodes);
             let max_leaf = bvh.nodes().iter().map(|n| n.count).max().unwrap();
             assert!(
                 max_leaf <= config.max_leaf_size,
@@ -274,7 +274,7 @@ fn builds_are_deterministic_whatever_the_buffers_held() {
         max: [-3.0; 3],
         count: 9,
     };
-    let mut nodes = vec![garbage; meshq::bvh::node_capacity(n) + 5];
+    let mut nodes = vec![garbage; Bvh::measure(n, None).nodes + 5];
     let mut order = vec![u32::MAX; n + 3];
     let mut scratch = vec![meshq::bvh::PrimRef::EMPTY; n + 1];
     let b = Bvh::build(
@@ -430,16 +430,16 @@ fn built_parts_are_checked_for_safety_but_not_for_boxes() {
 /// as brute force does.
 #[test]
 fn views_accept_the_untrimmed_buffers_a_build_was_given() {
-    use meshq::bvh::{PrimRef, node_capacity};
-    use meshq::math::PackedTriangle;
+    use meshq::advanced::PackedTriangle;
+    use meshq::bvh::PrimRef;
     use meshq::query::PackedTriangles;
-    use meshq::wide::{WideBvh, WideNode, wide_node_capacity};
+    use meshq::wide::{WideBvh, WideNode};
 
     for name in ["cow", "spot"] {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();
         let n = mesh.triangle_count();
-        let mut nodes = vec![BvhNode::EMPTY; node_capacity(n)];
+        let mut nodes = vec![BvhNode::EMPTY; Bvh::measure(n, None).nodes];
         let mut order = vec![0u32; n + 7];
         let mut scratch = vec![PrimRef::EMPTY; n];
         let config = BuildConfig::default();
@@ -456,10 +456,11 @@ fn views_accept_the_untrimmed_buffers_a_build_was_given() {
             assert_eq!(view.depth(), depth, "{name}");
         }
 
-        let mut entries = vec![meshq::wide::PlanEntry::EMPTY; meshq::wide::plan_capacity(&full)];
-        let plan = meshq::wide::CollapsePlan::<4>::new(&full, &mut entries).unwrap();
-        let mut wide_nodes = vec![WideNode::EMPTY; wide_node_capacity(n) + 3];
-        let written = WideBvh::build(&plan, &mut wide_nodes)
+        let mut entries =
+            vec![meshq::wide::PlanEntry::EMPTY; meshq::advanced::plan_capacity(&full)];
+        let plan = meshq::advanced::CollapsePlan::<4>::new(&full, &mut entries).unwrap();
+        let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::<WideNode>::measure(&full).nodes + 3];
+        let written = WideBvh::from_plan(&plan, &mut wide_nodes)
             .unwrap()
             .nodes()
             .len();

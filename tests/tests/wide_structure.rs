@@ -8,13 +8,12 @@ use std::collections::BTreeMap;
 
 use glam::Vec3;
 use meshq::MeshBvh;
+use meshq::advanced::{CollapsePlan, MERGED_LEAF_MAX, plan_capacity};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError, StructureError};
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
-use meshq::wide::{
-    CollapsePlan, MERGED_LEAF_MAX, PlanEntry, WideBvh, WideNode, plan_capacity, wide_node_capacity,
-};
+use meshq::wide::{PlanEntry, WideBvh, WideNode};
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
@@ -167,10 +166,10 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
             let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
             let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
             let count = plan.node_count();
-            assert!(count <= wide_node_capacity(mesh.triangle_count()));
+            assert!(count <= WideBvh::<WideNode>::measure(&bvh).nodes);
             // Exactly sized and bound-sized buffers give the same nodes.
             let mut exact = vec![WideNode::EMPTY; count];
-            let wide = WideBvh::build(&plan, &mut exact).unwrap();
+            let wide = WideBvh::from_plan(&plan, &mut exact).unwrap();
             assert_eq!(wide.nodes().len(), count);
             let what = format!("{name} {label}");
             let depth = check_against_binary(&bvh, &wide, &what);
@@ -181,8 +180,8 @@ fn wide_trees_hold_every_binary_leaf_once_under_nested_boxes() {
                 "{what}: {count} of {inner}"
             );
             assert!(depth < bvh.depth() as usize, "{what}: depth {depth}");
-            let mut roomy = vec![WideNode::EMPTY; wide_node_capacity(mesh.triangle_count())];
-            let again = WideBvh::build(&plan, &mut roomy).unwrap();
+            let mut roomy = vec![WideNode::EMPTY; WideBvh::<WideNode>::measure(&bvh).nodes];
+            let again = WideBvh::from_plan(&plan, &mut roomy).unwrap();
             assert!(
                 again
                     .nodes()
@@ -205,7 +204,7 @@ fn a_short_buffer_is_an_error_and_nothing_is_written() {
     let needed = plan.node_count();
     let mut short = vec![WideNode::EMPTY; needed - 1];
     assert_eq!(
-        WideBvh::build(&plan, &mut short).unwrap_err(),
+        WideBvh::from_plan(&plan, &mut short).unwrap_err(),
         BuildError::BufferTooSmall {
             buffer: BufferKind::WideNodes,
             needed,
@@ -224,7 +223,7 @@ fn wide_view_accepts_exactly_the_widened_nodes() {
     let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
     let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
     let mut nodes = vec![WideNode::EMPTY; plan.node_count()];
-    WideBvh::build(&plan, &mut nodes).unwrap();
+    WideBvh::from_plan(&plan, &mut nodes).unwrap();
     let kept = nodes.clone();
     let view = WideBvh::from_parts(&plan, &kept).unwrap();
     let ray = workload::random_rays(&loaded.positions, 1, 3)[0];
@@ -279,7 +278,7 @@ fn empty_and_single_triangle_trees() {
     let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
     assert_eq!(plan.node_count(), 0);
     let mut none: [WideNode; 0] = [];
-    let wide = WideBvh::build(&plan, &mut none).unwrap();
+    let wide = WideBvh::from_plan(&plan, &mut none).unwrap();
     assert!(wide.is_empty() && wide.bounds() == Aabb::EMPTY);
     let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
     assert_eq!(wide.with(&empty).raycast(&ray), None);
@@ -296,7 +295,7 @@ fn empty_and_single_triangle_trees() {
     let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
     let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
     let mut nodes = [WideNode::EMPTY; 1];
-    let wide = WideBvh::build(&plan, &mut nodes).unwrap();
+    let wide = WideBvh::from_plan(&plan, &mut nodes).unwrap();
     assert_eq!(wide.nodes()[0].lanes(), 1);
     assert_eq!(wide.bounds(), bvh.bounds());
     let hit = wide.with(&one).raycast(&ray).unwrap();
@@ -354,7 +353,7 @@ fn awkward_meshes_match_brute_force() {
         let mut entries = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
         let plan = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
         let mut nodes = vec![WideNode::EMPTY; plan.node_count()];
-        let wide = WideBvh::build(&plan, &mut nodes).unwrap();
+        let wide = WideBvh::from_plan(&plan, &mut nodes).unwrap();
         check_against_binary(&bvh, &wide, what);
         let brute = BruteForce::new(&mesh);
         let mut hits = 0;
@@ -378,6 +377,105 @@ fn awkward_meshes_match_brute_force() {
                 key(wide.with(&mesh).closest_point(p, f32::INFINITY)),
                 key(brute.closest_point(p, f32::INFINITY)),
                 "{what}"
+            );
+        }
+    }
+}
+
+/// The one-call build (`measure`, then `build` with plan scratch) gives, for every node kind,
+/// exactly the nodes of a collapse planned by hand (the compact kind: the four-wide nodes
+/// quantized), within the measured sizes; short buffers are typed errors naming the buffer.
+#[test]
+fn measure_and_build_match_a_planned_collapse_for_every_node_kind() {
+    use meshq::wide::{CompactNode, WideNode8};
+    for name in MESHES {
+        let loaded = load_mesh(name);
+        let mesh = loaded.valid();
+        let owned = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+        let bvh = checked_bvh(&owned, &mesh).unwrap();
+        let sizes = WideBvh::<WideNode>::measure(&bvh);
+        assert_eq!(sizes, WideBvh::<WideNode8>::measure(&bvh), "{name}");
+        assert_eq!(sizes.plan, plan_capacity(&bvh), "{name}");
+        assert!(sizes.nodes < mesh.triangle_count().max(2), "{name}");
+
+        let mut entries = vec![PlanEntry::EMPTY; sizes.plan];
+        let plan4 = CollapsePlan::<4>::new(&bvh, &mut entries).unwrap();
+        let mut by_hand4 = vec![WideNode::EMPTY; plan4.node_count()];
+        let by_hand4 = WideBvh::from_plan(&plan4, &mut by_hand4)
+            .unwrap()
+            .nodes()
+            .to_vec();
+        let mut scratch = vec![PlanEntry::EMPTY; sizes.plan];
+        let mut out4 = vec![WideNode::EMPTY; sizes.nodes];
+        let four = WideBvh::build(&bvh, &mut scratch, &mut out4).unwrap();
+        assert_eq!(four.nodes().len(), by_hand4.len(), "{name}");
+        assert!(
+            four.nodes()
+                .iter()
+                .zip(&by_hand4)
+                .all(|(a, b)| a.same_bits(b)),
+            "{name}"
+        );
+
+        let mut entries8 = vec![PlanEntry::EMPTY; sizes.plan];
+        let plan8 = CollapsePlan::<8>::new(&bvh, &mut entries8).unwrap();
+        let mut by_hand8 = vec![WideNode8::EMPTY; plan8.node_count()];
+        let by_hand8 = WideBvh::<WideNode8>::from_plan(&plan8, &mut by_hand8).unwrap();
+        let mut out8 = vec![WideNode8::EMPTY; sizes.nodes];
+        let eight = WideBvh::<WideNode8>::build(&bvh, &mut scratch, &mut out8).unwrap();
+        assert_eq!(eight.nodes().len(), by_hand8.nodes().len(), "{name}");
+        let same8 = eight
+            .nodes()
+            .iter()
+            .zip(by_hand8.nodes())
+            .all(|(a, b)| a.same_bits(b));
+        assert!(same8, "{name}");
+
+        let mut quantized = vec![CompactNode::EMPTY; four.nodes().len()];
+        let quantized = WideBvh::quantize(&four, &mut quantized).unwrap();
+        let mut out_c = vec![CompactNode::EMPTY; sizes.nodes];
+        let compact = WideBvh::<CompactNode>::build(&bvh, &mut scratch, &mut out_c).unwrap();
+        assert_eq!(compact.nodes(), quantized.nodes(), "{name}");
+
+        // Every kind answers as the binary tree does.
+        let brute = BruteForce::new(&mesh);
+        for ray in workload::random_rays(&loaded.positions, 300, 7) {
+            let want = brute.raycast(&ray, &Default::default());
+            assert_eq!(four.with(&mesh).raycast(&ray), want, "{name}");
+            assert_eq!(eight.with(&mesh).raycast(&ray), want, "{name}");
+            assert_eq!(compact.with(&mesh).raycast(&ray), want, "{name}");
+        }
+
+        if sizes.plan > 0 {
+            let mut short_plan = vec![PlanEntry::EMPTY; sizes.plan - 1];
+            let err = WideBvh::build(&bvh, &mut short_plan, &mut out4).unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    BuildError::BufferTooSmall {
+                        buffer: BufferKind::CollapsePlan,
+                        ..
+                    }
+                ),
+                "{name}: {err:?}"
+            );
+        }
+        let needed = by_hand4.len();
+        if needed > 0 {
+            let mut short = vec![CompactNode::EMPTY; needed - 1];
+            let err = WideBvh::<CompactNode>::build(&bvh, &mut scratch, &mut short).unwrap_err();
+            assert_eq!(
+                err,
+                BuildError::BufferTooSmall {
+                    buffer: BufferKind::WideNodes,
+                    needed,
+                    got: needed - 1
+                },
+                "{name}"
+            );
+            assert!(
+                short.iter().all(|n| *n == CompactNode::EMPTY),
+                "{name}: nothing written"
             );
         }
     }

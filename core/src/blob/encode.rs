@@ -10,13 +10,13 @@ use super::format::{
 };
 use super::source::BlobSource;
 use super::structure_config::WireConfig;
+use crate::advanced::CollapseRoles;
 use crate::bvh::{BuildConfig, Bvh};
 use crate::cells::TwoWordNode;
 use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::SplitRefs;
-use crate::wide::CollapseRoles;
 
 /// What to put in a blob besides the tree.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -28,7 +28,7 @@ pub struct EncodeOptions<'r> {
     /// affect queries.
     pub config: BuildConfig,
     /// The roles of the tree's nodes in its eight-wide collapse
-    /// ([`CollapsePlan::write_roles`](crate::wide::CollapsePlan::write_roles) of a
+    /// ([`CollapsePlan::write_roles`](crate::advanced::CollapsePlan::write_roles) of a
     /// `CollapsePlan::<8>`), stored (format version 5) so that loaders collapse the tree without
     /// planning it. `None` (the default) writes the blob at an older version, whose loaders plan
     /// the collapse themselves. Queries answer the same either way.

@@ -102,7 +102,7 @@ impl MeshLayout {
 
     /// The layout with wire tag `tag`, if this build knows it.
     #[must_use]
-    pub const fn from_tag(tag: u32) -> Option<Self> {
+    pub(crate) const fn from_tag(tag: u32) -> Option<Self> {
         match tag {
             0 => Some(Self::Indexed),
             1 => Some(Self::Packed),

@@ -36,7 +36,7 @@ pub struct BlobHeader {
     /// count, more with spatial splits), the reference count of a k-d tree, octree or grid (a
     /// triangle in several cells counts once per cell).
     pub reference_count: u32,
-    /// Entries of a BVH's split references ([`SplitRefs`](crate::query::SplitRefs)): 0 unless
+    /// Entries of a BVH's split references ([`SplitRefs`](crate::advanced::SplitRefs)): 0 unless
     /// it was built with spatial splits (version 4 or 5).
     pub split_ref_count: u32,
     /// A BVH's levels (0 when empty, 1 for a lone leaf); the depth of the deepest leaf of a

@@ -43,7 +43,7 @@
 //! | nodes | BVH: sequence of 32-byte records; others: sequence of fixed `u32` | BVH: [`BvhNode`](crate::bvh::BvhNode) (min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32`); k-d tree and octree: two words per node ([`KdNode`](crate::kdtree::KdNode), [`OctreeNode`](crate::octree::OctreeNode) `a`, `b`); grid: the cell offsets (cells + 1) |
 //! | order | sequence of fixed `u32` | leaf slot → input triangle index: a BVH's order (one per triangle; with spatial splits, the header's slot count), the references of the others (header `config`'s count) |
 //! | split references | versions 4 and 5: sequence of 32-byte records | a BVH with spatial splits: [`SplitRef`](crate::query::SplitRef)s sorted by triangle then slot (triangle and slot fixed `u32`, the leaf's box `f32`×6); empty without spatial splits |
-//! | collapse roles | version 5: sequence of bytes, one per four nodes | a BVH's eight-wide collapse ([`CollapseRoles`](crate::wide::CollapseRoles)): node `i`'s role in bits `2 (i mod 4)` and up of byte `i / 4`: 0 none, 1 starts a wide node, 2 a leaf merged from its subtree |
+//! | collapse roles | version 5: sequence of bytes, one per four nodes | a BVH's eight-wide collapse ([`CollapseRoles`](crate::advanced::CollapseRoles)): node `i`'s role in bits `2 (i mod 4)` and up of byte `i / 4`: 0 none, 1 starts a wide node, 2 a leaf merged from its subtree |
 //! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples, one per order entry; omitted: nothing |
 //!
 //! The config by kind: BVH: split tag (0 SAH, 1 centre), then varint `u32` × 3 (bins,

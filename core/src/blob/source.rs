@@ -1,6 +1,7 @@
 //! [`BlobSource`]: a built structure of any kind, with its config, ready to encode.
 
 use super::structure_config::StructureConfig;
+use crate::advanced::CollapseRoles;
 use crate::bvh::{BuildConfig, Bvh};
 use crate::error::BlobError;
 use crate::grid::{Grid, GridConfig};
@@ -9,7 +10,6 @@ use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 use crate::octree::{Octree, OctreeConfig, OctreeNode};
 use crate::structure_kind::StructureKind;
-use crate::wide::CollapseRoles;
 
 /// A structure built in memory, with the config it was built with, as
 /// [`encode_structure_into`](super::encode_structure_into) writes it.

@@ -1,12 +1,12 @@
 //! The tree of a blob, read in place from its bytes.
 
 use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
+use crate::advanced::CollapseRoles;
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::query::LeafTriangleIds;
-#[cfg(feature = "blob-spatial")]
-use crate::query::SPLIT_REF_BYTES;
 use crate::query::SplitRefs;
-use crate::wide::CollapseRoles;
+#[cfg(feature = "blob-spatial")]
+use crate::query::split_refs::SPLIT_REF_BYTES;
 
 /// A BVH whose nodes and order are read straight out of a validated blob's bytes (in RAM or in
 /// flash): no copy, 32 bytes decoded per node visited.
@@ -35,7 +35,7 @@ impl<'a> BlobTree<'a> {
 
     /// The roles of the tree's nodes in its eight-wide collapse, checked against the tree
     /// (format version 5; `None` for an older blob, whose loaders plan the collapse
-    /// themselves): [`CollapsePlan::from_roles`](crate::wide::CollapsePlan::from_roles)
+    /// themselves): [`CollapsePlan::from_roles`](crate::advanced::CollapsePlan::from_roles)
     /// collapses the tree with them.
     #[must_use]
     pub fn collapse_roles(&self) -> Option<CollapseRoles<'a>> {

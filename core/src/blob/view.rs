@@ -14,6 +14,7 @@ use super::split_check::{check_repeated_corners, check_slots};
 #[cfg(feature = "blob-cells")]
 use super::structure_config::StructureConfig;
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
+use crate::advanced::CollapseRoles;
 use crate::bvh::TreeArrays;
 use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::bvh::split_coverage::check_split_coverage;
@@ -29,10 +30,9 @@ use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 #[cfg(feature = "blob-cells")]
 use crate::octree::Octree;
-use crate::query::SPLIT_REF_BYTES;
+use crate::query::split_refs::SPLIT_REF_BYTES;
 use crate::query::{LeafTriangles, Traverse, Visitor};
 use crate::structure_kind::StructureKind;
-use crate::wide::CollapseRoles;
 
 /// A validated blob of any structure kind, queried in place: nodes, references and (unless
 /// omitted) the mesh are read from the byte slice on demand — a blob in flash is never copied
@@ -275,7 +275,7 @@ fn split_records<'a>(
 }
 
 /// A BVH's collapse roles, after the split references from version 5 on: one byte per four
-/// nodes ([`CollapseRoles`](crate::wide::CollapseRoles)). Empty before version 5.
+/// nodes ([`CollapseRoles`](crate::advanced::CollapseRoles)). Empty before version 5.
 #[inline(always)]
 fn role_bytes<'a>(header: &BlobHeader, r: &mut Reader<'a>) -> Result<&'a [u8], BlobError> {
     if header.version >= PLANNED_VERSION {

@@ -3,13 +3,14 @@
 //!
 //! ```
 //! use meshq::prelude::*;
-//! use meshq::bvh::{self, BvhNode, PrimRef};
+//! use meshq::bvh::{BvhNode, PrimRef};
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
-//! // Caller-owned buffers, sized by the sizing functions...
-//! let mut nodes = [BvhNode::EMPTY; bvh::node_capacity(1)];
-//! let mut order = [0u32; 1];
-//! let mut scratch = [PrimRef::EMPTY; 1];
+//! // Caller-owned buffers, sized by `measure`...
+//! let sizes = Bvh::measure(mesh.triangle_count(), None);
+//! let mut nodes = vec![BvhNode::EMPTY; sizes.nodes];
+//! let mut order = vec![0u32; sizes.order];
+//! let mut scratch = vec![PrimRef::EMPTY; sizes.order];
 //! let bvh = Bvh::build(&mesh, &BuildConfig::default(), &mut nodes, &mut order, &mut scratch)?;
 //! let hit = bvh.with(&mesh).raycast(&Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z));
 //! assert_eq!(hit.map(|h| (h.tri, h.t)), Some((0, 1.0)));
@@ -61,7 +62,8 @@ pub use buffers::BvhBuffers;
 pub use config::{BuildConfig, SplitStrategy};
 pub use node::BvhNode;
 pub use prim_ref::PrimRef;
-pub use sizing::{MAX_DEPTH, node_capacity};
+pub(crate) use sizing::node_capacity;
+pub use sizing::{BvhSizes, MAX_DEPTH};
 pub use spatial::SpatialSplits;
 pub use stats::{LEAF_HISTOGRAM_LEN, TreeStats};
 pub use tree::Bvh;

@@ -6,14 +6,23 @@
 /// overflow.
 pub const MAX_DEPTH: u32 = 64;
 
-/// Nodes needed for a tree over `tri_count` triangles: `2·n − 1` (0 for no triangles). The
-/// order array and the build scratch take one entry per triangle; packed triangles one per
-/// triangle; a four-wide tree [`wide_node_capacity`](crate::wide::wide_node_capacity).
-#[must_use]
-pub const fn node_capacity(tri_count: usize) -> usize {
-    if tri_count == 0 {
+/// The buffer sizes of a BVH build, from [`Bvh::measure`](super::Bvh::measure): enough for every mesh of that many
+/// triangles, so buffers can be sized before the mesh is at hand (or in a `const`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BvhSizes {
+    /// Nodes: `2·r − 1` for `r` references (0 for none).
+    pub nodes: usize,
+    /// Order slots and scratch entries: one per reference, `r`.
+    pub order: usize,
+    /// Split references: 0 without spatial splits, two per extra reference with them.
+    pub split_refs: usize,
+}
+
+/// Nodes needed for a tree over `count` references: `2·n − 1` (0 for none).
+pub(crate) const fn node_capacity(count: usize) -> usize {
+    if count == 0 {
         0
     } else {
-        tri_count.saturating_mul(2) - 1
+        count.saturating_mul(2) - 1
     }
 }

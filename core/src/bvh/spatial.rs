@@ -66,7 +66,7 @@ impl SpatialSplits {
     /// need (nodes: [`node_capacity`](super::node_capacity) of it). A range outside the
     /// documented one counts as `0` extra.
     #[must_use]
-    pub fn reference_capacity(&self, tri_count: usize) -> usize {
+    pub(crate) fn reference_capacity(&self, tri_count: usize) -> usize {
         tri_count.saturating_add(self.extra_room(tri_count))
     }
 
@@ -74,7 +74,7 @@ impl SpatialSplits {
     /// [`Bvh::build_spatial`](super::Bvh::build_spatial) needs: two per extra reference (a
     /// triangle held `k > 1` times makes `k − 1` extra references and `k` entries).
     #[must_use]
-    pub fn split_ref_capacity(&self, tri_count: usize) -> usize {
+    pub(crate) fn split_ref_capacity(&self, tri_count: usize) -> usize {
         self.extra_room(tri_count).saturating_mul(2)
     }
 

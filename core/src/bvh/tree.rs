@@ -1,5 +1,6 @@
 use super::build::build_into;
 use super::check::{CheckLevel, Extent, check};
+use super::sizing::{BvhSizes, node_capacity};
 use super::spatial_build::build_spatial_into;
 use super::{BuildConfig, BvhNode, PrimRef, SpatialSplits, TreeArrays};
 use crate::error::{BuildError, StructureError};
@@ -24,9 +25,9 @@ pub struct Bvh<'a> {
 }
 
 impl<'a> Bvh<'a> {
-    /// Builds a BVH of `mesh` into `nodes` (at least [`node_capacity`](super::node_capacity)
-    /// of the triangle count), `order` (one slot per triangle) and `scratch` (one
-    /// [`PrimRef`] per triangle, contents afterwards unspecified).
+    /// Builds a BVH of `mesh` into `nodes`, `order` and `scratch` ([`Bvh::measure`] sizes
+    /// them: `2·n − 1` nodes, one order slot and one [`PrimRef`] of scratch per triangle;
+    /// the contents of `scratch` afterwards are unspecified).
     ///
     /// Deterministic: the same mesh and config give the same nodes and order, bit for bit, on
     /// every target. Uses only the given buffers and a fixed amount of stack (a few KiB).
@@ -67,10 +68,8 @@ impl<'a> Bvh<'a> {
     /// receives one [`SplitRef`] per such reference, which queries that report triangles use
     /// to report each once ([`Bvh::split_refs`]). Answers are those of [`Bvh::build`]'s tree.
     ///
-    /// Buffers: `nodes` at least [`node_capacity`](super::node_capacity) of
-    /// [`SpatialSplits::reference_capacity`], `order` and `scratch` that capacity, and
-    /// `split_refs` [`SpatialSplits::split_ref_capacity`] (contents of `scratch` afterwards
-    /// unspecified). The view keeps the used prefixes. Deterministic, like [`Bvh::build`];
+    /// Buffers: as [`Bvh::measure`] with `Some(spatial)` sizes them (contents of `scratch`
+    /// afterwards unspecified). The view keeps the used prefixes. Deterministic, like [`Bvh::build`];
     /// meshes of 2³¹ triangles or more, and a room of 2³² references or more, are refused
     /// ([`BuildError::InvalidConfig`] naming `extra_references`).
     ///
@@ -241,7 +240,8 @@ impl<'a> Bvh<'a> {
     /// A table that does not belong to the tree makes reporting queries report a triangle
     /// twice or not at all; never a panic.
     #[must_use]
-    pub const fn with_split_refs(mut self, splits: SplitRefs<'a>) -> Self {
+    #[cfg(any(feature = "blob", feature = "alloc"))]
+    pub(crate) const fn with_split_refs(mut self, splits: SplitRefs<'a>) -> Self {
         self.splits = splits;
         self
     }
@@ -340,5 +340,28 @@ impl TreeArrays for Bvh<'_> {
     #[inline(always)]
     fn split_refs(&self) -> SplitRefs<'_> {
         self.splits
+    }
+}
+
+impl Bvh<'_> {
+    /// The buffers a build of `tri_count` triangles needs: [`Bvh::build`]'s with `spatial`
+    /// `None`, [`Bvh::build_spatial`]'s with the spatial-split settings (a tree may then hold
+    /// up to `n + ⌊n·extra⌋` references; a `spatial` outside its documented ranges counts as
+    /// no extra room, and its build fails with [`BuildError::InvalidConfig`](crate::error::BuildError::InvalidConfig)).
+    /// Arithmetic only; saturates rather than overflows.
+    #[must_use]
+    pub fn measure(tri_count: usize, spatial: Option<&SpatialSplits>) -> BvhSizes {
+        let (references, split_refs) = match spatial {
+            None => (tri_count, 0),
+            Some(s) => (
+                s.reference_capacity(tri_count),
+                s.split_ref_capacity(tri_count),
+            ),
+        };
+        BvhSizes {
+            nodes: node_capacity(references),
+            order: references,
+            split_refs,
+        }
     }
 }

@@ -11,22 +11,23 @@ mod cell_walk;
 mod check;
 mod mailbox;
 mod offer;
-mod pack;
+pub(crate) mod pack;
 mod reference;
 mod region;
 mod sizes;
 mod stats;
 mod tree_build;
-mod words;
+pub(crate) mod words;
 
 pub(crate) use cell_walk::{CellNode, CellTree, for_each_cell, stats};
 pub(crate) use check::{Visits, first_bad_reference};
 pub(crate) use mailbox::Mailbox;
 pub(crate) use offer::Offer;
-pub use pack::pack_references;
 pub(crate) use reference::ReferencePad;
 pub(crate) use region::{Region, Untracked};
 pub use sizes::TreeSizes;
 pub use stats::CellStats;
 pub(crate) use tree_build::{Decision, MAX_ARITY, Splitter, build_tree};
-pub use words::{LeWords, TwoWordNode, Words};
+#[cfg(feature = "blob")]
+pub(crate) use words::LeWords;
+pub(crate) use words::{TwoWordNode, Words};

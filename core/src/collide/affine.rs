@@ -76,7 +76,7 @@ impl Affine {
     /// after Arvo 1990), grown on each axis by eight `f32` epsilons of the largest magnitude
     /// a term of that coordinate can have. An empty box stays empty.
     #[must_use]
-    pub fn apply_box(&self, b: &Aabb) -> Aabb {
+    pub(crate) fn apply_box(&self, b: &Aabb) -> Aabb {
         if b.is_empty() {
             return *b;
         }

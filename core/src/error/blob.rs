@@ -145,7 +145,7 @@ pub enum BlobError {
         entry: u32,
     },
     /// A BVH's collapse roles (version 5) do not describe an eight-wide collapse of its tree
-    /// (see [`CollapseRoles::check`](crate::wide::CollapseRoles::check)). No encoder writes
+    /// (see [`CollapseRoles::check`](crate::advanced::CollapseRoles::check)). No encoder writes
     /// that. Fix: bake again.
     BadCollapsePlan,
     /// The stored mesh fails validation; the payload names the vertex or triangle.

@@ -6,16 +6,16 @@ use core::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum BufferKind {
-    /// The node array (size it with [`bvh::node_capacity`](crate::bvh::node_capacity)).
+    /// The node array (size it with [`Bvh::measure`](crate::bvh::Bvh::measure)).
     Nodes,
     /// The triangle order array (one `u32` per triangle).
     Order,
     /// The build scratch (one [`PrimRef`](crate::bvh::PrimRef) per triangle).
     Scratch,
-    /// Packed triangles (one [`PackedTriangle`](crate::math::PackedTriangle) per triangle).
+    /// Packed triangles (one [`PackedTriangle`](crate::advanced::PackedTriangle) per triangle).
     Packed,
     /// Wide nodes (size it with
-    /// [`CollapsePlan::node_count`](crate::wide::CollapsePlan::node_count)).
+    /// [`CollapsePlan::node_count`](crate::advanced::CollapsePlan::node_count)).
     WideNodes,
     /// A grid's cell offsets (cells + 1; size it with
     /// [`Grid::measure`](crate::grid::Grid::measure)).
@@ -24,10 +24,10 @@ pub enum BufferKind {
     /// size it with the structure's `measure`).
     References,
     /// The split references of a build with spatial splits (size it with
-    /// [`SpatialSplits::split_ref_capacity`](crate::bvh::SpatialSplits::split_ref_capacity)).
+    /// [`Bvh::measure`](crate::bvh::Bvh::measure)).
     SplitRefs,
-    /// The entries of a collapse plan (one per binary node; size it with
-    /// [`wide::plan_capacity`](crate::wide::plan_capacity)).
+    /// The entries of a collapse plan (one per inner binary node; size it with
+    /// [`WideBvh::measure`](crate::wide::WideBvh::measure)).
     CollapsePlan,
 }
 

@@ -64,7 +64,7 @@ impl WatertightRay {
 
     /// Lowers the accepted upper bound (a closer hit was found).
     #[inline(always)]
-    pub fn set_t_max(&mut self, t_max: f32) {
+    pub(crate) fn set_t_max(&mut self, t_max: f32) {
         self.t_max = t_max;
     }
 

@@ -23,7 +23,7 @@ impl GridLayout {
     /// bounds allow: each axis gets `extent · ∛(λN / volume)` cells, rounded up, where a flat
     /// axis counts as a thousandth of the largest extent.
     #[must_use]
-    pub fn for_triangles(
+    pub(crate) fn for_triangles(
         bounds: Aabb,
         triangles: usize,
         cells_per_triangle: f32,

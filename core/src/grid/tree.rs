@@ -9,7 +9,7 @@ use crate::error::StructureError;
 /// `offsets` has one entry per cell plus one: cell `c` holds references
 /// `offsets[c]..offsets[c + 1]` of `items`, the mesh indices of the triangles it touches in
 /// ascending order. The arrays are `&[u32]` from [`Grid::build`] or [`Grid::from_parts`], or a
-/// blob's bytes read in place ([`LeWords`](crate::cells::LeWords)).
+/// blob's bytes read in place ([`LeWords`](crate::advanced::LeWords)).
 ///
 /// It answers every query through [`Traverse`](crate::query::Traverse): rays walk the cells they
 /// cross in order (3D-DDA) and stop once a hit lies before the next cell; other queries visit

@@ -26,7 +26,7 @@ impl KdConfig {
 
     /// The depth limit for `triangles` triangles: `max_depth`, or the automatic one when 0.
     #[must_use]
-    pub fn depth_limit(&self, triangles: usize) -> u32 {
+    pub(crate) fn depth_limit(&self, triangles: usize) -> u32 {
         if self.max_depth != 0 {
             return self.max_depth.min(Self::MAX_DEPTH);
         }

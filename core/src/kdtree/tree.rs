@@ -16,7 +16,7 @@ use crate::query::Cell;
 /// `nodes` are [`KdNode`]s (two words each; node 0 is the root, children after their parent),
 /// `items` the references that leaves point into. The arrays are slices from
 /// [`KdTree::build`] or [`KdTree::from_parts`], or a blob's bytes read in place
-/// ([`LeWords`](crate::cells::LeWords)).
+/// ([`LeWords`](crate::advanced::LeWords)).
 ///
 /// It answers every query through [`Traverse`](crate::query::Traverse): rays walk the leaves
 /// they cross front to back, clipping their `(t_near, t_far)` span at each plane, and stop once
@@ -145,15 +145,6 @@ impl<N: Words, W: Words> KdTree<N, W> {
     pub fn node(&self, i: usize) -> Option<KdNode> {
         let [a, b] = self.nodes.pair(i)?;
         Some(KdNode { a, b })
-    }
-
-    /// Every leaf with its cell and depth, depth first, below to above.
-    pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
-        self.for_each_cell(u32::MAX, |cell, depth, leaf| {
-            if let Some((first, count)) = leaf {
-                each(cell, depth, first, count);
-            }
-        });
     }
 
     /// The cells the tree has cut its bounds into after `stop_depth` levels of splits, with

@@ -5,27 +5,28 @@
 //! same inputs give the same bits on every target.
 
 mod aabb;
-mod aabb4;
-mod aabb8;
+pub(crate) mod aabb4;
+pub(crate) mod aabb8;
 mod hit;
 mod morton;
 mod obb;
-mod packed_triangle;
+pub(crate) mod packed_triangle;
 mod plane;
 mod ray;
 mod scalar;
 mod triangle;
 
 pub use aabb::Aabb;
-pub use aabb4::Aabb4;
-pub use aabb8::Aabb8;
+pub(crate) use aabb4::Aabb4;
+pub(crate) use aabb8::Aabb8;
 pub use hit::{ClosestPoint, RayHit, TriangleFeature};
 pub(crate) use morton::morton_code;
 pub use obb::Obb;
-pub use packed_triangle::PackedTriangle;
+pub(crate) use packed_triangle::PackedTriangle;
 pub use plane::Plane;
 pub use ray::Ray;
-pub use scalar::{cross, dot, max_f32, min_f32};
+pub use scalar::{cross, dot};
+pub(crate) use scalar::{max_f32, min_f32};
 pub use triangle::Triangle;
 
 pub use glam::{Vec2, Vec3};

@@ -19,7 +19,7 @@ pub(super) const STACK: usize = 7 * OctreeConfig::MAX_DEPTH as usize + 2;
 /// `nodes` are [`OctreeNode`]s (two words each; node 0 is the root, children after their
 /// parent), `items` the references leaves point into. The arrays are slices from
 /// [`Octree::build`] or [`Octree::from_parts`], or a blob's bytes read in place
-/// ([`LeWords`](crate::cells::LeWords)).
+/// ([`LeWords`](crate::advanced::LeWords)).
 ///
 /// It answers every query through [`Traverse`](crate::query::Traverse): at each cell the
 /// visitor judges the eight octants (four at a time in SIMD lanes) and the walk takes them
@@ -136,15 +136,6 @@ impl<N: Words, W: Words> Octree<N, W> {
     pub fn node(&self, i: usize) -> Option<OctreeNode> {
         let [a, b] = self.nodes.pair(i)?;
         Some(OctreeNode { a, b })
-    }
-
-    /// Every leaf with its cell and depth, depth first, octant 0 first.
-    pub fn for_each_leaf(&self, mut each: impl FnMut(Cell, u32, u32, u32)) {
-        self.for_each_cell(u32::MAX, |cell, depth, leaf| {
-            if let Some((first, count)) = leaf {
-                each(cell, depth, first, count);
-            }
-        });
     }
 
     /// The cells the tree has cut its bounds into after `stop_depth` levels of splits, with

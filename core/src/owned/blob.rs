@@ -4,6 +4,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::MeshBvh;
+use crate::advanced::CollapseRoles;
 use crate::blob::{self, BlobView, BoxesUnchecked, EncodeOptions, MeshLayout};
 use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::bvh::split_coverage::check_split_coverage;
@@ -12,7 +13,6 @@ use crate::error::{BlobError, BlobSection};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::{SplitRef, SplitRefs};
-use crate::wide::CollapseRoles;
 use crate::wide::collapse::eight_wide_roles;
 
 impl MeshBvh {
@@ -209,11 +209,12 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::MeshBvh;
+    use crate::advanced::CollapsePlan;
     use crate::blob::{self, BlobHeader, BlobView, MeshLayout};
     use crate::bvh::BuildConfig;
     use crate::mesh::MeshRef;
+    use crate::wide::WideNode8;
     use crate::wide::collapse::collapse_planned_vec;
-    use crate::wide::{CollapsePlan, WideNode8};
 
     /// A wavy sheet of `2·n²` triangles.
     fn sheet(n: u32) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {

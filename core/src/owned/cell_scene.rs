@@ -4,7 +4,8 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::cells::{TreeSizes, pack_references};
+use crate::cells::TreeSizes;
+use crate::cells::pack::pack_references;
 use crate::error::BuildError;
 use crate::math::{PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;

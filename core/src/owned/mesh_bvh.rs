@@ -3,6 +3,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::advanced::{CollapsePlan, CollapseRoles};
 use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, SpatialSplits, node_capacity};
 use crate::error::BuildError;
 use crate::math::{Aabb, PackedTriangle, Triangle};
@@ -13,7 +14,7 @@ use crate::query::{
 use crate::wide::collapse::{collapse_planned_vec, collapse_vec};
 #[cfg(feature = "parallel")]
 use crate::wide::parallel_collapse::collapse_vec_parallel;
-use crate::wide::{CollapsePlan, CollapseRoles, CompactNode, WideBvh, WideNode, WideNode8};
+use crate::wide::{CompactNode, WideBvh, WideNode, WideNode8};
 
 /// A mesh with its BVH, owning every buffer: the positions and triangles, the binary tree
 /// (nodes and order), the triangles packed in leaf order, and the tree collapsed for queries

@@ -52,7 +52,7 @@ impl Cell {
     /// Whether the `max` face on `axis` (0, 1 or 2) is owned by this cell.
     #[inline(always)]
     #[must_use]
-    pub const fn closed_max(&self, axis: usize) -> bool {
+    pub(crate) const fn closed_max(&self, axis: usize) -> bool {
         axis < 3 && self.closed_max & (1 << axis) != 0
     }
 

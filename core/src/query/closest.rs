@@ -268,11 +268,10 @@ mod tests {
         let packed = bvh
             .pack_triangles(&mesh, &mut packed)
             .unwrap_or_else(|e| panic!("{e}"));
-        let mut entries = vec![crate::wide::PlanEntry::EMPTY; crate::wide::plan_capacity(&bvh)];
-        let plan = crate::wide::CollapsePlan::<4>::new(&bvh, &mut entries)
-            .unwrap_or_else(|e| panic!("{e}"));
-        let mut wide = vec![WideNode::EMPTY; plan.node_count()];
-        let wide = WideBvh::build(&plan, &mut wide).unwrap_or_else(|e| panic!("{e}"));
+        let sizes = WideBvh::<WideNode>::measure(&bvh);
+        let mut entries = vec![crate::wide::PlanEntry::EMPTY; sizes.plan];
+        let mut wide = vec![WideNode::EMPTY; sizes.nodes];
+        let wide = WideBvh::build(&bvh, &mut entries, &mut wide).unwrap_or_else(|e| panic!("{e}"));
 
         let probes = floats(11, 3 * 2_000);
         let points: Vec<Vec3> = probes

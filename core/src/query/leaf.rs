@@ -49,7 +49,7 @@ impl<'a> LeafTriangleIds<'a> {
     /// The triangles in slots `first..first + count` of `order`, or `None` unless all exist.
     #[inline(always)]
     #[must_use]
-    pub fn in_order(order: &'a [u32], first: usize, count: usize) -> Option<Self> {
+    pub(crate) fn in_order(order: &'a [u32], first: usize, count: usize) -> Option<Self> {
         let ids = order.get(first..first.checked_add(count)?)?;
         Some(Self::new(first, ids))
     }
@@ -80,7 +80,7 @@ impl<'a> LeafTriangleIds<'a> {
     /// The same entries, as the leaf of `cell` (see [`LeafTriangleIds::cell`]).
     #[inline(always)]
     #[must_use]
-    pub const fn with_cell(mut self, cell: Cell) -> Self {
+    pub(crate) const fn with_cell(mut self, cell: Cell) -> Self {
         self.cell = Some(cell);
         self
     }
@@ -99,7 +99,7 @@ impl<'a> LeafTriangleIds<'a> {
     /// The slot of the next entry (the first one, before iterating), skipped or not.
     #[inline(always)]
     #[must_use]
-    pub const fn first_slot(&self) -> usize {
+    pub(crate) const fn first_slot(&self) -> usize {
         self.next_slot
     }
 

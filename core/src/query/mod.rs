@@ -27,7 +27,7 @@
 //! # Glossary
 //! - *slot*: a position in a structure's array of triangle references (a BVH's `order`); a
 //!   leaf holds consecutive slots, and packed triangles are stored by slot.
-//! - *lane*: one of the four SIMD positions of a [`Aabb4`](crate::math::Aabb4) or a batch of
+//! - *lane*: one of the four SIMD positions of a [`Aabb4`](crate::advanced::Aabb4) or a batch of
 //!   four leaf triangles.
 //! - *key*: the number a visitor gives a box it enters, ordering the walk (see [`Visitor`]).
 //! - *distance*: Euclidean; ray queries speak of the ray parameter `t` instead.
@@ -104,7 +104,7 @@ pub(crate) mod ray_order;
 mod ray_packet;
 mod raycast_batch;
 mod shapecast;
-mod split_refs;
+pub(crate) mod split_refs;
 mod traverse;
 
 pub use cell::Cell;
@@ -115,5 +115,6 @@ pub use ray::{RayOptions, TriangleTest};
 pub use ray_all::RayHits;
 pub use ray_order::{sorts_ray_batch, sorts_ray_batches_of};
 pub use shapecast::{BoundsOverlap, ShapeCast};
-pub use split_refs::{SPLIT_REF_BYTES, SplitRef, SplitRefs};
+pub use split_refs::SplitRef;
+pub(crate) use split_refs::SplitRefs;
 pub use traverse::{BatchHint, Traverse, Visitor, VisitorHints, With};

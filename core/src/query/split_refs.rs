@@ -84,6 +84,7 @@ impl SplitRef {
 #[derive(Clone, Copy, Debug)]
 enum Entries<'a> {
     Typed(&'a [SplitRef]),
+    #[cfg_attr(not(feature = "blob-spatial"), allow(dead_code))]
     Records(&'a [[u8; SPLIT_REF_BYTES]]),
 }
 
@@ -133,7 +134,8 @@ impl<'a> SplitRefs<'a> {
 
     /// A view over blob records (see [`SPLIT_REF_BYTES`]), sorted as [`SplitRefs::new`] asks.
     #[must_use]
-    pub const fn from_records(records: &'a [[u8; SPLIT_REF_BYTES]]) -> Self {
+    #[cfg(feature = "blob-spatial")]
+    pub(crate) const fn from_records(records: &'a [[u8; SPLIT_REF_BYTES]]) -> Self {
         Self {
             entries: Entries::Records(records),
         }
@@ -232,7 +234,7 @@ impl<'a> SplitRefs<'a> {
     /// a walk that pairs leaves whose boxes `meet`: the first pair, in order of `a`'s
     /// reference then `b`'s, whose leaf boxes meet. A triangle held once stands for its one
     /// reference. Always true when neither triangle is split.
-    pub fn reports_pair(
+    pub(crate) fn reports_pair(
         &self,
         a: (usize, u32, Aabb),
         other: &SplitRefs<'_>,

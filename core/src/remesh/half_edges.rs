@@ -278,7 +278,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// The most vertices the buffers hold (at most `u32::MAX − 1`: indices are `u32`).
     #[must_use]
-    pub fn vertex_capacity(&self) -> usize {
+    pub(crate) fn vertex_capacity(&self) -> usize {
         self.positions
             .len()
             .min(self.vertex_half_edges.len())
@@ -288,7 +288,7 @@ impl<'a> HalfEdgeMesh<'a> {
     /// The most triangles the buffers hold (their half-edges indexed by `u32`, below
     /// [`NO_HALF_EDGE`]).
     #[must_use]
-    pub fn triangle_capacity(&self) -> usize {
+    pub(crate) fn triangle_capacity(&self) -> usize {
         self.origins
             .len()
             .min(self.twins.len())

@@ -3,18 +3,17 @@
 //!
 //! ```
 //! use meshq::prelude::*;
-//! use meshq::bvh;
-//! use meshq::wide::{self, CollapsePlan, PlanEntry, WideBvh, WideNode};
+//! use meshq::wide::{PlanEntry, WideBvh, WideNode};
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2], [0, 1, 3], [0, 2, 3]]).validate()?;
 //! let mut buffers = BvhBuffers::<3>::new();
 //! let config = BuildConfig { max_leaf_size: 1, ..BuildConfig::default() };
 //! let bvh = buffers.build(&mesh, &config)?;
-//! // One plan entry per binary node: which binary nodes become each wide node's lanes.
-//! let mut entries = [PlanEntry::EMPTY; bvh::node_capacity(3)];
-//! let plan = CollapsePlan::<4>::new(&bvh, &mut entries)?;
-//! let mut wide_nodes = [WideNode::EMPTY; wide::wide_node_capacity(3)];
-//! let wide = WideBvh::build(&plan, &mut wide_nodes)?;
+//! // Scratch to plan which binary nodes become each wide node's lanes, and the nodes.
+//! let sizes = WideBvh::<WideNode>::measure(&bvh);
+//! let (mut plan, mut wide_nodes) = ([PlanEntry::EMPTY; 3], [WideNode::EMPTY; 3]);
+//! assert!(sizes.plan <= plan.len() && sizes.nodes <= wide_nodes.len());
+//! let wide = WideBvh::build(&bvh, &mut plan, &mut wide_nodes)?;
 //! let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
 //! assert_eq!(wide.with(&mesh).raycast(&ray), bvh.with(&mesh).raycast(&ray));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -24,20 +23,19 @@ pub(crate) mod collapse;
 mod compact_node;
 mod node;
 mod node8;
+mod node_build;
 #[cfg(feature = "parallel")]
 pub(crate) mod parallel_collapse;
-mod plan;
-mod roles;
+pub(crate) mod plan;
+pub(crate) mod roles;
 mod sizing;
-mod traverse;
+pub(crate) mod traverse;
 mod tree;
 mod walk;
 
 pub use compact_node::CompactNode;
 pub use node::WideNode;
 pub use node8::WideNode8;
-pub use plan::{CollapsePlan, NODE_COST, PlanEntry, plan_capacity};
-pub use roles::{CollapseRoles, MERGED_LEAF_MAX};
-pub use sizing::wide_node_capacity;
-pub use traverse::WARM_TREE_BYTES;
+pub use plan::PlanEntry;
+pub use sizing::WideSizes;
 pub use tree::{WideBvh, WideNodeKind};

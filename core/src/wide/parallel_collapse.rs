@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::collapse::{CollapsedNode, collapse_from, collapse_planned_vec, wide_node};
 use super::plan::solve_block;
-use super::{CollapsePlan, PlanEntry, plan_capacity};
+use super::plan::{CollapsePlan, PlanEntry, plan_capacity};
 use crate::bvh::{Bvh, BvhNode, TreeArrays};
 use crate::error::BuildError;
 
@@ -264,8 +264,9 @@ mod tests {
     use super::{PARALLEL_FROM, collapse_vec_parallel, solve_parallel};
     use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
     use crate::mesh::MeshRef;
+    use crate::wide::PlanEntry;
     use crate::wide::collapse::collapse_vec;
-    use crate::wide::{CollapsePlan, PlanEntry, plan_capacity};
+    use crate::wide::plan::{CollapsePlan, plan_capacity};
     use crate::wide::{WideNode, WideNode8};
 
     /// A wavy grid of `side × side` quads (two triangles each), with a pseudo-random

@@ -248,7 +248,7 @@ impl<'a, 'p, const W: usize> CollapsePlan<'a, 'p, W> {
     }
 
     /// How many wide nodes the collapse writes (0 for an empty tree, 1 for a lone leaf; at most
-    /// [`wide_node_capacity`](super::wide_node_capacity) of the triangle count).
+    /// [`WideSizes::nodes`](super::WideSizes::nodes)).
     #[must_use]
     pub const fn node_count(&self) -> usize {
         self.nodes

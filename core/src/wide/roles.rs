@@ -24,7 +24,7 @@ pub(super) const WIDE: u8 = 1;
 pub(super) const MERGED: u8 = 2;
 
 /// The roles of a binary tree's nodes in a collapse ([`CollapsePlan::write_roles`](
-/// super::CollapsePlan::write_roles)): node `i`'s role is bits `2 (i mod 4)` and `2 (i mod 4) + 1`
+/// super::plan::CollapsePlan::write_roles)): node `i`'s role is bits `2 (i mod 4)` and `2 (i mod 4) + 1`
 /// of byte `i / 4`, [`CollapseRoles::len_for`] bytes in all.
 ///
 /// A role is 1 for an inner node that starts a wide node (the root, and every inner lane), 2
@@ -33,7 +33,7 @@ pub(super) const MERGED: u8 = 2;
 /// children are walked in its place), a binary leaf (always a leaf lane), a node below a
 /// merged leaf, and the padding of the last byte. So one tree and one plan give exactly one
 /// byte string. Read by
-/// [`CollapsePlan::from_roles`](super::CollapsePlan::from_roles), which collapses a tree with
+/// [`CollapsePlan::from_roles`](super::plan::CollapsePlan::from_roles), which collapses a tree with
 /// them without solving the plan, and checked against a tree by [`CollapseRoles::check`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CollapseRoles<'a> {

@@ -1,8 +1,12 @@
 //! [`WideBvh`]: the one view over a wide tree, whatever its node.
 
 use super::collapse::{CollapsedNode, collapse_into, collapse_to};
+use super::node_build::CollapsesFrom;
+use super::plan::{CollapsePlan, PlanEntry, plan_capacity};
+use super::sizing::{WideSizes, wide_node_capacity};
 use super::traverse::{LaneNode, STACK4, STACK8, traverse_wide};
-use super::{CollapsePlan, CompactNode, WideNode, WideNode8};
+use super::{CompactNode, WideNode, WideNode8};
+use crate::bvh::Bvh;
 use crate::error::{BufferKind, BuildError, StructureError};
 use crate::math::Aabb;
 use crate::query::{SplitRefs, Traverse, Visitor};
@@ -10,7 +14,7 @@ use crate::query::{SplitRefs, Traverse, Visitor};
 /// What a wide tree's node may be: [`WideNode`] (four lanes, the default), [`WideNode8`]
 /// (eight lanes) or [`CompactNode`] (four lanes, boxes quantized to 8 bits). Sealed: the walk
 /// of [`WideBvh`] is written for these three.
-pub trait WideNodeKind: LaneNode + Copy {}
+pub trait WideNodeKind: LaneNode + CollapsesFrom + Copy {}
 impl WideNodeKind for WideNode {}
 impl WideNodeKind for WideNode8 {}
 impl WideNodeKind for CompactNode {}
@@ -21,12 +25,11 @@ impl WideNodeKind for CompactNode {}
 ///
 /// | `N` | lanes | bytes | made by |
 /// | --- | --- | --- | --- |
-/// | [`WideNode`] (default) | 4 | 128 | [`WideBvh::build`] from a [`CollapsePlan<4>`] |
-/// | [`WideNode8`] | 8 | 256 | [`WideBvh::build`] from a [`CollapsePlan<8>`] |
-/// | [`CompactNode`] | 4 | 64 | [`WideBvh::quantize`] from a four-wide tree |
+/// | [`WideNode`] (default) | 4 | 128 | [`WideBvh::build`] |
+/// | [`WideNode8`] | 8 | 256 | [`WideBvh::build`] |
+/// | [`CompactNode`] | 4 | 64 | [`WideBvh::build`], or [`WideBvh::quantize`] of a four-wide tree |
 ///
-/// Nodes live in a caller buffer (sized by [`wide_node_capacity`](super::wide_node_capacity)
-/// or [`CollapsePlan::node_count`]); the view borrows the binary tree's triangle order, so
+/// Nodes live in a caller buffer (sized by [`WideBvh::measure`]); the view borrows the binary tree's triangle order, so
 /// leaves read the same [`PackedTriangles`](crate::query::PackedTriangles) slots. Queries go
 /// through [`Traverse`](crate::query::Traverse) (`wide.with(&triangles)`), and every one
 /// returns exactly what the binary tree's returns, bit for bit, on every target and for every
@@ -40,15 +43,50 @@ pub struct WideBvh<'a, N: WideNodeKind = WideNode> {
 }
 
 impl<'a, N: WideNodeKind> WideBvh<'a, N> {
+    /// The buffer sizes [`WideBvh::build`] needs to collapse `tree`: `plan` entries of scratch
+    /// (one per inner binary node) and at most `nodes` wide nodes (one per inner binary node,
+    /// 1 for a lone leaf, 0 for an empty tree), whatever the node kind. Arithmetic only.
+    #[must_use]
+    pub const fn measure(tree: &Bvh<'_>) -> WideSizes {
+        WideSizes {
+            plan: plan_capacity(tree),
+            nodes: wide_node_capacity(tree.order().len()),
+        }
+    }
+
+    /// Collapses `tree` into `out` (at least [`WideSizes::nodes`] nodes), planning in `plan`
+    /// (at least [`WideSizes::plan`] entries, contents afterwards unspecified): each wide node
+    /// covers an inner binary node's subtree with the four or eight lanes that minimise the
+    /// tree's surface-area cost, so every triangle keeps its slots and every query returns
+    /// exactly what `tree`'s returns. [`CompactNode`]s are the four-wide nodes, quantized.
+    /// Deterministic: the same tree gives the same nodes on every target; the view covers
+    /// only the nodes written.
+    ///
+    /// # Errors
+    /// [`BuildError::BufferTooSmall`] when `plan` or `out` is too small; nothing is written
+    /// to `out` then.
+    pub fn build(
+        tree: &Bvh<'a>,
+        plan: &mut [PlanEntry],
+        out: &'a mut [N],
+    ) -> Result<Self, BuildError> {
+        let needed = N::collapse(tree, plan, out)?;
+        let nodes: &'a [N] = out;
+        Ok(Self {
+            nodes: nodes.get(..needed).unwrap_or_default(),
+            order: tree.order(),
+            splits: tree.split_refs(),
+        })
+    }
+
     /// Collapses the tree `plan` was made for into `out` (at least
-    /// [`CollapsePlan::node_count`] nodes; [`wide_node_capacity`](super::wide_node_capacity)
-    /// of the triangle count always suffices), with nodes of the plan's width `W` (4 for
-    /// [`WideNode`], 8 for [`WideNode8`]). Each node covers an inner binary node's subtree with
-    /// the lanes the plan chose. Deterministic; the view covers only the nodes written.
+    /// [`CollapsePlan::node_count`] nodes), with nodes of the plan's width `W` (4 for
+    /// [`WideNode`], 8 for [`WideNode8`]): [`WideBvh::build`] with a plan the caller made or
+    /// read from stored roles. Deterministic; the view covers only the nodes written.
     ///
     /// # Errors
     /// [`BuildError::BufferTooSmall`] when `out` is too small; nothing is written then.
-    pub fn build<const W: usize>(
+    pub fn from_plan<const W: usize>(
         plan: &CollapsePlan<'a, '_, W>,
         out: &'a mut [N],
     ) -> Result<Self, BuildError>
@@ -65,7 +103,7 @@ impl<'a, N: WideNodeKind> WideBvh<'a, N> {
         })
     }
 
-    /// A view over nodes written earlier by [`WideBvh::build`] for this very `plan`'s tree
+    /// A view over nodes written earlier by [`WideBvh::from_plan`] for this very `plan`'s tree
     /// (and moved since, into a struct that owns them, say), after checking that they are
     /// exactly the nodes the collapse gives, bit for bit. The check redoes the collapse, which
     /// is cheap next to a build, so nothing else can reach a query. `nodes` may be the
@@ -126,15 +164,15 @@ impl<'a, N: WideNodeKind> WideBvh<'a, N> {
     }
 
     /// This view with `splits` as its split references (those of the binary tree it was
-    /// collapsed from, [`Bvh::split_refs`](crate::bvh::Bvh::split_refs)), for reporting
-    /// queries to report each triangle once.
+    /// collapsed from), for reporting queries to report each triangle once.
+    #[cfg(feature = "alloc")]
     #[must_use]
-    pub const fn with_split_refs(mut self, splits: SplitRefs<'a>) -> Self {
+    pub(crate) const fn with_split_refs(mut self, splits: SplitRefs<'a>) -> Self {
         self.splits = splits;
         self
     }
 
-    /// The split references queries read (see [`Self::with_split_refs`]).
+    /// The split references queries read: those of the binary tree it was collapsed from.
     #[must_use]
     pub const fn split_refs(&self) -> SplitRefs<'a> {
         self.splits
