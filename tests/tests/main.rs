@@ -28,6 +28,7 @@ mod raycast_vs_brute_force;
 mod remesh;
 mod remesh_creases;
 mod remesh_golden;
+mod remesh_hard_inputs;
 mod remesh_invariants;
 mod remesh_topology;
 mod sorted_batches;

@@ -31,13 +31,16 @@ pub struct Remeshed {
 impl Remeshed {
     /// Remeshes `mesh` with `config`, projecting onto a BVH of the input. Buffers start at
     /// [`RemeshCapacity::for_mesh`] and double while a run reports
-    /// [`RemeshError::OutOfCapacity`]; every run with room enough gives the same result, so
-    /// the answer does not depend on how often that happened.
+    /// [`RemeshError::OutOfCapacity`], up to [`RemeshCapacity::most_for`]; every run with
+    /// room enough gives the same result, so the answer does not depend on how often that
+    /// happened. Memory therefore stays within a stated multiple of the input and of the
+    /// result's expected size.
     ///
     /// # Errors
     /// The input's [`RemeshError`] (non-manifold edge or vertex, orientation, repeated vertex,
-    /// invalid config), or [`RemeshError::OutOfCapacity`] once buffers would pass `u32`
-    /// indexing.
+    /// invalid config), or [`RemeshError::OutOfCapacity`] when a run needs more room than
+    /// [`RemeshCapacity::most_for`] (or than `u32` indexing allows), after at most a few
+    /// doublings.
     pub fn of(mesh: &ValidMesh<'_>, config: &RemeshConfig) -> Result<Self, RemeshError> {
         Self::with_progress(mesh, config, |_| {})
     }
@@ -56,6 +59,7 @@ impl Remeshed {
         let reference = MeshBvh::build(mesh, &BuildConfig::default())
             .map_err(|error| RemeshError::ReferenceBvh { error })?;
         let mut capacity = RemeshCapacity::for_mesh(mesh, config.target);
+        let most = RemeshCapacity::most_for(mesh, config.target);
         let too_big = |capacity| RemeshError::OutOfCapacity {
             buffer: RemeshBuffer::Scratch,
             capacity,
@@ -87,11 +91,14 @@ impl Remeshed {
                     });
                 }
                 Err(RemeshError::OutOfCapacity { .. })
-                    if capacity.half_edges() < (u32::MAX / 4) as usize =>
+                    if capacity.triangles < most.triangles
+                        && capacity.half_edges() < (u32::MAX / 4) as usize =>
                 {
+                    // Doubled, but never past the bound: a run that needs more than it is
+                    // refused with the bound's size.
                     capacity = RemeshCapacity {
-                        vertices: capacity.vertices.saturating_mul(2),
-                        triangles: capacity.triangles.saturating_mul(2),
+                        vertices: capacity.vertices.saturating_mul(2).min(most.vertices),
+                        triangles: capacity.triangles.saturating_mul(2).min(most.triangles),
                     };
                 }
                 Err(e) => return Err(e),

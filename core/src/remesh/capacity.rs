@@ -29,27 +29,7 @@ impl RemeshCapacity {
     /// estimated here over each triangle's three edges).
     #[must_use]
     pub fn for_mesh(mesh: &ValidMesh<'_>, target: EdgeTarget) -> Self {
-        let (mut area, mut edge_sum, mut edges) = (0.0f64, 0.0f64, 0usize);
-        for t in 0..mesh.triangle_count() as u32 {
-            let Some(tri) = mesh.triangle(t) else {
-                continue;
-            };
-            area += f64::from(tri.area());
-            for (p, q) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
-                let d = q - p;
-                edge_sum += f64::from(libm::sqrtf(dot(d, d)));
-                edges += 1;
-            }
-        }
-        let mean = if edges > 0 {
-            edge_sum / edges as f64
-        } else {
-            0.0
-        };
-        let length = match target {
-            EdgeTarget::Length(length) => f64::from(length),
-            EdgeTarget::MeanEdgeTimes(ratio) => f64::from(ratio) * mean,
-        };
+        let (area, length) = area_and_length(mesh, target);
         let expected = if length > 0.0 {
             area / (libm::sqrt(3.0) / 4.0 * length * length)
         } else {
@@ -60,6 +40,42 @@ impl RemeshCapacity {
         Self {
             vertices: mesh.positions().len().saturating_add(added),
             triangles: mesh.triangle_count().saturating_add(added),
+        }
+    }
+
+    /// The most room a run remeshing `mesh` toward `target` may be given: past it, a run
+    /// that still needs more is refused rather than grown. Splits bisect every triangle
+    /// across its longest side until no edge is longer than `4/3·L`, so a triangle whose
+    /// longest edge is `ℓ` becomes at most about `2·⌈ℓ / (4/3·L)⌉²` pieces; the bound is the
+    /// sum of that over the input's triangles plus four times the
+    /// [`for_mesh`](Self::for_mesh) estimate of the result, with one vertex per triangle.
+    /// Saturates instead of overflowing.
+    #[must_use]
+    pub fn most_for(mesh: &ValidMesh<'_>, target: EdgeTarget) -> Self {
+        let estimate = Self::for_mesh(mesh, target);
+        let high = area_and_length(mesh, target).1 * 4.0 / 3.0;
+        let mut pieces = 0.0f64;
+        for t in 0..mesh.triangle_count() as u32 {
+            let Some(tri) = mesh.triangle(t) else {
+                continue;
+            };
+            let longest = [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)]
+                .map(|(p, q)| f64::from(libm::sqrtf(dot(q - p, q - p))))
+                .into_iter()
+                .fold(0.0f64, f64::max);
+            let per_side = if high > 0.0 {
+                libm::ceil(longest / high).max(1.0)
+            } else {
+                1.0
+            };
+            pieces += 2.0 * per_side * per_side;
+        }
+        let added = estimate.triangles.saturating_sub(mesh.triangle_count());
+        // `as` saturates a huge (or infinite) sum.
+        let triangles = (pieces as usize).saturating_add(added.saturating_mul(4));
+        Self {
+            vertices: mesh.positions().len().saturating_add(triangles),
+            triangles,
         }
     }
 
@@ -138,4 +154,31 @@ impl RemeshStorage {
             creases: &mut self.creases,
         }
     }
+}
+
+/// The surface area of `mesh` and the edge length `target` names (a multiple of the mean edge
+/// length estimated over each triangle's three edges), in `f64`.
+fn area_and_length(mesh: &ValidMesh<'_>, target: EdgeTarget) -> (f64, f64) {
+    let (mut area, mut edge_sum, mut edges) = (0.0f64, 0.0f64, 0usize);
+    for t in 0..mesh.triangle_count() as u32 {
+        let Some(tri) = mesh.triangle(t) else {
+            continue;
+        };
+        area += f64::from(tri.area());
+        for (p, q) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
+            let d = q - p;
+            edge_sum += f64::from(libm::sqrtf(dot(d, d)));
+            edges += 1;
+        }
+    }
+    let mean = if edges > 0 {
+        edge_sum / edges as f64
+    } else {
+        0.0
+    };
+    let length = match target {
+        EdgeTarget::Length(length) => f64::from(length),
+        EdgeTarget::MeanEdgeTimes(ratio) => f64::from(ratio) * mean,
+    };
+    (area, length)
 }

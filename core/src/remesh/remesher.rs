@@ -24,7 +24,8 @@ pub fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 /// `reference` answers closest points for (build a BVH over the input mesh before editing and
 /// pass it with the input: `bvh.with(&input)`).
 ///
-/// Each iteration splits every edge longer than `4/3·L` at its midpoint, collapses edges
+/// Each iteration splits edges longer than `4/3·L` at their midpoints, always across the
+/// longest side of both their triangles (longest-edge bisection), collapses edges
 /// shorter than `4/5·L` unless that would make an edge longer than `4/3·L`, turn a triangle
 /// over, or change the topology, flips edges that bring the four vertices' valences nearer
 /// 6 (4 on the boundary), moves every free vertex toward the area-weighted centroid of its
@@ -146,16 +147,53 @@ fn squared_length(mesh: &HalfEdgeMesh<'_>, he: u32) -> f32 {
     dot(d, d)
 }
 
-/// Most sweeps of the split pass.
-const SPLIT_SWEEPS: usize = 10;
+/// The longest of triangle `t`'s three half-edges (the first of equal ones).
+fn longest_half_edge(mesh: &HalfEdgeMesh<'_>, t: u32) -> u32 {
+    let first = 3 * t;
+    let mut best = (first, squared_length(mesh, first));
+    for he in [first + 1, first + 2] {
+        let length = squared_length(mesh, he);
+        if length > best.1 {
+            best = (he, length);
+        }
+    }
+    best.0
+}
 
-/// Splits edges longer than `high` at their midpoints, sweep after sweep over the edges there
-/// were at each sweep's start, until a sweep splits nothing (at most [`SPLIT_SWEEPS`]).
+/// Most steps of a longest-edge propagation path. Edges grow strictly along a path, so one
+/// never repeats; the bound only caps the walk on meshes whose lengths are not finite.
+const PATH_STEPS: usize = 64;
+
+/// The end of the longest-edge propagation path (Rivara) from half-edge `he`: while the
+/// triangle across the edge has a strictly longer edge, step to that edge. The edge found is
+/// the longest of both its triangles (or lies on the boundary), so splitting it bisects each
+/// of them across its longest side.
+fn terminal_edge(mesh: &HalfEdgeMesh<'_>, he: u32) -> u32 {
+    let mut edge = he;
+    for _ in 0..PATH_STEPS {
+        let Some(twin) = mesh.twin(edge) else {
+            return edge;
+        };
+        let longest = longest_half_edge(mesh, twin / 3);
+        if squared_length(mesh, longest) <= squared_length(mesh, edge) {
+            return edge;
+        }
+        edge = longest;
+    }
+    edge
+}
+
+/// Splits until no edge is longer than `high`, always across the longest side of both
+/// triangles of the edge split (longest-edge bisection along the propagation path, Rivara
+/// 1997): each triangle whose longest edge is too long is bisected, through the neighbours
+/// its longest edge leads to, until it is short enough. Triangles made by splits are visited
+/// in turn.
 ///
-/// Sweeps, not one pass that chases every new edge: splitting an edge that is not its
-/// triangle's longest can make a new edge as long as it (a median as long as its side), and
-/// chasing those never ends. Each sweep halves what it splits, so a few sweeps reach the
-/// limit everywhere a mesh is reasonable.
+/// Bisecting across the longest side keeps every new angle at least half the smallest angle
+/// it cut and never fans new edges out of one corner, so skinny input (a capsule's side
+/// strip, a scan's slivers) refines into about as many triangles as its area needs. Splitting
+/// any long edge at its midpoint instead joins the midpoint to the opposite corner, which on
+/// a skinny triangle is another long edge from that same corner, and the count runs away.
 fn split_long_edges<O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
     high: f32,
@@ -163,21 +201,22 @@ fn split_long_edges<O: RemeshObserver + ?Sized>(
 ) -> Result<usize, RemeshError> {
     let limit = high * high;
     let mut splits = 0usize;
-    for _ in 0..SPLIT_SWEEPS {
-        let before = splits;
-        let end = mesh.half_edge_count() as u32;
-        for he in 0..end {
-            if squared_length(mesh, he) > limit {
-                let (a, b) = mesh.ends(he);
-                let mid = (mesh.position(a) + mesh.position(b)) * 0.5;
-                mesh.split_edge(he, mid)?;
-                splits += 1;
-                observer.edited(RemeshStep::Split, mesh);
-            }
+    let mut t = 0u32;
+    // Triangles made by splits are visited in turn, so every edge ends short enough.
+    while (t as usize) < mesh.triangle_count() {
+        let he = longest_half_edge(mesh, t);
+        // Not `<=`: a NaN length is never split.
+        if !(squared_length(mesh, he) > limit) {
+            t += 1;
+            continue;
         }
-        if splits == before {
-            break;
-        }
+        let edge = terminal_edge(mesh, he);
+        let (a, b) = mesh.ends(edge);
+        let mid = (mesh.position(a) + mesh.position(b)) * 0.5;
+        mesh.split_edge(edge, mid)?;
+        splits += 1;
+        observer.edited(RemeshStep::Split, mesh);
+        // Triangle `t` may still be too long (a neighbour's edge was split first): look again.
     }
     Ok(splits)
 }

@@ -1,0 +1,423 @@
+//! Remeshing inputs it was not tuned on: capsules with long thin side strips and
+//! high-valence poles, an open tube of long strips, a coarse box with creases, a stretched
+//! sphere, a patch of slivers, and random small meshes at random targets. Every result is
+//! checked against the input independently of the remesher: no triangle of (relatively) zero
+//! area, no two vertices at one place, no triangle facing against the input surface under it,
+//! manifold and oriented with the input's Euler characteristic and boundaries, vertices on
+//! the input surface, about as many triangles as the area asks for, and a peak within
+//! [`RemeshCapacity::most_for`].
+
+use meshq::MeshBvh;
+use meshq::MeshQuery;
+use meshq::Vec3;
+use meshq::bvh::BuildConfig;
+use meshq::error::RemeshError;
+use meshq::mesh::MeshRef;
+use meshq::owned::Remeshed;
+use meshq::remesh::{EdgeTarget, RemeshCapacity, RemeshConfig};
+use meshq_tests::Topology;
+
+type Mesh = (Vec<[f32; 3]>, Vec<[u32; 3]>);
+
+/// A capsule as `trimesh.creation.capsule(height, radius, count=[n, n])` makes it: two
+/// hemispheres of `n` longitudes and `n/2` bands each, one band of side triangles as long as
+/// the capsule between them.
+fn capsule(n: u32, radius: f32, height: f32) -> Mesh {
+    let bands = n / 2;
+    let mut positions = vec![[0.0, 0.0, height / 2.0 + radius]];
+    let mut rings = Vec::new();
+    let mut ring = |positions: &mut Vec<[f32; 3]>, z0: f32, j: u32, sign: f32| {
+        let phi = std::f32::consts::FRAC_PI_2 * j as f32 / bands as f32;
+        let (r, z) = (radius * phi.sin(), z0 + sign * radius * phi.cos());
+        rings.push(positions.len() as u32);
+        for i in 0..n {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            positions.push([r * a.cos(), r * a.sin(), z]);
+        }
+    };
+    for j in 1..=bands {
+        ring(&mut positions, height / 2.0, j, 1.0);
+    }
+    for j in (1..=bands).rev() {
+        ring(&mut positions, -height / 2.0, j, -1.0);
+    }
+    let bottom = positions.len() as u32;
+    positions.push([0.0, 0.0, -height / 2.0 - radius]);
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        triangles.push([0, rings[0] + i, rings[0] + (i + 1) % n]);
+    }
+    for k in 0..rings.len() - 1 {
+        let (a, b) = (rings[k], rings[k + 1]);
+        for i in 0..n {
+            let i1 = (i + 1) % n;
+            triangles.push([a + i, b + i, b + i1]);
+            triangles.push([a + i, b + i1, a + i1]);
+        }
+    }
+    let last = rings[rings.len() - 1];
+    for i in 0..n {
+        triangles.push([bottom, last + (i + 1) % n, last + i]);
+    }
+    (positions, triangles)
+}
+
+/// An open tube of `n` long strips (two boundary loops).
+fn tube(n: u32, radius: f32, length: f32) -> Mesh {
+    let mut positions = Vec::new();
+    for z in [0.0, length] {
+        for i in 0..n {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            positions.push([radius * a.cos(), radius * a.sin(), z]);
+        }
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let i1 = (i + 1) % n;
+        triangles.push([i, i1, n + i1]);
+        triangles.push([i, n + i1, n + i]);
+    }
+    (positions, triangles)
+}
+
+/// A box of twelve triangles, `x` by `y` by `z`.
+fn cuboid(x: f32, y: f32, z: f32) -> Mesh {
+    let positions = (0..8)
+        .map(|i| {
+            let c = |bit: u32, s: f32| if i & bit != 0 { s } else { 0.0 };
+            [c(1, x), c(2, y), c(4, z)]
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let triangles = quads
+        .iter()
+        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+        .collect();
+    (positions, triangles)
+}
+
+/// An octahedron subdivided `levels` times onto the unit sphere, then scaled by `scale`.
+fn sphere(levels: u32, scale: [f32; 3]) -> Mesh {
+    let mut positions: Vec<Vec3> =
+        [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].to_vec();
+    let mut triangles: Vec<[u32; 3]> = vec![
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    for _ in 0..levels {
+        let mut midpoints = std::collections::HashMap::new();
+        let mut mid = |a: u32, b: u32, positions: &mut Vec<Vec3>| {
+            *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let p = (positions[a as usize] + positions[b as usize]).normalize();
+                positions.push(p);
+                positions.len() as u32 - 1
+            })
+        };
+        triangles = triangles
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = (
+                    mid(a, b, &mut positions),
+                    mid(b, c, &mut positions),
+                    mid(c, a, &mut positions),
+                );
+                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    let scale = Vec3::from(scale);
+    (
+        positions.iter().map(|p| (*p * scale).to_array()).collect(),
+        triangles,
+    )
+}
+
+/// A flat `side × side` grid whose rows are squeezed in turn, so half its triangles are
+/// slivers (an open patch: one boundary loop).
+fn slivers(side: u32) -> Mesh {
+    let mut positions = Vec::new();
+    let mut y = 0.0f32;
+    for j in 0..=side {
+        for i in 0..=side {
+            positions.push([i as f32, y, 0.0]);
+        }
+        y += if j % 2 == 0 { 0.02 } else { 1.0 };
+    }
+    let row = side + 1;
+    let mut triangles = Vec::new();
+    for j in 0..side {
+        for i in 0..side {
+            let v = j * row + i;
+            triangles.push([v, v + 1, v + row + 1]);
+            triangles.push([v, v + row + 1, v + row]);
+        }
+    }
+    (positions, triangles)
+}
+
+fn area(c: [Vec3; 3]) -> f32 {
+    0.5 * (c[1] - c[0]).cross(c[2] - c[0]).length()
+}
+
+fn corners(mesh: &Mesh, t: [u32; 3]) -> [Vec3; 3] {
+    t.map(|v| Vec3::from(mesh.0[v as usize]))
+}
+
+/// Checks `out`, a remesh of `input` toward `length`, against the input; returns the
+/// smallest angle of the result in degrees.
+fn check(name: &str, input: &Mesh, out: &Remeshed, length: f32) -> f32 {
+    let result: Mesh = (out.positions.clone(), out.triangles.clone());
+    let before = Topology::of(input.0.len(), &input.1);
+    let after = Topology::of(result.0.len(), &result.1);
+    assert!(after.manifold_oriented, "{name}: manifold and oriented");
+    assert_eq!(
+        (after.euler, after.boundary_loops),
+        (before.euler, before.boundary_loops),
+        "{name}: topology"
+    );
+    // No triangle of zero area: none below a millionth of the target's equilateral one.
+    let least = (3f32.sqrt() / 4.0) * length * length * 1e-6;
+    let mut min_angle = 180.0f32;
+    for &t in &result.1 {
+        let c = corners(&result, t);
+        assert!(
+            area(c) > least,
+            "{name}: triangle {t:?} has area {}",
+            area(c)
+        );
+        for k in 0..3 {
+            let (p, q, r) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
+            min_angle = min_angle.min((q - p).angle_between(r - p).to_degrees());
+        }
+    }
+    // No two vertices at one place: none closer than a thousandth of the target (a grid of
+    // cells as wide as that bound finds every close pair among neighbouring cells).
+    let near = length * 1e-3;
+    let mut cells: std::collections::HashMap<[i64; 3], Vec<usize>> = Default::default();
+    let cell = |p: Vec3| (p / near).floor().to_array().map(|x| x as i64);
+    for (i, p) in result.0.iter().enumerate() {
+        cells.entry(cell(Vec3::from(*p))).or_default().push(i);
+    }
+    for (i, p) in result.0.iter().enumerate() {
+        let p = Vec3::from(*p);
+        let [x, y, z] = cell(p);
+        for key in (-1..=1)
+            .flat_map(|a| (-1..=1).flat_map(move |b| (-1..=1).map(move |c| [x + a, y + b, z + c])))
+        {
+            for &j in cells.get(&key).into_iter().flatten() {
+                if j != i {
+                    let d = p.distance(Vec3::from(result.0[j]));
+                    assert!(d >= near, "{name}: vertices {i} and {j} are {d} apart");
+                }
+            }
+        }
+    }
+    // On the input and facing its way: every vertex within a twentieth of the target of the
+    // input surface, and no triangle turned against the input triangle under its centroid.
+    let reference = MeshBvh::build(
+        &MeshRef::new(&input.0, &input.1).validate().unwrap(),
+        &BuildConfig::default(),
+    )
+    .unwrap();
+    for (i, p) in result.0.iter().enumerate() {
+        let hit = reference
+            .closest_point(Vec3::from(*p), f32::INFINITY)
+            .unwrap();
+        assert!(
+            hit.distance() <= 0.05 * length,
+            "{name}: vertex {i} is {} off the input",
+            hit.distance()
+        );
+    }
+    for &t in &result.1 {
+        let c = corners(&result, t);
+        let normal = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
+        let centroid = (c[0] + c[1] + c[2]) / 3.0;
+        let hit = reference.closest_point(centroid, f32::INFINITY).unwrap();
+        let under = corners(input, input.1[hit.tri as usize]);
+        let facing = normal.dot((under[1] - under[0]).cross(under[2] - under[0]).normalize());
+        assert!(
+            facing > 0.0,
+            "{name}: triangle {t:?} faces {facing} against the input"
+        );
+    }
+    // Bounded work: the peak within the stated bound, the count near what the area asks.
+    let valid = MeshRef::new(&input.0, &input.1).validate().unwrap();
+    let most = RemeshCapacity::most_for(&valid, EdgeTarget::Length(length));
+    assert!(
+        out.report.peak_triangles <= most.triangles,
+        "{name}: peak {} past the bound {}",
+        out.report.peak_triangles,
+        most.triangles
+    );
+    let surface: f32 = input.1.iter().map(|&t| area(corners(input, t))).sum();
+    let expected = surface / ((3f32.sqrt() / 4.0) * length * length);
+    let count = result.1.len() as f32;
+    if expected > 50.0 {
+        assert!(
+            count > 0.4 * expected && count < 2.5 * expected,
+            "{name}: {count} triangles for an area of {expected} target triangles"
+        );
+    }
+    min_angle
+}
+
+/// The mean length of the input's edges, each counted once.
+fn mean_edge(input: &Mesh) -> f32 {
+    let mut edges = std::collections::HashSet::new();
+    for t in &input.1 {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.insert((a.min(b), a.max(b)));
+        }
+    }
+    let sum: f64 = edges
+        .iter()
+        .map(|&(a, b)| {
+            f64::from(Vec3::from(input.0[a as usize]).distance(Vec3::from(input.0[b as usize])))
+        })
+        .sum();
+    (sum / edges.len() as f64) as f32
+}
+
+fn remesh(input: &Mesh, config: &RemeshConfig) -> Result<Remeshed, RemeshError> {
+    Remeshed::of(
+        &MeshRef::new(&input.0, &input.1).validate().unwrap(),
+        config,
+    )
+}
+
+/// The corpus at the mean edge length: the result is clean, and the smallest angle away from
+/// boundaries and creases is at least what gpytoolbox's `remesh_botsch` reaches on the
+/// 16-section capsule (21°, measured for the issue).
+#[test]
+fn the_hard_corpus_remeshes_clean_at_the_mean_edge_length() {
+    let cases: [(&str, Mesh, Option<f32>, bool); 5] = [
+        ("capsule 16", capsule(16, 0.05, 1.0), None, true),
+        ("capsule 64", capsule(64, 0.05, 1.0), None, true),
+        (
+            "coarse box, creases kept",
+            cuboid(1.0, 0.3, 0.1),
+            Some(45.0),
+            false,
+        ),
+        ("patch of slivers", slivers(12), None, false),
+        ("coarse box, no creases", cuboid(1.0, 1.0, 1.0), None, false),
+    ];
+    for (name, input, feature_angle, smooth_closed) in cases {
+        let config = RemeshConfig {
+            feature_angle,
+            ..RemeshConfig::default()
+        };
+        let out = remesh(&input, &config).unwrap();
+        let length = mean_edge(&input);
+        let min_angle = check(name, &input, &out, length);
+        if smooth_closed {
+            assert!(min_angle >= 21.0, "{name}: smallest angle {min_angle}°");
+        }
+    }
+}
+
+/// An open tube of 24 strips as long as the tube, remeshed toward a twelfth of its
+/// circumference (at the mean edge length, dominated by the strips, one target edge would be
+/// longer than the whole ring): clean, with its two boundary loops.
+#[test]
+fn an_open_tube_of_long_strips_remeshes_clean() {
+    let input = tube(24, 0.05, 1.0);
+    let length = std::f32::consts::TAU * 0.05 / 12.0;
+    let config = RemeshConfig {
+        target: EdgeTarget::Length(length),
+        ..RemeshConfig::default()
+    };
+    let out = remesh(&input, &config).unwrap();
+    check("open tube of strips", &input, &out, length);
+}
+
+/// Refining hard: the capsule and the stretched sphere at a fifth of the mean edge, clean and
+/// in proportion to the area.
+#[test]
+fn refining_the_hard_corpus_stays_clean_and_in_proportion() {
+    for (name, input) in [
+        ("capsule 32", capsule(32, 0.05, 1.0)),
+        ("stretched sphere", sphere(2, [6.0, 1.0, 1.0])),
+    ] {
+        let config = RemeshConfig {
+            target: EdgeTarget::MeanEdgeTimes(0.2),
+            ..RemeshConfig::default()
+        };
+        let out = remesh(&input, &config).unwrap();
+        let length = 0.2 * mean_edge(&input);
+        let min_angle = check(name, &input, &out, length);
+        assert!(min_angle >= 21.0, "{name}: smallest angle {min_angle}°");
+    }
+}
+
+/// A sphere stretched ten to one at the mean edge length, whose tips curve more sharply than
+/// one target edge spans.
+#[test]
+#[ignore = "known defect (issue 65): a triangle near a tip ends facing against the input"]
+fn a_stretched_sphere_remeshes_clean_at_the_mean_edge_length() {
+    let input = sphere(3, [10.0, 1.0, 0.5]);
+    let out = remesh(&input, &RemeshConfig::default()).unwrap();
+    let min_angle = check("stretched sphere", &input, &out, mean_edge(&input));
+    assert!(min_angle >= 21.0, "smallest angle {min_angle}°");
+}
+
+/// Random small meshes (stretched, jittered spheres) at random targets from a third to three
+/// times the mean edge: every result is clean.
+#[test]
+#[ignore = "known defect (issue 65): coarsening case 0 leaves a triangle facing against the input"]
+fn random_small_meshes_at_random_targets_stay_clean() {
+    let mut state = 0x9E37_79B9_u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32
+    };
+    for case in 0..24 {
+        let scale = [0.2 + 5.0 * next(), 0.2 + 5.0 * next(), 0.2 + 5.0 * next()];
+        let (mut positions, triangles) = sphere(1 + case % 3, scale);
+        for p in &mut positions {
+            for x in p.iter_mut() {
+                *x *= 1.0 + 0.1 * (next() - 0.5);
+            }
+        }
+        let input = (positions, triangles);
+        let ratio = 1.0 / 3.0 + (3.0 - 1.0 / 3.0) * next();
+        let config = RemeshConfig {
+            target: EdgeTarget::MeanEdgeTimes(ratio),
+            ..RemeshConfig::default()
+        };
+        let name = format!("case {case}: scale {scale:?}, ratio {ratio}");
+        let out = remesh(&input, &config).unwrap();
+        let length = ratio * mean_edge(&input);
+        check(&name, &input, &out, length);
+    }
+}
+
+/// A target far below what memory allows is refused at once with a typed error, not grown
+/// into.
+#[test]
+fn a_target_too_small_for_memory_is_refused() {
+    let input = capsule(16, 0.05, 1.0);
+    let config = RemeshConfig {
+        target: EdgeTarget::MeanEdgeTimes(1e-5),
+        ..RemeshConfig::default()
+    };
+    let err = remesh(&input, &config).unwrap_err();
+    assert!(matches!(err, RemeshError::OutOfCapacity { .. }), "{err:?}");
+}
