@@ -84,12 +84,15 @@ fn remeshed_meshes_are_sound_on_the_surface_and_better_shaped() {
             edge_cv: 0.1,
             distance: 1.0e-2,
         },
+        // Splits bisect across the longest side since the hard-input fixes (issue 65): the
+        // bunny went from 84.6 % valence 6 and 0.017 % under 30° to 84.3 % and 0.022 %, still
+        // above gpytoolbox's 83.2 % and 0.065 % on the same target.
         Expect {
             name: "stanford-bunny",
             feature_angle: None,
-            valence_6: 84.5,
+            valence_6: 84.2,
             min_angle: 32.0,
-            under_30: 0.02,
+            under_30: 0.025,
             edge_cv: 0.11,
             distance: 3.5e-3,
         },
