@@ -9,7 +9,7 @@
 //!
 //! A full check after every edit costs time proportional to the mesh, so these runs use small
 //! meshes: the UV sphere, a patch of spot (a boundary), and coarse remeshes of fandisk (creases
-//! kept) and of the bunny (holes).
+//! kept) and of the bunny (holes), and two hard inputs (a capsule, a stretched sphere).
 
 use meshq::MeshBvh;
 use meshq::Vec3;
@@ -188,7 +188,7 @@ fn checked_run(
 ) -> RemeshReport {
     let input = MeshRef::new(positions, triangles).validate().unwrap();
     let reference = MeshBvh::build(&input, &BuildConfig::default()).unwrap();
-    let capacity = RemeshCapacity::for_mesh(&input, config.target);
+    let capacity = RemeshCapacity::most_for(&input, config.target);
     let mut storage = RemeshStorage::new(capacity).unwrap();
     let mut pairing = vec![0u32; capacity.pairing_scratch()];
     let mut mesh = HalfEdgeMesh::from_mesh(&input, storage.buffers(), &mut pairing).unwrap();
@@ -287,4 +287,17 @@ fn the_coarse_bunny_with_its_holes_stays_sound_after_every_edit() {
     };
     let report = checked_run("coarse bunny", &input.positions, &input.triangles, &config);
     assert!(report.relaxed > 0, "the final angle pass was checked too");
+}
+
+/// The hard inputs that fit a check after every edit: a capsule's 16 sections with their
+/// long side strips, and a sphere stretched ten to one (sharp tips under a long target edge).
+#[test]
+fn hard_inputs_stay_sound_after_every_edit() {
+    use meshq_tests::hard_inputs::{capsule, sphere};
+    for (name, (p, t)) in [
+        ("capsule 16", capsule(16, 0.05, 1.0)),
+        ("stretched sphere", sphere(3, [10.0, 1.0, 0.5])),
+    ] {
+        checked_run(name, &p, &t, &RemeshConfig::default());
+    }
 }

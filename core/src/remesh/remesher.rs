@@ -487,6 +487,47 @@ fn smooth_tangentially(mesh: &mut HalfEdgeMesh<'_>, scratch: &mut [[f32; 3]]) {
         mesh.set_position(v, Vec3::from_array(*slot));
         *slot = old.to_array();
     }
+    undo_folds(mesh, scratch);
+}
+
+/// Most rounds of [`undo_folds`] before it puts every vertex back.
+const UNDO_ROUNDS: usize = 16;
+
+/// Puts back the vertices of every triangle the smoothing moves turned over or flattened to
+/// nothing (its normal no longer has a positive dot product with its normal before, from
+/// `old`), round after round, since a vertex put back can turn a neighbour over in turn. All
+/// moves are computed from the old positions at once, so two neighbours moving toward each
+/// other can fold a triangle that each move alone keeps (a capsule's side strip does). Each
+/// vertex goes back at most once; after [`UNDO_ROUNDS`] rounds with folds left, every vertex
+/// goes back (the old mesh faced right).
+fn undo_folds(mesh: &mut HalfEdgeMesh<'_>, old: &[[f32; 3]]) {
+    let was = |v: u32| {
+        old.get(v as usize)
+            .map_or(Vec3::ZERO, |p| Vec3::from_array(*p))
+    };
+    for _ in 0..UNDO_ROUNDS {
+        let mut undone = false;
+        for t in 0..mesh.triangle_count() as u32 {
+            let corners = mesh.triangle(t);
+            let [a, b, c] = corners.map(|v| mesh.position(v));
+            let [p, q, r] = corners.map(was);
+            if dot(cross(b - a, c - a), cross(q - p, r - p)) > 0.0 {
+                continue;
+            }
+            for v in corners {
+                if mesh.position(v) != was(v) {
+                    mesh.set_position(v, was(v));
+                    undone = true;
+                }
+            }
+        }
+        if !undone {
+            return;
+        }
+    }
+    for v in 0..mesh.vertex_count() as u32 {
+        mesh.set_position(v, was(v));
+    }
 }
 
 /// Puts every free vertex on the closest point of `reference`, unless that would turn one

@@ -1,0 +1,157 @@
+//! Meshes remeshing finds hard, made here: capsules with long thin side strips and
+//! high-valence poles, an open tube of strips, boxes, stretched spheres and a patch of
+//! slivers.
+
+use meshq::Vec3;
+
+/// Positions and triangles.
+pub type Mesh = (Vec<[f32; 3]>, Vec<[u32; 3]>);
+
+/// A capsule as `trimesh.creation.capsule(height, radius, count=[n, n])` makes it: two
+/// hemispheres of `n` longitudes and `n/2` bands each, one band of side triangles as long as
+/// the capsule between them.
+pub fn capsule(n: u32, radius: f32, height: f32) -> Mesh {
+    let bands = n / 2;
+    let mut positions = vec![[0.0, 0.0, height / 2.0 + radius]];
+    let mut rings = Vec::new();
+    let mut ring = |positions: &mut Vec<[f32; 3]>, z0: f32, j: u32, sign: f32| {
+        let phi = std::f32::consts::FRAC_PI_2 * j as f32 / bands as f32;
+        let (r, z) = (radius * phi.sin(), z0 + sign * radius * phi.cos());
+        rings.push(positions.len() as u32);
+        for i in 0..n {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            positions.push([r * a.cos(), r * a.sin(), z]);
+        }
+    };
+    for j in 1..=bands {
+        ring(&mut positions, height / 2.0, j, 1.0);
+    }
+    for j in (1..=bands).rev() {
+        ring(&mut positions, -height / 2.0, j, -1.0);
+    }
+    let bottom = positions.len() as u32;
+    positions.push([0.0, 0.0, -height / 2.0 - radius]);
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        triangles.push([0, rings[0] + i, rings[0] + (i + 1) % n]);
+    }
+    for k in 0..rings.len() - 1 {
+        let (a, b) = (rings[k], rings[k + 1]);
+        for i in 0..n {
+            let i1 = (i + 1) % n;
+            triangles.push([a + i, b + i, b + i1]);
+            triangles.push([a + i, b + i1, a + i1]);
+        }
+    }
+    let last = rings[rings.len() - 1];
+    for i in 0..n {
+        triangles.push([bottom, last + (i + 1) % n, last + i]);
+    }
+    (positions, triangles)
+}
+
+/// An open tube of `n` long strips (two boundary loops).
+pub fn tube(n: u32, radius: f32, length: f32) -> Mesh {
+    let mut positions = Vec::new();
+    for z in [0.0, length] {
+        for i in 0..n {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            positions.push([radius * a.cos(), radius * a.sin(), z]);
+        }
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let i1 = (i + 1) % n;
+        triangles.push([i, i1, n + i1]);
+        triangles.push([i, n + i1, n + i]);
+    }
+    (positions, triangles)
+}
+
+/// A box of twelve triangles, `x` by `y` by `z`.
+pub fn cuboid(x: f32, y: f32, z: f32) -> Mesh {
+    let positions = (0..8)
+        .map(|i| {
+            let c = |bit: u32, s: f32| if i & bit != 0 { s } else { 0.0 };
+            [c(1, x), c(2, y), c(4, z)]
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let triangles = quads
+        .iter()
+        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+        .collect();
+    (positions, triangles)
+}
+
+/// An octahedron subdivided `levels` times onto the unit sphere, then scaled by `scale`.
+pub fn sphere(levels: u32, scale: [f32; 3]) -> Mesh {
+    let mut positions: Vec<Vec3> =
+        [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].to_vec();
+    let mut triangles: Vec<[u32; 3]> = vec![
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    for _ in 0..levels {
+        let mut midpoints = std::collections::HashMap::new();
+        let mut mid = |a: u32, b: u32, positions: &mut Vec<Vec3>| {
+            *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let p = (positions[a as usize] + positions[b as usize]).normalize();
+                positions.push(p);
+                positions.len() as u32 - 1
+            })
+        };
+        triangles = triangles
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = (
+                    mid(a, b, &mut positions),
+                    mid(b, c, &mut positions),
+                    mid(c, a, &mut positions),
+                );
+                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    let scale = Vec3::from(scale);
+    (
+        positions.iter().map(|p| (*p * scale).to_array()).collect(),
+        triangles,
+    )
+}
+
+/// A flat `side × side` grid whose rows are squeezed in turn, so half its triangles are
+/// slivers (an open patch: one boundary loop).
+pub fn slivers(side: u32) -> Mesh {
+    let mut positions = Vec::new();
+    let mut y = 0.0f32;
+    for j in 0..=side {
+        for i in 0..=side {
+            positions.push([i as f32, y, 0.0]);
+        }
+        y += if j % 2 == 0 { 0.02 } else { 1.0 };
+    }
+    let row = side + 1;
+    let mut triangles = Vec::new();
+    for j in 0..side {
+        for i in 0..side {
+            let v = j * row + i;
+            triangles.push([v, v + 1, v + row + 1]);
+            triangles.push([v, v + row + 1, v + row]);
+        }
+    }
+    (positions, triangles)
+}
