@@ -155,3 +155,48 @@ pub fn slivers(side: u32) -> Mesh {
     }
     (positions, triangles)
 }
+
+/// `n` copies of one triangle.
+pub fn same(n: u32) -> Mesh {
+    let positions = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    (positions, vec![[0, 1, 2]; n as usize])
+}
+
+/// `n` long slivers through the centre, each turned `2π/n` about z from the last.
+pub fn crossing(n: u32) -> Mesh {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let a = std::f32::consts::TAU * i as f32 / n as f32;
+        let (c, s) = (a.cos(), a.sin());
+        let base = positions.len() as u32;
+        positions.push([-c, -s, -0.001 * (i % 7) as f32]);
+        positions.push([c, s, 0.001 * (i % 5) as f32]);
+        positions.push([c + 1e-4, s, 0.0]);
+        triangles.push([base, base + 1, base + 2]);
+    }
+    (positions, triangles)
+}
+
+/// `n` triangles of zero area, all at one point.
+pub fn point(n: u32) -> Mesh {
+    let positions = vec![[0.25, 0.5, 0.75]; 3 * n as usize];
+    let triangles = (0..n).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    (positions, triangles)
+}
+
+/// `n` triangles, each spanning the whole box `[-1, 1]³` (corners on its faces, turned a
+/// little each time).
+pub fn overlap(n: u32) -> Mesh {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let t = i as f32 / n as f32;
+        let base = positions.len() as u32;
+        positions.push([-1.0, -1.0 + 2.0 * t, -1.0]);
+        positions.push([1.0, 1.0 - 2.0 * t, -1.0]);
+        positions.push([2.0 * t - 1.0, 0.0, 1.0]);
+        triangles.push([base, base + 1, base + 2]);
+    }
+    (positions, triangles)
+}

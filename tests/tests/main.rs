@@ -12,6 +12,7 @@ mod collapse_plan;
 mod collapse_roles;
 mod collide;
 mod compact_nodes;
+mod degenerate_builds;
 mod doc_links;
 mod edge_cases;
 mod eight_wide;

@@ -5,7 +5,18 @@
 //!
 //! A triangle is referenced from every cell it touches, so references outnumber triangles and
 //! their count is only known once the cells are cut. Each structure therefore gives an exact
-//! sizing pass and a builder that stays within the buffers it is handed.
+//! sizing pass and a builder that stays within the buffers it is handed. On geometry no cut
+//! separates (copies of one triangle, slivers all crossing one point, triangles spanning the
+//! whole box), cells would multiply references without end: the owned builds and
+//! [`Grid::measure`](crate::grid::Grid::measure) stop refining at
+//! [`REFERENCES_PER_TRIANGLE`] references per triangle.
+
+/// The most references per triangle the owned cell builds ([`MeshCells`](crate::owned::MeshCells))
+/// and [`Grid::measure`](crate::grid::Grid::measure) make: past it a k-d tree or octree keeps
+/// its remaining cells as leaves, and a grid takes coarser cells (down to one). Ordinary meshes
+/// need 2 to 6; the bound only binds on geometry cells cannot separate, and keeps time and
+/// memory linear in the triangle count there.
+pub const REFERENCES_PER_TRIANGLE: usize = 32;
 
 mod cell_walk;
 mod check;
@@ -26,6 +37,7 @@ pub(crate) use offer::Offer;
 pub(crate) use reference::ReferencePad;
 pub(crate) use region::{Region, Untracked};
 pub use sizes::TreeSizes;
+
 pub use stats::CellStats;
 pub(crate) use tree_build::{Decision, MAX_ARITY, Splitter, build_tree};
 #[cfg(feature = "blob")]

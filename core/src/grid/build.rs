@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use super::{Grid, GridConfig, GridLayout};
-use crate::cells::ReferencePad;
+use crate::cells::{REFERENCES_PER_TRIANGLE, ReferencePad};
 use crate::error::{BufferKind, BuildError};
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
@@ -66,25 +66,71 @@ fn count_references(layout: &GridLayout, mesh: &ValidMesh<'_>, limit: usize) -> 
     total
 }
 
+/// The finest layout for `mesh` from `config`'s λ, halved (coarser cells) until the cells its
+/// triangles' padded boxes span number at most `budget` in all (down to a single cell), with
+/// its exact reference count, which that sum bounds. Each try costs one pass over the
+/// triangles' boxes; only the layout chosen is counted triangle by cell.
+pub(crate) fn layout_within(
+    mesh: &ValidMesh<'_>,
+    config: &GridConfig,
+    budget: usize,
+) -> (GridLayout, usize) {
+    let mut lambda = config.cells_per_triangle;
+    loop {
+        let layout = GridLayout::for_triangles(
+            mesh.bounds(),
+            mesh.triangle_count(),
+            lambda,
+            config.max_resolution,
+        );
+        if box_references(&layout, mesh) <= budget || layout.resolution == [1, 1, 1] {
+            return (layout, count_references(&layout, mesh, usize::MAX));
+        }
+        lambda *= 0.5;
+    }
+}
+
+/// The cells the padded bounds of each triangle of `mesh` span in `layout`, summed
+/// (saturating): at least the references, which only touched cells make.
+fn box_references(layout: &GridLayout, mesh: &ValidMesh<'_>) -> usize {
+    let pad = ReferencePad::of(&layout.bounds);
+    let mut total = 0usize;
+    for tri in 0..mesh.triangle_count() as u32 {
+        let Some(t) = mesh.triangle(tri) else {
+            continue;
+        };
+        let (lo, hi) = layout.cells_touching(&pad.grow(&t.bounds()));
+        let span = hi.iter().zip(lo).fold(1usize, |n, (&h, l)| {
+            n.saturating_mul(h.saturating_sub(l) as usize + 1)
+        });
+        total = total.saturating_add(span);
+    }
+    total
+}
+
+/// The reference budget of the owned and measured grids: [`REFERENCES_PER_TRIANGLE`] per
+/// triangle.
+pub(crate) fn reference_budget(mesh: &ValidMesh<'_>) -> usize {
+    mesh.triangle_count()
+        .saturating_mul(REFERENCES_PER_TRIANGLE)
+}
+
 impl<'a> Grid<&'a [u32]> {
-    /// The exact buffer lengths [`Grid::build`] needs to build `mesh` with `config` at full
-    /// resolution: one counting pass over the triangles, nothing written.
+    /// The exact buffer lengths [`Grid::build`] needs to build `mesh` with `config`: the
+    /// finest layout from λ, halved until the references number at most
+    /// [`REFERENCES_PER_TRIANGLE`] per triangle (on ordinary meshes, λ itself). Counting passes
+    /// only; nothing written.
     ///
     /// # Errors
     /// [`BuildError::InvalidConfig`] for a config out of range.
     pub fn measure(mesh: &ValidMesh<'_>, config: &GridConfig) -> Result<GridSizes, BuildError> {
         config.validate()?;
-        let layout = GridLayout::for_triangles(
-            mesh.bounds(),
-            mesh.triangle_count(),
-            config.cells_per_triangle,
-            config.max_resolution,
-        );
+        let (layout, items) = layout_within(mesh, config, reference_budget(mesh));
         let cells = layout.cell_count().unwrap_or(usize::MAX);
         Ok(GridSizes {
             layout,
             offsets: cells.saturating_add(1),
-            items: count_references(&layout, mesh, usize::MAX),
+            items,
         })
     }
 

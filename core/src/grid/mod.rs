@@ -34,7 +34,7 @@ mod tree;
 
 pub use build::GridSizes;
 #[cfg(feature = "alloc")]
-pub(crate) use build::for_each_cell;
+pub(crate) use build::{for_each_cell, layout_within, reference_budget};
 pub use config::GridConfig;
 pub use layout::GridLayout;
 pub use tree::Grid;

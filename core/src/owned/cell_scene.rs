@@ -4,8 +4,8 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::cells::TreeSizes;
 use crate::cells::pack::pack_references;
+use crate::cells::{REFERENCES_PER_TRIANGLE, TreeSizes};
 use crate::error::BuildError;
 use crate::math::{PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
@@ -61,18 +61,17 @@ impl LeafTriangles for CellScene {
     }
 }
 
-/// Measures a tree with a work buffer of four references per triangle, doubling it until the
-/// measured tree is complete (the one the config describes).
+/// Measures a tree with a work buffer of [`REFERENCES_PER_TRIANGLE`] references per
+/// triangle: the tree the config describes when that is room enough (as every ordinary mesh
+/// needs), else the tree that room allows, whose remaining cells stay leaves. One pass, whose
+/// buffer is freed before the build.
 pub(super) fn measure_fully(
     triangles: usize,
     measure: impl Fn(&mut [u32]) -> Result<TreeSizes, BuildError>,
 ) -> Result<TreeSizes, BuildError> {
-    let mut len = 4 * triangles.max(1);
-    loop {
-        let sizes = measure(&mut vec![0; len])?;
-        if sizes.complete || len >= u32::MAX as usize {
-            return Ok(sizes);
-        }
-        len = len.saturating_mul(2).min(u32::MAX as usize);
-    }
+    let most = triangles
+        .max(1)
+        .saturating_mul(REFERENCES_PER_TRIANGLE)
+        .min(u32::MAX as usize);
+    measure(&mut vec![0; most])
 }

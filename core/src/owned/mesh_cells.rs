@@ -11,7 +11,7 @@ use super::cell_scene::{CellScene, measure_fully};
 use super::mesh_grid::fill_in_one_pass;
 use crate::cells::CellStats;
 use crate::error::BuildError;
-use crate::grid::{Grid, GridConfig, GridLayout};
+use crate::grid::{Grid, GridConfig, GridLayout, layout_within, reference_budget};
 use crate::kdtree::{KdConfig, KdNode, KdTree};
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
@@ -271,15 +271,12 @@ impl CellKind for GridCells {
     type Arrays = GridArrays;
     type View<'a> = Grid<&'a [u32]>;
 
-    /// At full resolution: the cells [`GridLayout::for_triangles`] gives.
+    /// The layout [`Grid::measure`] picks: the finest within
+    /// [`REFERENCES_PER_TRIANGLE`](crate::cells::REFERENCES_PER_TRIANGLE) references per
+    /// triangle.
     fn build(mesh: &ValidMesh<'_>, config: &GridConfig) -> Result<GridArrays, BuildError> {
         config.validate()?;
-        let layout = GridLayout::for_triangles(
-            mesh.bounds(),
-            mesh.triangle_count(),
-            config.cells_per_triangle,
-            config.max_resolution,
-        );
+        let (layout, _) = layout_within(mesh, config, reference_budget(mesh));
         let (offsets, items) = fill_in_one_pass(&layout, mesh)?;
         Ok(GridArrays {
             layout,
