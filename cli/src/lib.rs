@@ -3,3 +3,4 @@
 
 pub mod mesh_file;
 mod ply_limits;
+mod stl_binary;
