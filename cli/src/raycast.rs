@@ -262,15 +262,17 @@ pub fn run(args: &RaycastArgs) -> Result<()> {
     let summary = with_structure(&args.input, |s| {
         verb = s.verb();
         let bar = progress::bar(reader.expected, "rays");
-        let (mut floats, mut rays) = (Vec::new(), Vec::with_capacity(CHUNK));
-        // Per ray, its records (one, or N with --hits).
+        // Per ray, its records (one, or N with --hits); rays are read in chunks of at most
+        // CHUNK records, so memory stays the same whatever N is.
         let per_ray = args.hits.map_or(1, |n| n as usize);
+        let chunk = (CHUNK / per_ray).max(1);
+        let (mut floats, mut rays) = (Vec::new(), Vec::with_capacity(chunk));
         let mut results: Vec<RayHit> = Vec::with_capacity(CHUNK);
         let (mut hits, mut query_seconds) = (0u64, 0.0f64);
         let mut nearest = vec![MISS; per_ray];
         let mut answers = Vec::new();
         let mut scratch = Scratch::default();
-        while reader.next_chunk(CHUNK, &mut floats)? > 0 {
+        while reader.next_chunk(chunk, &mut floats)? > 0 {
             rays.clear();
             let (records, _) = floats.as_chunks::<6>();
             rays.extend(records.iter().map(|&[ox, oy, oz, dx, dy, dz]| {

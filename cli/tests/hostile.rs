@@ -400,3 +400,34 @@ fn suspicious_inputs_get_errors_or_documented_answers() {
         u32::MAX
     );
 }
+
+/// `--hits 4096` keeps memory flat: rays are read in chunks of at most a million records, so
+/// 5,000 rays with 4,096 records each run under 256 MiB of address space (sized by rays × N
+/// up front, the records alone would take 320 MiB).
+#[test]
+fn many_hits_per_ray_run_in_bounded_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = asset("spot.obj");
+    let rays = dir.path().join("rays.bin");
+    let count = "5000";
+    assert!(
+        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &count])
+            .status
+            .success()
+    );
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 262144 && exec \"$0\" \"$@\"")
+        .arg(bin())
+        .args(["raycast"])
+        .arg(&mesh)
+        .arg("--rays")
+        .arg(&rays)
+        .args(["--hits", "4096", "--out", "/dev/null", "--json"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["rays"], 5000, "{summary}");
+}
