@@ -7,9 +7,9 @@ use super::{CompactNode, WideNode, WideNode8};
 use crate::bvh::Bvh;
 use crate::error::{BufferKind, BuildError};
 
-/// A node kind a binary tree collapses into by itself (public in a private module, so not nameable outside): the four- and
-/// eight-wide nodes collapse at their width, the compact node collapses four-wide and quantizes
-/// each node as it comes.
+/// A node kind a binary tree collapses into by itself (public in a private module, so not
+/// nameable outside): the four- and eight-wide nodes collapse at their width, the compact node
+/// collapses four-wide and quantizes each node as it comes.
 pub trait CollapsesFrom: Sized {
     /// Plans the collapse of `tree` in `entries` and writes its nodes into `out`; returns how
     /// many. Nothing is written when `out` is too small.
@@ -20,25 +20,23 @@ pub trait CollapsesFrom: Sized {
     ) -> Result<usize, BuildError>;
 }
 
-impl CollapsesFrom for WideNode {
-    fn collapse(
-        tree: &Bvh<'_>,
-        entries: &mut [PlanEntry],
-        out: &mut [Self],
-    ) -> Result<usize, BuildError> {
-        collapse_into::<Self, 4>(&CollapsePlan::<4>::new(tree, entries)?, out)
-    }
+/// A full-width kind: planned and collapsed at its own width.
+macro_rules! collapses_at_width {
+    ($node:ty, $width:literal) => {
+        impl CollapsesFrom for $node {
+            fn collapse(
+                tree: &Bvh<'_>,
+                entries: &mut [PlanEntry],
+                out: &mut [Self],
+            ) -> Result<usize, BuildError> {
+                collapse_into::<Self, $width>(&CollapsePlan::<$width>::new(tree, entries)?, out)
+            }
+        }
+    };
 }
 
-impl CollapsesFrom for WideNode8 {
-    fn collapse(
-        tree: &Bvh<'_>,
-        entries: &mut [PlanEntry],
-        out: &mut [Self],
-    ) -> Result<usize, BuildError> {
-        collapse_into::<Self, 8>(&CollapsePlan::<8>::new(tree, entries)?, out)
-    }
-}
+collapses_at_width!(WideNode, 4);
+collapses_at_width!(WideNode8, 8);
 
 impl CollapsesFrom for CompactNode {
     fn collapse(
