@@ -3,7 +3,7 @@
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
-use crate::args::side_number;
+use crate::mesh_bvh::ray_side;
 use crate::mesh_bvh::{hit_object, js_ray};
 
 #[wasm_bindgen]
@@ -16,12 +16,12 @@ impl MeshBvh {
         &self,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] origin: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
-        near: Option<f64>,
-        far: Option<f64>,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] near: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] far: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<js_sys::Array, JsValue> {
         let ray = js_ray(origin, direction, near, far)?;
-        let hits = self.storage.raycast_all(&ray, &side_number(side)?);
+        let hits = self.storage.raycast_all(&ray, &ray_side(side)?);
         Ok(hits
             .into_iter()
             .map(|h| hit_object(&self.storage, &ray, h))

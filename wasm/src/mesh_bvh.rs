@@ -2,14 +2,15 @@
 //! from a blob.
 
 use glam::Vec3;
+use meshq::RayOptions;
 use meshq::blob::MeshLayout;
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq::owned::MeshIndex;
 use wasm_bindgen::prelude::*;
 
 use crate::args::{
-    finite_number, floats_or_numbers, max_distance, range_error, range_numbers, side_number,
-    type_error, vector,
+    finite_number, floats_or_numbers, max_distance, range, range_error, range_numbers, side,
+    side_number, type_error, vector,
 };
 use crate::fields::{omitted, optional_choice, required_u32};
 use crate::js_objects::{meshq_closest_point, meshq_ray_hit};
@@ -37,19 +38,30 @@ pub struct MeshBvh {
 pub(crate) fn js_ray(
     origin: &JsValue,
     direction: &JsValue,
-    near: Option<f64>,
-    far: Option<f64>,
+    near: Option<JsValue>,
+    far: Option<JsValue>,
 ) -> Result<Ray, JsValue> {
     let origin = vector(origin, "origin")?;
     let dir = vector(direction, "direction")?;
     if dir == Vec3::ZERO {
         return Err(range_error("direction must not be zero"));
     }
-    let (near, far) = range_numbers(near, far)?;
+    let (near, far) = range(&or_undefined(near), &or_undefined(far))?;
     Ok(Ray::new(origin, dir).with_range(near, far))
 }
 
-/// The same ray from plain numbers, each checked finite.
+/// An omitted optional argument (`undefined` or `null` arrive as `None`) as `undefined`.
+pub(crate) fn or_undefined(value: Option<JsValue>) -> JsValue {
+    value.unwrap_or(JsValue::UNDEFINED)
+}
+
+/// The faces a single-ray call tests, from its optional `side` (see [`side`]).
+pub(crate) fn ray_side(value: Option<JsValue>) -> Result<RayOptions, JsValue> {
+    side(&or_undefined(value))
+}
+
+/// The same ray from plain numbers (converted by JavaScript on the way in), each checked
+/// finite.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn xyz_ray(
     ox: f64,
@@ -277,15 +289,19 @@ impl MeshBvh {
         &self,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] origin: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
-        near: Option<f64>,
-        far: Option<f64>,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] near: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] far: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<JsValue, JsValue> {
         self.cast(&js_ray(origin, direction, near, far)?, side)
     }
 
     /// [`MeshBvh::raycast`] with the ray as plain numbers (`ox, oy, oz, dx, dy, dz`): nothing
-    /// is allocated per call, the fastest single-ray form in a loop. The same result.
+    /// is allocated per call, the fastest single-ray form in a loop. The same result. Unlike
+    /// the other calls, its arguments are plain numbers that JavaScript converts on the way
+    /// in (a string holding a number is read as that number, `null` as 0, `true` as 1); what
+    /// converts to NaN is a `RangeError`. Checking each argument's type would double the cost
+    /// of a call; use `raycast` for checked arguments.
     #[wasm_bindgen(js_name = raycastXyz, unchecked_return_type = "RayHit | null")]
     #[allow(clippy::too_many_arguments)]
     pub fn raycast_xyz(
@@ -300,7 +316,11 @@ impl MeshBvh {
         far: Option<f64>,
         #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
     ) -> Result<JsValue, JsValue> {
-        self.cast(&xyz_ray(ox, oy, oz, dx, dy, dz, near, far)?, side)
+        let ray = xyz_ray(ox, oy, oz, dx, dy, dz, near, far)?;
+        let views = &self.storage;
+        Ok(views
+            .raycast(&ray, &side_number(side)?)
+            .map_or(JsValue::NULL, |hit| hit_object(views, &ray, hit)))
     }
 
     /// Whether the ray hits anything in `[near, far]` (occlusion, line of sight): it stops at
@@ -310,12 +330,12 @@ impl MeshBvh {
         &self,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] origin: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
-        near: Option<f64>,
-        far: Option<f64>,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<f64>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] near: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] far: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
     ) -> Result<bool, JsValue> {
         let ray = js_ray(origin, direction, near, far)?;
-        Ok(self.storage.raycast_any(&ray, &side_number(side)?))
+        Ok(self.storage.raycast_any(&ray, &ray_side(side)?))
     }
 
     /// The closest surface point to `point` (`Vec3Like`) within `maxDistance` (omitted or
@@ -428,10 +448,10 @@ impl MeshBvh {
         self.storage.level_boxes(level)
     }
 
-    fn cast(&self, ray: &Ray, side_in: Option<f64>) -> Result<JsValue, JsValue> {
+    fn cast(&self, ray: &Ray, side_in: Option<JsValue>) -> Result<JsValue, JsValue> {
         let views = &self.storage;
         Ok(views
-            .raycast(ray, &side_number(side_in)?)
+            .raycast(ray, &ray_side(side_in)?)
             .map_or(JsValue::NULL, |hit| hit_object(views, ray, hit)))
     }
 

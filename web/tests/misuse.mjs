@@ -147,8 +147,10 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   other.free();
 }
 
-// Bad single-query arguments. Plain-number arguments (near, far, side, raycastXyz's
-// coordinates) arrive as numbers, anything else as NaN: a RangeError then.
+// Bad single-query arguments. Number arguments (near, far, side) must be numbers: a string, a
+// boolean or null where a number is required is a TypeError, never converted (the batch calls
+// refuse the same values). raycastXyz alone takes plain numbers JavaScript converts, as
+// documented: what converts to NaN is a RangeError.
 const cases = [
   [() => bvh.raycast(), TypeError, /origin/],
   [() => bvh.raycast(above), TypeError, /direction/],
@@ -157,12 +159,16 @@ const cases = [
   [() => bvh.raycast(above, [0, 0, 0]), RangeError, /direction must not be zero/],
   [() => bvh.raycast(above, ['a', 0, -1]), TypeError, /direction\.x must be a number/],
   [() => bvh.raycast(above, down, NaN), RangeError, /near/],
-  [() => bvh.raycast(above, down, 0, 'far'), RangeError, /far must be a number/],
+  [() => bvh.raycast(above, down, 0, 'far'), TypeError, /far must be a number, got string/],
+  [() => bvh.raycast(above, down, '1'), TypeError, /near must be a number, got string/],
+  [() => bvh.raycast(above, down, 0, Infinity, true), TypeError, /side must be a number, got boolean/],
   [() => bvh.raycast(above, down, 2, 1), RangeError, /near .* must not exceed far/],
   [() => bvh.raycast(above, down, 0, Infinity, 256), RangeError, /side/],
   [() => bvh.raycast(above, down, 0, Infinity, 1.5), RangeError, /side/],
-  [() => bvh.raycast(above, down, 0, Infinity, 'front'), RangeError, /side/],
+  [() => bvh.raycast(above, down, 0, Infinity, 'front'), TypeError, /side/],
   [() => bvh.raycastXyz(0.3, 0.6, 1, 0, 0), RangeError, /dz must be a finite number, got NaN/],
+  [() => bvh.raycastXyz('a', 0.6, 1, 0, 0, -1), RangeError, /ox must be a finite number, got NaN/],
+  [() => bvh.raycastAny(above, down, 0, Infinity, '2'), TypeError, /side/],
   [() => bvh.raycastXyz(0.3, 0.6, Infinity, 0, 0, -1), RangeError, /oz/],
   [() => bvh.raycastAll(0.3, NaN, 1, 0, 0, -1), TypeError, /origin must be \[x, y, z\]/],
   [() => bvh.raycastAll(above), TypeError, /direction/],

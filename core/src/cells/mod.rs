@@ -11,7 +11,7 @@
 //! [`Grid::measure`](crate::grid::Grid::measure) stop refining at
 //! [`REFERENCES_PER_TRIANGLE`] references per triangle.
 
-/// The most references per triangle the owned cell builds ([`MeshCells`](crate::owned::MeshCells))
+/// The most references per triangle the owned cell builds (`owned::MeshCells`, feature `alloc`)
 /// and [`Grid::measure`](crate::grid::Grid::measure) make: past it a k-d tree or octree keeps
 /// its remaining cells as leaves, and a grid takes coarser cells (down to one). Ordinary meshes
 /// need 2 to 6; the bound only binds on geometry cells cannot separate, and keeps time and
