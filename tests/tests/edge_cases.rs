@@ -186,6 +186,42 @@ fn empty_mesh_gives_an_empty_tree_that_answers_nothing() {
     assert_eq!(bvh.bounds(), Aabb::EMPTY);
 }
 
+/// Every structure kind over no triangles builds, bakes into a blob of either layout, loads
+/// back (as a view and owned) and answers nothing (a grid's blob could not be baked: its empty
+/// box was refused as non-finite).
+#[test]
+fn every_structure_over_an_empty_mesh_bakes_and_answers_nothing() {
+    use meshq::StructureKind;
+    use meshq::blob::{BlobView, MeshLayout};
+    use meshq::owned::MeshIndex;
+    let mesh = MeshRef::new(&[], &[]).validate().unwrap();
+    let ray = Ray::new(Vec3::ZERO, Vec3::X);
+    for kind in StructureKind::ALL {
+        let index = MeshIndex::build(&mesh, kind).unwrap();
+        assert_eq!(index.raycast(&ray), None, "{kind:?}");
+        for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
+            let bytes = index
+                .to_blob(layout)
+                .unwrap_or_else(|e| panic!("{kind:?} {layout:?}: {e}"));
+            let view = BlobView::parse(&bytes).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+            let loaded = MeshIndex::from_blob(&bytes).unwrap();
+            assert_eq!(view.raycast(&ray), None, "{kind:?} {layout:?}");
+            assert!(!view.raycast_any(&ray), "{kind:?} {layout:?}");
+            assert_eq!(
+                view.closest_point(Vec3::ZERO, f32::INFINITY),
+                None,
+                "{kind:?}"
+            );
+            assert_eq!(loaded.raycast(&ray), None, "{kind:?} {layout:?}");
+            assert_eq!(
+                loaded.closest_point(Vec3::ZERO, f32::INFINITY),
+                None,
+                "{kind:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn one_triangle_and_invalid_queries() {
     let positions = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];

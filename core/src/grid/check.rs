@@ -19,7 +19,9 @@ pub(super) fn check<W: Words>(
         return Err(StructureError::BadResolution);
     }
     let b = layout.bounds;
-    if !b.is_finite() || (b.is_empty() && triangle_count > 0) {
+    // A grid over no triangles has the empty box (infinite corners), as every structure does.
+    let empty_mesh = triangle_count == 0 && b.is_empty();
+    if !empty_mesh && (!b.is_finite() || b.is_empty()) {
         return Err(StructureError::BadBounds { node: 0 });
     }
     let cells = layout.cell_count().ok_or(StructureError::BadResolution)?;
