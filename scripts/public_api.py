@@ -84,6 +84,7 @@ for kind, n in sorted(counts.items()):
 print(f"{'total':20} {sum(counts.values()):5}")
 advanced = sum(1 for p in seen.values() if p.split("::")[1:2] == ["advanced"])
 print(f"{'of which advanced':20} {advanced:5}")
+print(f"{'outside advanced':20} {len(seen) - advanced:5}")
 if listing:
     for path in sorted(seen.values()):
         print(path)

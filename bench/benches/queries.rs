@@ -14,7 +14,8 @@ use criterion::{
 };
 use glam::{Vec3, Vec3A};
 use meshq::MeshBvh;
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::advanced::{BvhNode, PrimRef};
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::math::Ray;
 use meshq::query::{RayOptions, TriangleTest};
 use meshq::{MeshQuery, Traverse};

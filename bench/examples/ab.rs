@@ -85,7 +85,7 @@ fn main() {
         .with_four_wide_nodes()
         .expect("four-wide nodes");
     let (packed, wide) = (owned.packed(), owned4.wide().expect("wide nodes"));
-    let mut compact_nodes = vec![meshq::wide::CompactNode::EMPTY; wide.nodes().len()];
+    let mut compact_nodes = vec![meshq::advanced::CompactNode::EMPTY; wide.nodes().len()];
     let compact = meshq::wide::WideBvh::quantize(&wide, &mut compact_nodes).expect("compact");
     let per_triangle = |bytes: usize| bytes as f64 / mesh.triangle_count() as f64;
     println!(
@@ -96,10 +96,10 @@ fn main() {
         per_triangle(compact.node_bytes()),
     );
 
-    type Wide8<'a> = meshq::wide::WideBvh<'a, meshq::wide::WideNode8>;
+    type Wide8<'a> = meshq::wide::WideBvh<'a, meshq::advanced::WideNode8>;
     let sizes8 = Wide8::measure(&bvh);
-    let mut plan8 = vec![meshq::wide::PlanEntry::EMPTY; sizes8.plan];
-    let mut nodes8 = vec![meshq::wide::WideNode8::EMPTY; sizes8.nodes];
+    let mut plan8 = vec![meshq::advanced::PlanEntry::EMPTY; sizes8.plan];
+    let mut nodes8 = vec![meshq::advanced::WideNode8::EMPTY; sizes8.nodes];
     let wide8 = Wide8::build(&bvh, &mut plan8, &mut nodes8).expect("wide8");
     println!(
         "eight-wide: {} nodes, {:.1} bytes per triangle",

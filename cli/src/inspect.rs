@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use meshq::blob::{BlobHeader, BlobStructure, BlobTree, MAGIC};
+use meshq::advanced::{BlobHeader, LEAF_HISTOGRAM_LEN, MAGIC, TreeStats};
+use meshq::blob::{BlobStructure, BlobTree};
 use meshq::bvh::BuildConfig;
-use meshq::bvh::{LEAF_HISTOGRAM_LEN, TreeStats};
 use meshq::mesh::MeshRef;
 use meshq::owned::{MeshIndex, StructureKind};
 use serde::Serialize;

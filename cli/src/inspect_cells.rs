@@ -1,7 +1,8 @@
 //! `meshq inspect` on a blob holding a k-d tree, octree or grid: its config and cell figures.
 
 use crate::output::say;
-use meshq::blob::{BlobHeader, BlobStructure, StructureConfig};
+use meshq::advanced::BlobHeader;
+use meshq::blob::{BlobStructure, StructureConfig};
 use serde::Serialize;
 
 /// What a cell-structure blob holds.

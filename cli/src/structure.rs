@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use meshq::blob::{BlobHeader, MAGIC};
+use meshq::advanced::{BlobHeader, MAGIC};
 use meshq::bvh::{BuildConfig, SpatialSplits};
 use meshq::error::BlobError;
 use meshq::mesh::MeshRef;

@@ -3,7 +3,7 @@
 //! The panic-free build prints nothing (its exit status says it all), so formatting code does
 //! not enter the proof.
 
-use meshq::blob::BlobHeader;
+use meshq::advanced::BlobHeader;
 use meshq::error::BlobError;
 #[cfg(feature = "remesh")]
 use meshq::error::{MeshError, RemeshError};

@@ -6,8 +6,9 @@
 use core::ops::ControlFlow;
 
 use libfuzzer_sys::fuzz_target;
-use meshq::blob::{self, BlobHeader, BlobView};
-use meshq::bvh::BvhNode;
+use meshq::advanced::BlobHeader;
+use meshq::blob::BlobView;
+use meshq::advanced::BvhNode;
 use meshq::advanced::PackedTriangle;
 use meshq::math::{Aabb, Ray, Vec3};
 use meshq::{MeshBvh, MeshQuery, Traverse};
@@ -18,7 +19,7 @@ fuzz_target!(|data: &[u8]| {
     };
     let mut bytes = rest.to_vec();
     if mode & 1 == 1 {
-        let _ = blob::reseal(&mut bytes);
+        let _ = meshq::advanced::reseal(&mut bytes);
     }
     let _ = BlobHeader::read(&bytes);
     let view = match BlobView::parse(&bytes) {

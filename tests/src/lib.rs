@@ -17,8 +17,9 @@ pub use meshq_workload::SplitMix64;
 pub use topology::Topology;
 
 use meshq::MeshBvh;
+use meshq::advanced::BvhNode;
 use meshq::blob::MeshLayout;
-use meshq::bvh::{BuildConfig, Bvh, BvhNode};
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::StructureError;
 use meshq::mesh::ValidMesh;
 
@@ -66,7 +67,7 @@ pub fn fuzz_blob(name: &str) -> Vec<u8> {
     let mut bytes = rest.to_vec();
     if mode & 1 == 1 {
         // A blob too short to reseal stays as it is, as the target leaves it.
-        let _ = meshq::blob::reseal(&mut bytes);
+        let _ = meshq::advanced::reseal(&mut bytes);
     }
     bytes
 }

@@ -34,7 +34,7 @@ fn every_single_byte_corruption_and_truncation_is_handled() {
                 refused += 1;
                 // With the checksum recomputed, validation itself must catch what matters; a
                 // blob it accepts must still be safe to query.
-                if blob::reseal(&mut damaged).is_ok() {
+                if meshq::advanced::reseal(&mut damaged).is_ok() {
                     // The owned loaders check boxes on their decoded copy: they must refuse
                     // exactly what the view refuses, with the same error.
                     let owned = MeshBvh::from_blob(&damaged);
@@ -102,7 +102,7 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
     // A BVH blob with its collapse roles: version 5.
     assert_eq!(future[4], 5, "the version varint follows the magic");
     future[4] = 6;
-    blob::reseal(&mut future).unwrap_err(); // the header of version 6 is not read at all
+    meshq::advanced::reseal(&mut future).unwrap_err(); // the header of version 6 is not read at all
     let err = BlobView::parse(&future).unwrap_err();
     assert_eq!(
         err,
@@ -217,7 +217,7 @@ fn an_order_naming_a_triangle_twice_is_refused() {
         .unwrap();
     let mut damaged = good.clone();
     damaged.copy_within(at..at + 4, at + 4);
-    blob::reseal(&mut damaged).unwrap();
+    meshq::advanced::reseal(&mut damaged).unwrap();
     assert_eq!(
         BlobView::parse(&damaged).unwrap_err(),
         BlobError::OrderNotPermutation
@@ -228,7 +228,7 @@ fn an_order_naming_a_triangle_twice_is_refused() {
         .unwrap();
     let mut damaged = good.clone();
     damaged[at + 4 * slot..at + 4 * slot + 4].copy_from_slice(&(order[slot] - 1).to_le_bytes());
-    blob::reseal(&mut damaged).unwrap();
+    meshq::advanced::reseal(&mut damaged).unwrap();
     assert_eq!(
         BlobView::parse(&damaged).unwrap_err(),
         BlobError::OrderNotPermutation

@@ -7,8 +7,9 @@ use std::ops::ControlFlow;
 
 use meshq::MeshBvh;
 use meshq::advanced::PackedTriangle;
-use meshq::blob::{BlobView, FORMAT_VERSION, MeshLayout, StructureKind, mesh_checksum};
-use meshq::bvh::{BuildConfig, BvhNode};
+use meshq::advanced::{BvhNode, FORMAT_VERSION, mesh_checksum};
+use meshq::blob::{BlobView, MeshLayout, StructureKind};
+use meshq::bvh::BuildConfig;
 use meshq::math::{Aabb, ClosestPoint, RayHit, Vec3};
 use meshq::query::RayOptions;
 use meshq::{MeshQuery, Traverse};

@@ -3,7 +3,8 @@
 //! independent serde mirror); damage is refused or harmless, never a panic.
 
 use meshq::MeshBvh;
-use meshq::blob::{self, BlobStructure, BlobView, MeshLayout, mesh_checksum};
+use meshq::advanced::mesh_checksum;
+use meshq::blob::{self, BlobStructure, BlobView, MeshLayout};
 use meshq::error::BlobError;
 use meshq::math::Aabb;
 use meshq::mesh::{MeshRef, ValidMesh};
@@ -266,7 +267,7 @@ fn damaged_cell_blobs_are_refused_or_harmless() {
                         BlobView::parse(&damaged).is_err(),
                         "{kind} {layout:?} byte {i} ^ {flip:#x}"
                     );
-                    if blob::reseal(&mut damaged).is_ok() {
+                    if meshq::advanced::reseal(&mut damaged).is_ok() {
                         match BlobView::parse(&damaged) {
                             Ok(view) => {
                                 meshq_tests::suite::exercise(&view);
@@ -313,13 +314,13 @@ fn headers_that_contradict_the_structure_are_refused() {
         assert!(bytes[depth_at] < 0x7f, "a one-byte varint");
         let mut deeper = bytes.clone();
         deeper[depth_at] += 1;
-        blob::reseal(&mut deeper).unwrap();
+        meshq::advanced::reseal(&mut deeper).unwrap();
         let err = BlobView::parse(&deeper).unwrap_err();
         assert_eq!(err, BlobError::HeaderMismatch { field: "depth" }, "{kind}");
         // A cell-structure kind tag in a version-2 blob is refused: version 2 knew only BVHs.
         let mut old = bytes.clone();
         old[4] = 2;
-        blob::reseal(&mut old).unwrap_err();
+        meshq::advanced::reseal(&mut old).unwrap_err();
         assert_eq!(
             BlobView::parse(&old).unwrap_err(),
             BlobError::UnsupportedStructure { kind: kind.tag() }
@@ -340,7 +341,7 @@ fn version_2_bvh_blobs_still_load() {
     blob::encode_into(&owned.bvh(), &mesh, &options, &mut bytes).unwrap();
     assert_eq!(bytes[4], 3);
     bytes[4] = 2;
-    blob::reseal(&mut bytes).unwrap();
+    meshq::advanced::reseal(&mut bytes).unwrap();
     let view = BlobView::parse(&bytes).unwrap();
     assert_eq!(view.header().version, 2);
     check_all(&view, &BruteForce::new(&mesh), &loaded, "cow as version 2");

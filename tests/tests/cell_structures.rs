@@ -1,13 +1,14 @@
 //! The structures that cut space into cells — grid, k-d tree, octree — against brute force on
 //! every bundled mesh, their sizing passes and budgets, and the early-exit rule.
 
+use meshq::advanced::{KdNode, OctreeNode};
 use meshq::cells::TreeSizes;
 use meshq::error::{BufferKind, BuildError};
 use meshq::grid::{Grid, GridConfig};
-use meshq::kdtree::{KdConfig, KdNode, KdTree};
+use meshq::kdtree::{KdConfig, KdTree};
 use meshq::math::{Ray, Vec3};
 use meshq::mesh::ValidMesh;
-use meshq::octree::{Octree, OctreeConfig, OctreeNode};
+use meshq::octree::{Octree, OctreeConfig};
 use meshq::owned::{MeshGrid, MeshIndex, StructureKind};
 use meshq::query::RayOptions;
 use meshq::{MeshQuery, Traverse};
@@ -158,7 +159,7 @@ fn octree_answers_every_query_as_brute_force() {
 /// Every cell structure of `mesh`, built at full size through its measuring pass, each checked
 /// by its validator.
 struct Built {
-    grid: (meshq::grid::GridLayout, Vec<u32>, Vec<u32>),
+    grid: (meshq::advanced::GridLayout, Vec<u32>, Vec<u32>),
     kd: (meshq::math::Aabb, Vec<KdNode>, Vec<u32>),
     oct: (meshq::math::Aabb, Vec<OctreeNode>, Vec<u32>),
 }
@@ -444,7 +445,7 @@ fn owned_structures_of_every_kind_answer_as_brute_force() {
 
 type KdEdit<'a> = dyn Fn(&mut Vec<KdNode>, &mut Vec<u32>) + 'a;
 type OctEdit<'a> = dyn Fn(&mut Vec<OctreeNode>, &mut Vec<u32>) + 'a;
-type GridEdit<'a> = dyn Fn(&mut meshq::grid::GridLayout, &mut Vec<u32>, &mut Vec<u32>) + 'a;
+type GridEdit<'a> = dyn Fn(&mut meshq::advanced::GridLayout, &mut Vec<u32>, &mut Vec<u32>) + 'a;
 
 /// Arrays that do not form a structure are refused with a typed error, never a panic: each
 /// corruption below breaks one rule the walks rely on.

@@ -4,10 +4,11 @@
 
 use meshq::MeshBvh;
 use meshq::advanced::PackedTriangle;
+use meshq::advanced::WideNode;
 use meshq::bvh::BuildConfig;
 use meshq::error::{BatchBuffer, BatchError};
 use meshq::math::{ClosestPoint, Vec3};
-use meshq::wide::{WideBvh, WideNode};
+use meshq::wide::WideBvh;
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
@@ -26,7 +27,7 @@ fn closest_point_matches_brute_force_on_every_mesh() {
         let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
         let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
         let sizes = WideBvh::<WideNode>::measure(&bvh);
-        let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; sizes.plan];
+        let mut plan_entries = vec![meshq::advanced::PlanEntry::EMPTY; sizes.plan];
         let mut wide_nodes = vec![WideNode::EMPTY; sizes.nodes];
         let wide = WideBvh::build(&bvh, &mut plan_entries, &mut wide_nodes).unwrap();
         let brute = BruteForce::new(&mesh);

@@ -6,11 +6,12 @@
 
 use meshq::MeshBvh;
 use meshq::advanced::{CollapsePlan, MERGED_LEAF_MAX, NODE_COST, plan_capacity};
+use meshq::advanced::{PlanEntry, WideNode, WideNode8};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError};
 use meshq::math::Aabb;
 use meshq::mesh::MeshRef;
-use meshq::wide::{PlanEntry, WideBvh, WideNode, WideNode8};
+use meshq::wide::WideBvh;
 use meshq_tests::{MESHES, load_mesh};
 
 /// Half the surface area of `b`, in f64 from its corners.
@@ -71,7 +72,7 @@ fn exhaustive_optimum(bvh: &Bvh<'_>, w: usize) -> f64 {
         };
     }
     // Every set of at most `w` nodes below or at `i` that covers its subtree once.
-    fn cuts(nodes: &[meshq::bvh::BvhNode], i: usize, w: usize) -> Vec<Vec<usize>> {
+    fn cuts(nodes: &[meshq::advanced::BvhNode], i: usize, w: usize) -> Vec<Vec<usize>> {
         let mut all = vec![vec![i]];
         if !nodes[i].is_leaf() {
             let f = nodes[i].first as usize;
@@ -86,7 +87,7 @@ fn exhaustive_optimum(bvh: &Bvh<'_>, w: usize) -> f64 {
         all
     }
     // The cheapest wide node at inner node `i` and everything below it.
-    fn node_cost(nodes: &[meshq::bvh::BvhNode], slots: &[u32], i: usize, w: usize) -> f64 {
+    fn node_cost(nodes: &[meshq::advanced::BvhNode], slots: &[u32], i: usize, w: usize) -> f64 {
         let f = nodes[i].first as usize;
         let mut best = f64::INFINITY;
         for a in cuts(nodes, f, w) {
@@ -104,7 +105,7 @@ fn exhaustive_optimum(bvh: &Bvh<'_>, w: usize) -> f64 {
         }
         half_area(&nodes[i].aabb()) * f64::from(NODE_COST) + best
     }
-    fn lane_cost(nodes: &[meshq::bvh::BvhNode], slots: &[u32], c: usize, w: usize) -> f64 {
+    fn lane_cost(nodes: &[meshq::advanced::BvhNode], slots: &[u32], c: usize, w: usize) -> f64 {
         let b = nodes[c].aabb();
         if nodes[c].is_leaf() {
             return leaf_cost(&b, nodes[c].count);

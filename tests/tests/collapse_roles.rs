@@ -4,13 +4,15 @@
 //! and roles that break a rule are refused by every loader.
 
 use meshq::MeshBvh;
+use meshq::advanced::{BlobHeader, BvhNode, reseal};
 use meshq::advanced::{CollapsePlan, CollapseRoles, MERGED_LEAF_MAX, plan_capacity};
-use meshq::blob::{self, BlobHeader, BlobView, EncodeOptions, MeshLayout, reseal};
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, SpatialSplits};
+use meshq::advanced::{PlanEntry, WideNode8};
+use meshq::blob::{self, BlobView, EncodeOptions, MeshLayout};
+use meshq::bvh::{BuildConfig, Bvh, SpatialSplits};
 use meshq::error::BlobError;
 use meshq::math::Aabb;
 use meshq::owned::MeshIndex;
-use meshq::wide::{PlanEntry, WideBvh, WideNode8};
+use meshq::wide::WideBvh;
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;
 use meshq_tests::{MESHES, load_mesh};

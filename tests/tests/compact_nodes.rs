@@ -6,10 +6,11 @@ use std::ops::ControlFlow;
 
 use meshq::MeshBvh;
 use meshq::advanced::Aabb4;
+use meshq::advanced::{CompactNode, WideNode};
 use meshq::bvh::BuildConfig;
 use meshq::math::{Aabb, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse};
-use meshq::wide::{CompactNode, WideBvh, WideNode};
+use meshq::wide::WideBvh;
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, load_mesh, workload};
 

@@ -4,7 +4,8 @@
 use glam::Vec3;
 use meshq::MeshBvh;
 use meshq::advanced::PackedTriangle;
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef};
+use meshq::advanced::{BvhNode, PrimRef};
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError, FlatSlice, MeshError};
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;

@@ -8,11 +8,12 @@ use std::ops::ControlFlow;
 
 use meshq::MeshBvh;
 use meshq::advanced::{CollapsePlan, MERGED_LEAF_MAX, plan_capacity};
+use meshq::advanced::{PlanEntry, WideNode8};
 use meshq::bvh::BuildConfig;
 use meshq::geom::CullMode;
 use meshq::math::{Aabb, Ray, RayHit, Vec3};
 use meshq::query::{MeshQuery, RayOptions, Traverse, TriangleTest};
-use meshq::wide::{PlanEntry, WideBvh, WideNode8};
+use meshq::wide::WideBvh;
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, load_mesh, workload};
 
@@ -350,8 +351,10 @@ fn the_default_tree_is_the_targets_and_every_choice_answers_alike() {
     let blob = built.to_blob(meshq::blob::MeshLayout::Indexed).unwrap();
     let loaded_blob = MeshBvh::from_blob(&blob).unwrap();
     let bvh = built.bvh();
-    let mut storage4 =
-        vec![meshq::wide::WideNode::EMPTY; WideBvh::<meshq::wide::WideNode>::measure(&bvh).nodes];
+    let mut storage4 = vec![
+        meshq::advanced::WideNode::EMPTY;
+        WideBvh::<meshq::advanced::WideNode>::measure(&bvh).nodes
+    ];
     let mut entries4 = vec![PlanEntry::EMPTY; plan_capacity(&bvh)];
     let plan4 = CollapsePlan::<4>::new(&bvh, &mut entries4).unwrap();
     let four = WideBvh::from_plan(&plan4, &mut storage4).unwrap();

@@ -3,6 +3,7 @@
 //! reference cannot call them either); everywhere else the answers must agree.
 
 use glam::{DVec3, Vec2, Vec3};
+use meshq::advanced::point_in_triangle_2d;
 use meshq::geom::*;
 use meshq::math::{Aabb, Plane, Ray, Triangle};
 use proptest::prelude::*;

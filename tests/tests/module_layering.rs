@@ -38,8 +38,8 @@ fn module_graph() -> BTreeMap<String, BTreeSet<String>> {
             .as_os_str()
             .to_string_lossy();
         let module = first.trim_end_matches(".rs").to_owned();
-        if module == "lib" || module == "prelude" {
-            continue; // the crate root and the prelude only re-export
+        if module == "lib" || module == "prelude" || module == "advanced" {
+            continue; // the crate root, the prelude and `advanced` only re-export
         }
         let text = fs::read_to_string(&file).unwrap();
         let deps = graph.entry(module.clone()).or_default();

@@ -8,9 +8,10 @@
 use meshq::MeshBvh;
 use meshq::MeshQuery;
 use meshq::advanced::PackedTriangle;
+use meshq::advanced::{BvhNode, PrimRef};
 use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
-use meshq::bvh::{Bvh, BvhNode, PrimRef};
+use meshq::bvh::Bvh;
 use meshq::error::{BatchBuffer, BatchError};
 use meshq::math::{ClosestPoint, RayHit};
 use meshq::owned::{MeshIndex, StructureKind};

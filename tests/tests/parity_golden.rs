@@ -12,13 +12,14 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use meshq::MeshBvh;
+use meshq::advanced::WideNode;
 use meshq::blob::{BlobView, MeshLayout};
 use meshq::bvh::{BuildConfig, Bvh, SpatialSplits};
 use meshq::math::{ClosestPoint, Ray, RayHit};
 use meshq::mesh::ValidMesh;
 use meshq::owned::{MeshIndex, StructureKind};
 use meshq::query::RayOptions;
-use meshq::wide::{WideBvh, WideNode};
+use meshq::wide::WideBvh;
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, bake, checked_bvh, load_mesh};
@@ -135,7 +136,7 @@ fn computed_line(name: &str) -> String {
         "{name}: in-memory BVH against brute force"
     );
     let sizes = WideBvh::<WideNode>::measure(&bvh);
-    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; sizes.plan];
+    let mut plan_entries = vec![meshq::advanced::PlanEntry::EMPTY; sizes.plan];
     let mut wide_nodes = vec![WideNode::EMPTY; sizes.nodes];
     let wide = WideBvh::build(&bvh, &mut plan_entries, &mut wide_nodes).unwrap();
     // The root's child boxes are padded around their own triangles: inside the root's box.
@@ -238,7 +239,7 @@ fn default_and_fast_blobs_match_the_golden_blob_file() {
             let blob = bake(&mesh, &config, MeshLayout::Indexed).unwrap();
             // Deterministic: a second bake gives the same bytes.
             assert_eq!(bake(&mesh, &config, MeshLayout::Indexed).unwrap(), blob);
-            let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+            let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
             writeln!(
                 file,
                 "{name}{suffix} bytes={} checksum={:#010x}",
@@ -256,7 +257,7 @@ fn default_and_fast_blobs_match_the_golden_blob_file() {
         let blob = scene.to_blob(MeshLayout::Indexed).unwrap();
         let again = MeshBvh::build_spatial(&mesh, &BuildConfig::default(), &spatial).unwrap();
         assert_eq!(again.to_blob(MeshLayout::Indexed).unwrap(), blob, "{name}");
-        let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+        let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
         writeln!(
             file,
             "{name}-spatial bytes={} checksum={:#010x}",
@@ -270,7 +271,7 @@ fn default_and_fast_blobs_match_the_golden_blob_file() {
             let loaded = load_mesh(name);
             let index = MeshIndex::build(&loaded.valid(), *kind).unwrap();
             let blob = index.to_blob(MeshLayout::Indexed).unwrap();
-            let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+            let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
             writeln!(
                 file,
                 "{name}-{kind} bytes={} checksum={:#010x}",

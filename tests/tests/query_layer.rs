@@ -6,12 +6,13 @@
 
 use std::ops::ControlFlow;
 
+use meshq::advanced::LeafTriangleIds;
 use meshq::blob::{BlobTree, BlobView, MeshLayout};
 use meshq::bvh::BuildConfig;
 use meshq::geom::intersect_ray_aabb;
 use meshq::math::Aabb;
 use meshq::mesh::ValidMesh;
-use meshq::query::{LeafTriangleIds, RayOptions, Visitor};
+use meshq::query::{RayOptions, Visitor};
 use meshq::{MeshBvh, MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;

@@ -5,6 +5,7 @@
 //! both triangle tests, one ray per call and in batches (camera packets included).
 //! A structure of one's own that names a triangle `u32::MAX` still has that triangle hit.
 
+use meshq::advanced::LeafTriangleIds;
 use meshq::bvh::BuildConfig;
 use meshq::math::{Ray, RayHit};
 use meshq::query::{RayOptions, TriangleTest};
@@ -87,7 +88,7 @@ fn a_triangle_numbered_u32_max_is_still_hit() {
     use meshq::Traverse;
     use meshq::advanced::PackedTriangle;
     use meshq::math::Aabb;
-    use meshq::query::{LeafTriangleIds, Visitor};
+    use meshq::query::Visitor;
 
     struct OneLeaf<'a> {
         ids: &'a [u32],

@@ -5,12 +5,13 @@
 
 use meshq::MeshBvh;
 use meshq::advanced::PackedTriangle;
+use meshq::advanced::WideNode;
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::geom::CullMode;
 use meshq::math::Ray;
 use meshq::mesh::ValidMesh;
 use meshq::query::{PackedTriangles, RayOptions, TriangleTest};
-use meshq::wide::{WideBvh, WideNode};
+use meshq::wide::WideBvh;
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{LoadedMesh, MESHES, checked_bvh, load_mesh, workload};
@@ -40,7 +41,7 @@ fn with_trees(name: &str, check: impl FnOnce(&LoadedMesh, &MeshBvh, &Trees<'_>))
     let mut storage = vec![PackedTriangle::EMPTY; mesh.triangle_count()];
     let packed = bvh.pack_triangles(&mesh, &mut storage).unwrap();
     let sizes = WideBvh::<WideNode>::measure(&bvh);
-    let mut plan_entries = vec![meshq::wide::PlanEntry::EMPTY; sizes.plan];
+    let mut plan_entries = vec![meshq::advanced::PlanEntry::EMPTY; sizes.plan];
     let mut wide_nodes = vec![WideNode::EMPTY; sizes.nodes];
     let wide = WideBvh::build(&bvh, &mut plan_entries, &mut wide_nodes).unwrap();
     let brute = BruteForce::new(&mesh);

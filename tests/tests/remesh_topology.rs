@@ -4,6 +4,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use meshq::advanced::HalfEdgeEdits;
 use meshq::error::{RemeshBuffer, RemeshError};
 use meshq::mesh::MeshRef;
 use meshq::remesh::{HalfEdgeBuffers, HalfEdgeMesh};

@@ -4,14 +4,15 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, SpatialSplits};
+use meshq::advanced::SplitRef;
+use meshq::advanced::{BlobHeader, BvhNode, FORMAT_VERSION, PrimRef, reseal};
+use meshq::bvh::{BuildConfig, Bvh, SpatialSplits};
 use meshq::collide::{intersecting_pairs, self_intersecting_pairs};
 use meshq::error::{BufferKind, BuildError};
 use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
 use meshq::math::Triangle;
 use meshq::mesh::ValidMesh;
 use meshq::owned::MeshBvh;
-use meshq::query::SplitRef;
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::suite::check_all;
@@ -352,7 +353,7 @@ fn triangle_pairs_come_once_from_spatial_split_trees() {
 
 #[test]
 fn spatial_split_trees_round_trip_through_blobs() {
-    use meshq::blob::{BlobTree, BlobView, FORMAT_VERSION, MeshLayout, reseal};
+    use meshq::blob::{BlobTree, BlobView, MeshLayout};
     let loaded = sticks(300);
     let mesh = loaded.valid();
     let brute = BruteForce::new(&mesh);
@@ -398,7 +399,7 @@ fn spatial_split_trees_round_trip_through_blobs() {
 
     // Damage the table, reseal, and the loaders refuse it.
     let bytes = scene.to_blob(MeshLayout::Indexed).unwrap();
-    let h = meshq::blob::BlobHeader::read(&bytes).unwrap();
+    let h = meshq::advanced::BlobHeader::read(&bytes).unwrap();
     // Each array is a varint count, then its records.
     let varint = |n: u32| (32 - n.leading_zeros()).div_ceil(7).max(1) as usize;
     let order_at = h.header_len + varint(h.node_count) + 32 * h.node_count as usize;
@@ -441,7 +442,7 @@ fn spatial_split_trees_round_trip_through_blobs() {
     // the same points, other bytes. Found by the fuzzer (the view and the owned loader, which
     // keeps one corner triple per triangle, disagreed); now both refuse it alike.
     let packed = scene.to_blob(MeshLayout::Packed).unwrap();
-    let hp = meshq::blob::BlobHeader::read(&packed).unwrap();
+    let hp = meshq::advanced::BlobHeader::read(&packed).unwrap();
     let corners_at = {
         let order_at = hp.header_len + varint(hp.node_count) + 32 * hp.node_count as usize;
         let table_at = order_at + varint(hp.reference_count) + 4 * hp.reference_count as usize;
@@ -481,7 +482,7 @@ fn spatial_split_trees_round_trip_through_blobs() {
 
 #[test]
 fn blob_versions_follow_what_the_tree_needs() {
-    use meshq::blob::{self, BlobHeader, BlobView, EncodeOptions, MeshLayout};
+    use meshq::blob::{self, BlobView, EncodeOptions, MeshLayout};
     let loaded = load_mesh("spot");
     let mesh = loaded.valid();
     let brute = BruteForce::new(&mesh);

@@ -3,7 +3,9 @@
 //! validator rejects corrupted structures.
 
 use meshq::MeshBvh;
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, SplitStrategy};
+use meshq::advanced::BvhNode;
+use meshq::advanced::WideNode;
+use meshq::bvh::{BuildConfig, Bvh, SplitStrategy};
 use meshq::error::StructureError;
 use meshq::mesh::ValidMesh;
 use meshq::query::RayOptions;
@@ -276,7 +278,7 @@ fn builds_are_deterministic_whatever_the_buffers_held() {
     };
     let mut nodes = vec![garbage; Bvh::measure(n, None).nodes + 5];
     let mut order = vec![u32::MAX; n + 3];
-    let mut scratch = vec![meshq::bvh::PrimRef::EMPTY; n + 1];
+    let mut scratch = vec![meshq::advanced::PrimRef::EMPTY; n + 1];
     let b = Bvh::build(
         &mesh,
         &BuildConfig::default(),
@@ -431,9 +433,9 @@ fn built_parts_are_checked_for_safety_but_not_for_boxes() {
 #[test]
 fn views_accept_the_untrimmed_buffers_a_build_was_given() {
     use meshq::advanced::PackedTriangle;
-    use meshq::bvh::PrimRef;
+    use meshq::advanced::PrimRef;
     use meshq::query::PackedTriangles;
-    use meshq::wide::{WideBvh, WideNode};
+    use meshq::wide::WideBvh;
 
     for name in ["cow", "spot"] {
         let loaded = load_mesh(name);
@@ -457,7 +459,7 @@ fn views_accept_the_untrimmed_buffers_a_build_was_given() {
         }
 
         let mut entries =
-            vec![meshq::wide::PlanEntry::EMPTY; meshq::advanced::plan_capacity(&full)];
+            vec![meshq::advanced::PlanEntry::EMPTY; meshq::advanced::plan_capacity(&full)];
         let plan = meshq::advanced::CollapsePlan::<4>::new(&full, &mut entries).unwrap();
         let mut wide_nodes = vec![WideNode::EMPTY; WideBvh::<WideNode>::measure(&full).nodes + 3];
         let written = WideBvh::from_plan(&plan, &mut wide_nodes)

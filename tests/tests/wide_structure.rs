@@ -9,11 +9,12 @@ use std::collections::BTreeMap;
 use glam::Vec3;
 use meshq::MeshBvh;
 use meshq::advanced::{CollapsePlan, MERGED_LEAF_MAX, plan_capacity};
+use meshq::advanced::{CompactNode, PlanEntry, WideNode, WideNode8};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::error::{BufferKind, BuildError, StructureError};
 use meshq::math::{Aabb, Ray};
 use meshq::mesh::MeshRef;
-use meshq::wide::{PlanEntry, WideBvh, WideNode};
+use meshq::wide::WideBvh;
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{MESHES, checked_bvh, load_mesh, workload};
@@ -387,7 +388,6 @@ fn awkward_meshes_match_brute_force() {
 /// quantized), within the measured sizes; short buffers are typed errors naming the buffer.
 #[test]
 fn measure_and_build_match_a_planned_collapse_for_every_node_kind() {
-    use meshq::wide::{CompactNode, WideNode8};
     for name in MESHES {
         let loaded = load_mesh(name);
         let mesh = loaded.valid();

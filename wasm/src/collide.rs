@@ -4,7 +4,8 @@ use std::borrow::Cow;
 
 use js_sys::{Float32Array, Object, Uint32Array};
 use meshq::Traverse;
-use meshq::bvh::{BuildConfig, Bvh, BvhNode, TreeArrays};
+use meshq::advanced::{BvhNode, TreeArrays};
+use meshq::bvh::{BuildConfig, Bvh};
 use meshq::collide::{
     Affine, CrossingSegment, Found, TrianglePair, intersecting_pairs, intersection_segments,
     meshes_intersect, self_intersecting_pairs,

@@ -37,7 +37,7 @@ impl Storage {
     /// leaves above it); a grid's non-empty cells.
     pub fn level_boxes(&self, level: u32) -> Vec<f32> {
         let mut out = Vec::new();
-        let mut cell = |cell: meshq::query::Cell, _depth: u32, leaf: Option<(u32, u32)>| {
+        let mut cell = |cell: meshq::advanced::Cell, _depth: u32, leaf: Option<(u32, u32)>| {
             if leaf.is_none_or(|(_, count)| count > 0) {
                 push_box(&mut out, cell.aabb());
             }

@@ -137,7 +137,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
 
         let blob = built.to_blob(None).unwrap();
         let (bytes, checksum) = golden_blob(&format!("{name}{suffix}"));
-        let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+        let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
         assert_eq!(
             (blob.len(), header.checksum),
             (bytes, checksum),
@@ -248,7 +248,7 @@ fn every_structure_matches_the_golden_digest_and_blob() {
             assert_eq!(report, golden.report, "{name}: {kind} built in WebAssembly");
 
             let blob = built.to_blob(None).unwrap();
-            let header = meshq::blob::BlobHeader::read(&blob).unwrap();
+            let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
             assert_eq!(
                 (blob.len(), header.checksum),
                 golden_blob(&format!("{name}-{kind}")),

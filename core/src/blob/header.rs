@@ -18,7 +18,7 @@ use crate::math::Aabb;
 /// it; [`BlobView::parse`](super::BlobView::parse) checks that everything agrees with it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlobHeader {
-    /// The format version ([`FORMAT_VERSION`](super::FORMAT_VERSION) for a BVH with its
+    /// The format version ([`FORMAT_VERSION`](crate::advanced::FORMAT_VERSION) for a BVH with its
     /// collapse roles, 4 for one with spatial splits without them, 3 for every other blob this
     /// build writes).
     pub version: u16,
@@ -47,7 +47,7 @@ pub struct BlobHeader {
     pub bounds: Aabb,
     /// The config the structure was built with (informational, except a grid's resolution).
     pub config: StructureConfig,
-    /// [`mesh_checksum`](super::mesh_checksum) of the mesh the blob was baked from.
+    /// [`mesh_checksum`](crate::advanced::mesh_checksum) of the mesh the blob was baked from.
     pub mesh_checksum: u32,
     /// The blob checksum stored in the header.
     pub checksum: u32,

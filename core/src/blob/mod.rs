@@ -31,13 +31,13 @@
 //! | field | encoding | meaning |
 //! |---|---|---|
 //! | magic | 4 bytes | `MSHQ` |
-//! | version | varint `u16` | 5 ([`FORMAT_VERSION`]) for a BVH with its collapse roles (what [`MeshBvh::to_blob`](crate::MeshBvh::to_blob) and the tools write), 4 for a BVH with spatial splits without them, 3 for every other blob; read before anything else |
+//! | version | varint `u16` | 5 ([`FORMAT_VERSION`](crate::advanced::FORMAT_VERSION)) for a BVH with its collapse roles (what [`MeshBvh::to_blob`](crate::MeshBvh::to_blob) and the tools write), 4 for a BVH with spatial splits without them, 3 for every other blob; read before anything else |
 //! | kind | varint `u32` | [`StructureKind`] tag: 0 BVH, 1 k-d tree, 2 octree, 3 grid |
 //! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
 //! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and structure (node_count: a grid's cells; depth: see [`BlobHeader::depth`]) |
 //! | bounds | 6 × `f32` | root box min xyz, max xyz ([`BlobHeader::bounds`]) |
 //! | config | by kind, see below | [`StructureConfig`] |
-//! | mesh_checksum | fixed `u32` | [`mesh_checksum`] of the mesh baked from |
+//! | mesh_checksum | fixed `u32` | [`mesh_checksum`](crate::advanced::mesh_checksum) of the mesh baked from |
 //! | payload_len | fixed `u64` | bytes after the header |
 //! | checksum | fixed `u32` | CRC-32/ISO-HDLC of every blob byte except these four |
 //! | nodes | BVH: sequence of 32-byte records; others: sequence of fixed `u32` | BVH: [`BvhNode`](crate::bvh::BvhNode) (min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32`); k-d tree and octree: two words per node ([`KdNode`](crate::kdtree::KdNode), [`OctreeNode`](crate::octree::OctreeNode) `a`, `b`); grid: the cell offsets (cells + 1) |
@@ -59,8 +59,8 @@
 //!
 //! # Versioning
 //! The version is the second field and is read before anything else. A change to any field or
-//! record increments [`FORMAT_VERSION`]; a reader refuses versions outside
-//! [`OLDEST_READABLE_VERSION`]`..=`[`NEWEST_READABLE_VERSION`] with
+//! record increments [`FORMAT_VERSION`](crate::advanced::FORMAT_VERSION); a reader refuses versions outside
+//! [`OLDEST_READABLE_VERSION`](crate::advanced::OLDEST_READABLE_VERSION)`..=`[`NEWEST_READABLE_VERSION`](crate::advanced::NEWEST_READABLE_VERSION) with
 //! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
 //! Blobs are written at the oldest version that holds them. Version 5 added a BVH's collapse
 //! roles, so that loaders collapse its tree eight-wide with one checked walk instead of planning
@@ -77,15 +77,15 @@
 
 #[cfg(feature = "alloc")]
 mod boxes_deferred;
-mod checksum;
+pub(crate) mod checksum;
 // The checksum by byte shuffles where the build computes it so (see `build.rs`), tested on
 // every target.
 #[cfg(any(test, crc_lanes))]
 mod crc_lanes;
 mod decode;
-mod encode;
-mod format;
-mod header;
+pub(crate) mod encode;
+pub(crate) mod format;
+pub(crate) mod header;
 mod mesh;
 mod order_check;
 mod reader;
@@ -98,15 +98,11 @@ mod view;
 
 #[cfg(feature = "alloc")]
 pub(crate) use boxes_deferred::BoxesUnchecked;
-pub use checksum::mesh_checksum;
 pub use encode::{
-    EncodeOptions, encode_into, encode_structure_into, encoded_len, reseal, structure_encoded_len,
+    EncodeOptions, encode_into, encode_structure_into, encoded_len, structure_encoded_len,
 };
-pub use format::{
-    FORMAT_VERSION, MAGIC, MeshLayout, NEWEST_READABLE_VERSION, OLDEST_READABLE_VERSION,
-    StructureKind,
-};
-pub use header::BlobHeader;
+pub use format::{MeshLayout, StructureKind};
+pub(crate) use header::BlobHeader;
 pub use mesh::BlobMesh;
 pub use source::BlobSource;
 pub use structure::BlobStructure;

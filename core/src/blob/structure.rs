@@ -48,7 +48,7 @@ impl BlobStructure<'_> {
     }
 
     /// Cell figures of a k-d tree, octree or grid over `triangles` triangles; `None` for a BVH
-    /// (see [`TreeStats`](crate::bvh::TreeStats)).
+    /// (see [`TreeStats`](crate::advanced::TreeStats)).
     #[must_use]
     #[cfg_attr(not(feature = "blob-cells"), allow(unused_variables))]
     pub fn cell_stats(&self, triangles: usize) -> Option<CellStats> {

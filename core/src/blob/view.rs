@@ -88,7 +88,7 @@ impl<'a> BlobView<'a> {
     ///
     /// # Errors
     /// As [`BlobView::parse`], and [`BlobError::MeshMismatch`] when `mesh` has other counts or
-    /// another [`mesh_checksum`](super::mesh_checksum) than the blob records.
+    /// another [`mesh_checksum`](crate::advanced::mesh_checksum) than the blob records.
     pub fn parse_with_mesh(bytes: &'a [u8], mesh: ValidMesh<'a>) -> Result<Self, BlobError> {
         let s = sections(bytes)?;
         let same = mesh.triangle_count() == s.header.triangle_count as usize

@@ -3,7 +3,7 @@
 //!
 //! ```
 //! use meshq::prelude::*;
-//! use meshq::bvh::{BvhNode, PrimRef};
+//! use meshq::advanced::{BvhNode, PrimRef}; // the buffers' element types
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2]]).validate()?;
 //! // Caller-owned buffers, sized by `measure`...
@@ -26,7 +26,7 @@
 //! node adjacent and always after their parent; leaves name a range of the `order` array, which
 //! maps back to the mesh's own triangle indices (the mesh itself is never reordered).
 
-mod arrays;
+pub(crate) mod arrays;
 mod binning;
 mod buffers;
 mod build;
@@ -37,14 +37,14 @@ mod clip;
 mod config;
 mod lanes;
 mod median;
-mod node;
+pub(crate) mod node;
 mod packed;
 #[cfg(feature = "parallel")]
 mod parallel_build;
 #[cfg(feature = "parallel")]
 mod parallel_spatial;
 mod partition;
-mod prim_ref;
+pub(crate) mod prim_ref;
 mod refit;
 mod sizing;
 mod spatial;
@@ -53,17 +53,16 @@ mod spatial_build;
 mod spatial_compact;
 #[cfg(feature = "blob")]
 pub(crate) mod split_coverage;
-mod stats;
+pub(crate) mod stats;
 mod traverse;
 mod tree;
 
-pub use arrays::TreeArrays;
+pub(crate) use arrays::TreeArrays;
 pub use buffers::BvhBuffers;
 pub use config::{BuildConfig, SplitStrategy};
-pub use node::BvhNode;
-pub use prim_ref::PrimRef;
+pub(crate) use node::BvhNode;
+pub(crate) use prim_ref::PrimRef;
 pub(crate) use sizing::node_capacity;
 pub use sizing::{BvhSizes, MAX_DEPTH};
 pub use spatial::SpatialSplits;
-pub use stats::{LEAF_HISTOGRAM_LEN, TreeStats};
 pub use tree::Bvh;

@@ -42,7 +42,7 @@ impl ClippedTriangle {
 /// triangle gives a degenerate polygon. Non-finite input gives an empty polygon.
 ///
 /// ```
-/// use meshq::{geom::clip_triangle_aabb, math::{Aabb, Triangle, Vec3}};
+/// use meshq::{advanced::clip_triangle_aabb, math::{Aabb, Triangle, Vec3}};
 /// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
 /// let tri = Triangle::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(3.0, 0.5, 0.5), Vec3::new(1.0, 0.5, 2.5));
 /// let part = clip_triangle_aabb(&tri, &unit);

@@ -41,7 +41,7 @@ pub enum LineLine {
 /// `tolerance` (a distance, inclusive).
 ///
 /// ```
-/// use meshq::{geom::{intersect_line_line, LineLine}, math::Vec3};
+/// use meshq::{advanced::{intersect_line_line, LineLine}, math::Vec3};
 /// let r = intersect_line_line(Vec3::ZERO, Vec3::X, Vec3::new(2.0, -1.0, 0.0), Vec3::Y, 1e-6);
 /// assert_eq!(r, LineLine::Intersect { point: Vec3::new(2.0, 0.0, 0.0), s: 2.0, t: 1.0 });
 /// ```

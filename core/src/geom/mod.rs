@@ -5,14 +5,14 @@
 //! NaN). Each one lives in its own file.
 
 pub(crate) mod aabb_lanes;
-mod clip_triangle_aabb;
+pub(crate) mod clip_triangle_aabb;
 mod closest_point_plane;
 mod closest_point_segment;
-mod closest_point_triangle;
+pub(crate) mod closest_point_triangle;
 mod closest_point_triangle_lanes;
-mod line_line;
+pub(crate) mod line_line;
 pub(crate) mod packet_aabb_lanes;
-mod point_in_triangle;
+pub(crate) mod point_in_triangle;
 mod point_on_segment;
 mod ray_aabb;
 mod ray_plane;
@@ -25,12 +25,12 @@ mod triangle_lanes;
 mod triangle_obb;
 mod triangle_triangle;
 
-pub use clip_triangle_aabb::{ClippedTriangle, clip_triangle_aabb};
+pub(crate) use clip_triangle_aabb::clip_triangle_aabb;
 pub use closest_point_plane::closest_point_plane;
 pub use closest_point_segment::closest_point_segment;
-pub use closest_point_triangle::{closest_point_triangle, closest_point_triangle_2d};
-pub use line_line::{LineLine, intersect_line_line};
-pub use point_in_triangle::{barycentric_triangle, point_in_triangle, point_in_triangle_2d};
+pub use closest_point_triangle::closest_point_triangle;
+pub use point_in_triangle::point_in_triangle;
+pub(crate) use point_in_triangle::point_in_triangle_2d;
 pub use point_on_segment::point_on_segment;
 pub use ray_aabb::intersect_ray_aabb;
 pub use ray_plane::intersect_ray_plane;

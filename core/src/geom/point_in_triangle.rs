@@ -12,7 +12,7 @@ fn edge_function(a: Vec2, b: Vec2, p: Vec2) -> f32 {
 /// Uses the three half-plane (edge function) tests. A zero-area triangle contains no point.
 ///
 /// ```
-/// use meshq::{geom::point_in_triangle_2d, math::Vec2};
+/// use meshq::{advanced::point_in_triangle_2d, math::Vec2};
 /// let (a, b, c) = (Vec2::ZERO, Vec2::X, Vec2::Y);
 /// assert!(point_in_triangle_2d(Vec2::new(0.5, 0.5), a, b, c)); // on the hypotenuse
 /// assert!(!point_in_triangle_2d(Vec2::new(0.6, 0.6), a, c, b));

@@ -5,7 +5,7 @@ use super::overlap_triangle_aabb;
 /// True when triangle `tri` and oriented box `obb` share a point (touching counts, up to the
 /// rounding of moving the triangle into the box's frame).
 ///
-/// The triangle's corners are expressed in the box's frame ([`Obb::to_local`]), where the box
+/// The triangle's corners are expressed in the box's frame (`Obb` axes, rotated about its centre), where the box
 /// is axis-aligned, and tested with [`overlap_triangle_aabb`]. Degenerate triangles (segments
 /// and points) are tested as what they are; an invalid box ([`Obb::is_valid`]) or a
 /// non-finite corner overlaps nothing.

@@ -28,7 +28,7 @@
 mod build;
 mod check;
 mod config;
-mod layout;
+pub(crate) mod layout;
 mod traverse;
 mod tree;
 
@@ -36,5 +36,5 @@ pub use build::GridSizes;
 #[cfg(feature = "alloc")]
 pub(crate) use build::{for_each_cell, layout_within, reference_budget};
 pub use config::GridConfig;
-pub use layout::GridLayout;
+pub(crate) use layout::GridLayout;
 pub use tree::Grid;

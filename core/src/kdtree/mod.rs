@@ -15,7 +15,8 @@
 //!
 //! ```
 //! use meshq::prelude::*;
-//! use meshq::kdtree::{KdConfig, KdNode, KdTree};
+//! use meshq::advanced::KdNode;
+//! use meshq::kdtree::{KdConfig, KdTree};
 //! # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! # let triangles = [[0u32, 1, 2]];
 //! let mesh = MeshRef::new(&positions, &triangles).validate()?;
@@ -31,11 +32,11 @@
 
 mod check;
 mod config;
-mod node;
+pub(crate) mod node;
 mod split;
 mod traverse;
 mod tree;
 
 pub use config::KdConfig;
-pub use node::{KdKind, KdNode};
+pub(crate) use node::{KdKind, KdNode};
 pub use tree::KdTree;

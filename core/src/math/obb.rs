@@ -43,7 +43,7 @@ impl Obb {
     /// `p` in the box's frame: its coordinates along the three axes, from the centre.
     #[inline]
     #[must_use]
-    pub fn to_local(&self, p: Vec3) -> Vec3 {
+    pub(crate) fn to_local(self, p: Vec3) -> Vec3 {
         let d = p - self.center;
         let [a, b, c] = self.axes;
         Vec3::new(dot(d, a), dot(d, b), dot(d, c))

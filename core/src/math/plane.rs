@@ -29,7 +29,7 @@ impl Plane {
     /// times a length.
     #[inline]
     #[must_use]
-    pub fn signed_distance_scaled(&self, p: Vec3) -> f32 {
+    pub(crate) fn signed_distance_scaled(&self, p: Vec3) -> f32 {
         super::dot(self.normal, p) - self.offset
     }
 }

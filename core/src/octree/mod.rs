@@ -13,7 +13,8 @@
 //!
 //! ```
 //! use meshq::prelude::*;
-//! use meshq::octree::{Octree, OctreeConfig, OctreeNode};
+//! use meshq::advanced::OctreeNode;
+//! use meshq::octree::{Octree, OctreeConfig};
 //! # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 //! # let triangles = [[0u32, 1, 2]];
 //! let mesh = MeshRef::new(&positions, &triangles).validate()?;
@@ -29,11 +30,11 @@
 
 mod check;
 mod config;
-mod node;
+pub(crate) mod node;
 mod split;
 mod traverse;
 mod tree;
 
 pub use config::OctreeConfig;
-pub use node::OctreeNode;
+pub(crate) use node::OctreeNode;
 pub use tree::Octree;

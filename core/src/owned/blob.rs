@@ -210,7 +210,7 @@ mod tests {
 
     use super::MeshBvh;
     use crate::advanced::CollapsePlan;
-    use crate::blob::{self, BlobHeader, BlobView, MeshLayout};
+    use crate::blob::{BlobHeader, BlobView, MeshLayout};
     use crate::bvh::BuildConfig;
     use crate::mesh::MeshRef;
     use crate::wide::WideNode8;
@@ -274,7 +274,7 @@ mod tests {
                 let max = f32::from_le_bytes(damaged[at + 16..at + 20].try_into().unwrap());
                 let mid = 0.5 * (min + max);
                 damaged[at + 16..at + 20].copy_from_slice(&mid.to_le_bytes());
-                blob::reseal(&mut damaged).unwrap();
+                crate::advanced::reseal(&mut damaged).unwrap();
                 let expected = BlobView::parse(&damaged).unwrap_err();
                 assert!(
                     MeshBvh::decode_then_check_boxes(&damaged).is_err(),

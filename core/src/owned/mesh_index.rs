@@ -65,7 +65,7 @@ impl MeshIndex {
     }
 
     /// Cell figures of a k-d tree, octree or grid; `None` for a BVH (see
-    /// [`TreeStats`](crate::bvh::TreeStats)).
+    /// [`TreeStats`](crate::advanced::TreeStats)).
     #[must_use]
     pub fn cell_stats(&self) -> Option<CellStats> {
         match self {

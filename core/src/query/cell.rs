@@ -9,7 +9,7 @@ use crate::math::Aabb;
 /// triangle is referenced from every cell it touches.
 ///
 /// The cells of one structure *tile* its bounds: each point of the bounds is
-/// [owned](Self::owns) by exactly one leaf cell. A cell owns the points of its box that lie on
+/// owned by exactly one leaf cell. A cell owns the points of its box that lie on
 /// its `min` faces and inside it, but not those on its `max` faces, except the faces that lie on
 /// the structure's own `max` faces (where no neighbour could own them). A query that must not
 /// report a triangle twice picks one point of the triangle (the same in every cell, computed
@@ -76,7 +76,7 @@ impl Cell {
     /// cell.
     #[inline]
     #[must_use]
-    pub fn owns(&self, p: Vec3) -> bool {
+    pub(crate) fn owns(&self, p: Vec3) -> bool {
         let (lo, hi) = (self.aabb.min.to_array(), self.aabb.max.to_array());
         let p = p.to_array();
         (0..3).all(|a| {

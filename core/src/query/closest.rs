@@ -269,7 +269,7 @@ mod tests {
             .pack_triangles(&mesh, &mut packed)
             .unwrap_or_else(|e| panic!("{e}"));
         let sizes = WideBvh::<WideNode>::measure(&bvh);
-        let mut entries = vec![crate::wide::PlanEntry::EMPTY; sizes.plan];
+        let mut entries = vec![crate::wide::plan::PlanEntry::EMPTY; sizes.plan];
         let mut wide = vec![WideNode::EMPTY; sizes.nodes];
         let wide = WideBvh::build(&bvh, &mut entries, &mut wide).unwrap_or_else(|e| panic!("{e}"));
 

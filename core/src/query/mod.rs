@@ -59,7 +59,8 @@
 //! ```
 //! use core::ops::ControlFlow;
 //! use meshq::prelude::*;
-//! use meshq::query::{LeafTriangleIds, Visitor};
+//! use meshq::advanced::LeafTriangleIds;
+//! use meshq::query::Visitor;
 //!
 //! /// Every triangle in one leaf, with the mesh's bounds as its box.
 //! struct Scan<'a> {
@@ -90,10 +91,10 @@
 //! ```
 
 pub(crate) mod batch_order;
-mod cell;
+pub(crate) mod cell;
 mod closest;
 mod closest_batch;
-mod leaf;
+pub(crate) mod leaf;
 mod leaf_batches;
 mod mesh_query;
 mod overlap;
@@ -105,16 +106,18 @@ mod ray_packet;
 mod raycast_batch;
 mod shapecast;
 pub(crate) mod split_refs;
-mod traverse;
+pub(crate) mod traverse;
 
-pub use cell::Cell;
-pub use leaf::{LeafTriangleIds, LeafTriangles, PackedTriangles};
+pub(crate) use cell::Cell;
+pub(crate) use leaf::LeafTriangleIds;
+pub use leaf::{LeafTriangles, PackedTriangles};
 pub use mesh_query::MeshQuery;
 pub use overlap::OverlapCount;
 pub use ray::{RayOptions, TriangleTest};
 pub use ray_all::RayHits;
 pub use ray_order::{sorts_ray_batch, sorts_ray_batches_of};
 pub use shapecast::{BoundsOverlap, ShapeCast};
-pub use split_refs::SplitRef;
+pub(crate) use split_refs::SplitRef;
 pub(crate) use split_refs::SplitRefs;
-pub use traverse::{BatchHint, Traverse, Visitor, VisitorHints, With};
+pub(crate) use traverse::BatchHint;
+pub use traverse::{Traverse, Visitor, VisitorHints, With};

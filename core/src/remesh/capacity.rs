@@ -115,7 +115,7 @@ impl RemeshStorage {
     /// allocated then).
     pub fn new(capacity: RemeshCapacity) -> Result<Self, crate::error::RemeshError> {
         use crate::error::{RemeshBuffer, RemeshError};
-        let limit = super::NO_HALF_EDGE as usize - 1;
+        let limit = super::half_edges::NO_HALF_EDGE as usize - 1;
         let refuse = |buffer, capacity| RemeshError::OutOfCapacity { buffer, capacity };
         if capacity.vertices > limit {
             return Err(refuse(RemeshBuffer::Positions, limit));

@@ -142,8 +142,8 @@ mod tests {
         mesh.twins[2] = 3;
         // The second triangle turned over: 0 → 2 twice.
         mesh.origins[3..6].copy_from_slice(&[0, 3, 2]);
-        mesh.twins[3..6].copy_from_slice(&[super::super::NO_HALF_EDGE; 3]);
-        mesh.twins[2] = super::super::NO_HALF_EDGE;
+        mesh.twins[3..6].copy_from_slice(&[super::super::half_edges::NO_HALF_EDGE; 3]);
+        mesh.twins[2] = super::super::half_edges::NO_HALF_EDGE;
         assert!(mesh.check().is_err());
     }
 }

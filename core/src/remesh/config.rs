@@ -8,7 +8,7 @@ pub enum EdgeTarget {
     /// This length `L`, in the mesh's units: finite and positive.
     Length(f32),
     /// This multiple of the input's mean edge length (each edge counted once, as
-    /// [`mean_edge_length`](super::mean_edge_length) gives it): finite and positive. `1.0`
+    /// [`MeshQuality::mean_edge`](super::MeshQuality::mean_edge) gives it): finite and positive. `1.0`
     /// (the default) keeps the input's scale; `0.5` asks for edges half as long, about four
     /// times as many triangles.
     MeanEdgeTimes(f32),

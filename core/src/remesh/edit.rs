@@ -133,7 +133,7 @@ impl HalfEdgeMesh<'_> {
     /// # Errors
     /// [`RemeshError::OutOfCapacity`] when the buffers have no room for one more vertex and
     /// two more triangles; the mesh is unchanged then.
-    pub fn split_edge(&mut self, he: u32, at: Vec3) -> Result<u32, RemeshError> {
+    pub(crate) fn split_edge(&mut self, he: u32, at: Vec3) -> Result<u32, RemeshError> {
         let g = self.twin(he);
         let new_triangles = if g.is_some() { 2 } else { 1 };
         if self.vertex_count >= self.vertex_capacity() {
@@ -224,7 +224,7 @@ impl HalfEdgeMesh<'_> {
     /// (d, b, c). Does nothing and returns false unless the flip keeps the mesh manifold: the
     /// edge is interior and not a crease, `a` and `b` can each lose an edge, and (c, d) is not
     /// an edge already.
-    pub fn flip_edge(&mut self, he: u32) -> bool {
+    pub(crate) fn flip_edge(&mut self, he: u32) -> bool {
         if !self.can_flip(he) {
             return false;
         }
@@ -365,7 +365,7 @@ impl HalfEdgeMesh<'_> {
     /// the two triangles on the edge disappear. Does nothing and returns false unless the
     /// collapse keeps the mesh manifold (the link condition) and `a` may be removed. The last vertex and triangles move into the
     /// freed slots, so indices of other elements may change.
-    pub fn collapse_edge(&mut self, he: u32, at: Vec3) -> bool {
+    pub(crate) fn collapse_edge(&mut self, he: u32, at: Vec3) -> bool {
         if !self.can_collapse(he) {
             return false;
         }

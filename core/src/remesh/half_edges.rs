@@ -6,7 +6,7 @@ use crate::error::{RemeshBuffer, RemeshError};
 use crate::mesh::ValidMesh;
 
 /// The twin of a half-edge on the boundary, and the half-edge of a vertex no triangle uses.
-pub const NO_HALF_EDGE: u32 = u32::MAX;
+pub(crate) const NO_HALF_EDGE: u32 = u32::MAX;
 
 /// The buffers a [`HalfEdgeMesh`] lives in, all owned by the caller. Each may be longer than
 /// needed; the mesh uses their fronts.
@@ -16,7 +16,7 @@ pub struct HalfEdgeBuffers<'a> {
     pub positions: &'a mut [[f32; 3]],
     /// Each half-edge's origin vertex: at least three per triangle.
     pub origins: &'a mut [u32],
-    /// Each half-edge's twin ([`NO_HALF_EDGE`] on the boundary): as long as `origins`.
+    /// Each half-edge's twin (`u32::MAX` on the boundary): as long as `origins`.
     pub twins: &'a mut [u32],
     /// One outgoing half-edge per vertex: at least one per vertex.
     pub vertex_half_edges: &'a mut [u32],
@@ -34,7 +34,7 @@ pub struct HalfEdgeBuffers<'a> {
 ///
 /// Each vertex keeps one outgoing half-edge: on the boundary, the one without a twin, so a walk
 /// turning around the vertex from it covers the vertex's whole fan; a vertex no
-/// triangle uses keeps [`NO_HALF_EDGE`].
+/// triangle uses keeps `u32::MAX`.
 #[derive(Debug)]
 pub struct HalfEdgeMesh<'a> {
     pub(super) positions: &'a mut [[f32; 3]],
@@ -331,7 +331,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// Half-edges: three per triangle.
     #[must_use]
-    pub const fn half_edge_count(&self) -> usize {
+    pub(crate) const fn half_edge_count(&self) -> usize {
         self.triangle_count * 3
     }
 
@@ -345,7 +345,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// The vertex half-edge `he` starts at ([`NO_HALF_EDGE`] out of range).
     #[must_use]
-    pub fn origin(&self, he: u32) -> u32 {
+    pub(crate) fn origin(&self, he: u32) -> u32 {
         self.origins
             .get(he as usize)
             .copied()
@@ -354,7 +354,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// The half-edge running the other way along the same edge; `None` on the boundary.
     #[must_use]
-    pub fn twin(&self, he: u32) -> Option<u32> {
+    pub(crate) fn twin(&self, he: u32) -> Option<u32> {
         self.twins
             .get(he as usize)
             .copied()
@@ -363,19 +363,19 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// The next half-edge around the same triangle.
     #[must_use]
-    pub const fn next(he: u32) -> u32 {
+    pub(crate) const fn next(he: u32) -> u32 {
         if he % 3 == 2 { he - 2 } else { he + 1 }
     }
 
     /// The previous half-edge around the same triangle.
     #[must_use]
-    pub const fn prev(he: u32) -> u32 {
+    pub(crate) const fn prev(he: u32) -> u32 {
         if he.is_multiple_of(3) { he + 2 } else { he - 1 }
     }
 
     /// Where half-edge `he` starts and ends.
     #[must_use]
-    pub fn ends(&self, he: u32) -> (u32, u32) {
+    pub(crate) fn ends(&self, he: u32) -> (u32, u32) {
         (self.origin(he), self.origin(Self::next(he)))
     }
 
@@ -389,7 +389,7 @@ impl<'a> HalfEdgeMesh<'a> {
     /// Vertex `v`'s outgoing half-edge (the boundary one for a boundary vertex); `None` for a
     /// vertex no triangle uses.
     #[must_use]
-    pub fn vertex_half_edge(&self, v: u32) -> Option<u32> {
+    pub(crate) fn vertex_half_edge(&self, v: u32) -> Option<u32> {
         self.vertex_half_edges
             .get(v as usize)
             .copied()
@@ -398,14 +398,14 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// Whether vertex `v` lies on the boundary.
     #[must_use]
-    pub fn is_boundary_vertex(&self, v: u32) -> bool {
+    pub(crate) fn is_boundary_vertex(&self, v: u32) -> bool {
         self.vertex_half_edge(v)
             .is_some_and(|he| self.twin(he).is_none())
     }
 
     /// The number of edges at vertex `v` (0 for a vertex no triangle uses).
     #[must_use]
-    pub fn valence(&self, v: u32) -> u32 {
+    pub(crate) fn valence(&self, v: u32) -> u32 {
         let Some(start) = self.vertex_half_edge(v) else {
             return 0;
         };
@@ -428,14 +428,14 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// Edges: interior ones once, boundary ones once.
     #[must_use]
-    pub fn edge_count(&self) -> usize {
+    pub(crate) fn edge_count(&self) -> usize {
         let boundary = self.boundary_half_edge_count();
         (self.half_edge_count() - boundary) / 2 + boundary
     }
 
     /// Half-edges without a twin.
     #[must_use]
-    pub fn boundary_half_edge_count(&self) -> usize {
+    pub(crate) fn boundary_half_edge_count(&self) -> usize {
         (0..self.half_edge_count() as u32)
             .filter(|&he| self.twin(he).is_none())
             .count()
@@ -443,7 +443,7 @@ impl<'a> HalfEdgeMesh<'a> {
 
     /// The number of closed boundary loops (holes and outer rims).
     #[must_use]
-    pub fn boundary_loop_count(&self) -> usize {
+    pub(crate) fn boundary_loop_count(&self) -> usize {
         // Each loop is counted at its boundary half-edge of lowest index: follow the loop from
         // every boundary half-edge and count those that meet no lower one.
         let mut loops = 0usize;
@@ -486,7 +486,7 @@ impl<'a> HalfEdgeMesh<'a> {
     /// Vertices used by triangles, minus edges, plus triangles: `2 − 2g − b` for a connected
     /// surface of genus `g` with `b` boundary loops (summed over components).
     #[must_use]
-    pub fn euler_characteristic(&self) -> i64 {
+    pub(crate) fn euler_characteristic(&self) -> i64 {
         let used = (0..self.vertex_count as u32)
             .filter(|&v| self.vertex_half_edge(v).is_some())
             .count();

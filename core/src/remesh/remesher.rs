@@ -16,7 +16,7 @@ use crate::query::MeshQuery;
 /// The mean length of the mesh's edges (each counted once); 0 for a mesh without edges. The
 /// same figure as [`MeshQuality::mean_edge`](super::MeshQuality::mean_edge).
 #[must_use]
-pub fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
+pub(crate) fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
     super::quality::EdgeLengths::of(mesh).mean() as f32
 }
 
@@ -67,7 +67,7 @@ pub fn remesh<Q: MeshQuery + ?Sized>(
 ///
 /// # Errors
 /// As [`remesh`].
-pub fn remesh_with_progress<Q: MeshQuery + ?Sized>(
+pub(crate) fn remesh_with_progress<Q: MeshQuery + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
     reference: &Q,
     config: &RemeshConfig,

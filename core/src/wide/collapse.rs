@@ -81,7 +81,7 @@ pub(super) fn collapse_into<N: CollapsedNode<W>, const W: usize>(
 pub(crate) fn collapse_vec<N: CollapsedNode<W> + Clone, const W: usize>(
     tree: &crate::bvh::Bvh<'_>,
 ) -> Result<alloc::vec::Vec<N>, BuildError> {
-    let mut entries = alloc::vec![super::PlanEntry::EMPTY; super::plan::plan_capacity(tree)];
+    let mut entries = alloc::vec![super::plan::PlanEntry::EMPTY; super::plan::plan_capacity(tree)];
     let plan = CollapsePlan::<W>::solved(tree, &mut entries)?;
     collapse_planned_vec(&plan)
 }
@@ -92,7 +92,7 @@ pub(crate) fn collapse_vec<N: CollapsedNode<W> + Clone, const W: usize>(
 pub(crate) fn eight_wide_roles(
     tree: &crate::bvh::Bvh<'_>,
 ) -> Result<alloc::vec::Vec<u8>, BuildError> {
-    let mut entries = alloc::vec![super::PlanEntry::EMPTY; super::plan::plan_capacity(tree)];
+    let mut entries = alloc::vec![super::plan::PlanEntry::EMPTY; super::plan::plan_capacity(tree)];
     let plan = CollapsePlan::<8>::solved(tree, &mut entries)?;
     let mut roles = alloc::vec![0u8; super::roles::CollapseRoles::len_for(tree.nodes().len())];
     plan.write_roles(&mut roles)?;

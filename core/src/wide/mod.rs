@@ -3,7 +3,8 @@
 //!
 //! ```
 //! use meshq::prelude::*;
-//! use meshq::wide::{PlanEntry, WideBvh, WideNode};
+//! use meshq::advanced::{PlanEntry, WideNode};
+//! use meshq::wide::WideBvh;
 //! let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 //! let mesh = MeshRef::new(&positions, &[[0, 1, 2], [0, 1, 3], [0, 2, 3]]).validate()?;
 //! let mut buffers = BvhBuffers::<3>::new();
@@ -20,9 +21,9 @@
 //! ```
 
 pub(crate) mod collapse;
-mod compact_node;
-mod node;
-mod node8;
+pub(crate) mod compact_node;
+pub(crate) mod node;
+pub(crate) mod node8;
 mod node_build;
 #[cfg(feature = "parallel")]
 pub(crate) mod parallel_collapse;
@@ -33,9 +34,8 @@ pub(crate) mod traverse;
 mod tree;
 mod walk;
 
-pub use compact_node::CompactNode;
-pub use node::WideNode;
-pub use node8::WideNode8;
-pub use plan::PlanEntry;
+pub(crate) use compact_node::CompactNode;
+pub(crate) use node::WideNode;
+pub(crate) use node8::WideNode8;
 pub use sizing::WideSizes;
 pub use tree::{WideBvh, WideNodeKind};
