@@ -9,8 +9,12 @@ the boundary, percentage of triangles with an angle under 30 degrees, edge-lengt
 of variation, and the two-sided distance to the input sampled at vertices and centroids over
 the bounding-box diagonal. Times: best of 3 (meshq's own `remesh_seconds`, gpytoolbox's call).
 
+With `--corpus DIR`, the meshes of DIR (`cargo run --release -p meshq-bench --example
+hard_corpus -- DIR` writes the remeshing tests' hard inputs there) are remeshed too, each at
+its own mean edge length.
+
 Set up once: scripts/peers-setup.sh (a virtual environment in target/peers-venv).
-Run: target/peers-venv/bin/python bench/peers/remesh.py [meshq binary]
+Run: target/peers-venv/bin/python bench/peers/remesh.py [meshq binary] [--corpus DIR]
 """
 import json
 import pathlib
@@ -24,8 +28,14 @@ import numpy as np
 from meshfiles import read_obj, read_ply
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-MESHQ = sys.argv[1] if len(sys.argv) > 1 else str(ROOT / "target/release/meshq")
-CASES = [("stanford-bunny", None), ("fandisk", None), ("spot", None), ("fandisk", 45.0)]
+ARGS = sys.argv[1:]
+CORPUS = pathlib.Path(ARGS[ARGS.index("--corpus") + 1]) if "--corpus" in ARGS else None
+POSITIONAL = [a for i, a in enumerate(ARGS) if not a.startswith("--") and (i == 0 or ARGS[i - 1] != "--corpus")]
+MESHQ = POSITIONAL[0] if POSITIONAL else str(ROOT / "target/release/meshq")
+CASES = [(ROOT / "assets" / f"{name}.obj", angle)
+         for name, angle in [("stanford-bunny", None), ("fandisk", None), ("spot", None), ("fandisk", 45.0)]]
+if CORPUS is not None:
+    CASES += [(path, None) for path in sorted(CORPUS.glob("*.obj"))]
 
 
 def quality(v, f, v_in, f_in):
@@ -55,7 +65,19 @@ def quality(v, f, v_in, f_in):
         return np.sqrt(d2.max())
 
     dist = max(one_way(v, f, v_in, f_in), one_way(v_in, f_in, v, f)) / diag
+    # Degenerate output: triangles of (relatively) zero area, and used vertices sharing one
+    # position; flipped: triangles facing against the input triangle nearest their centroid.
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    area2 = np.linalg.norm(normals, axis=1)
+    zero_area = int(np.count_nonzero(area2 <= 1e-12 * diag * diag))
+    coincident = int(np.count_nonzero(used)) - len(np.unique(v[used], axis=0))
+    nearest = gpy.squared_distance(p.mean(axis=1), v_in, f_in, use_cpp=True)[1]
+    q = v_in[f_in]
+    n_in = np.cross(q[:, 1] - q[:, 0], q[:, 2] - q[:, 0])
+    flipped = int(np.count_nonzero(np.einsum("ij,ij->i", normals, n_in[nearest]) < 0))
     return {
+        "degenerate": zero_area + coincident,
+        "flipped": flipped,
         "triangles": len(f),
         "valence6": 100.0 * np.mean(valence[interior] == 6),
         "min_angle": float(smallest[off].min()) if off.any() else 180.0,
@@ -68,33 +90,43 @@ def quality(v, f, v_in, f_in):
 def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for name, angle in CASES:
-            path = ROOT / "assets" / f"{name}.obj"
+        for path, angle in CASES:
+            name = path.stem
             v_in, f_in = read_obj(path)
             out = pathlib.Path(tmp) / "out.ply"
             args = [MESHQ, "remesh", str(path), "-o", str(out), "--json"]
             if angle is not None:
                 args += ["--feature-angle", str(angle)]
-            meshq_s = min(json.loads(subprocess.check_output(args))["remesh_seconds"] for _ in range(3))
-            mv, mf = read_ply(out)
+            label = name + (f", creases {angle:g}°" if angle else "")
+            try:
+                meshq_s = min(json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)["remesh_seconds"]
+                              for _ in range(3))
+                mv, mf = read_ply(out)
+                rows.append((label, "meshq", quality(mv, mf, v_in, f_in), meshq_s))
+            except subprocess.CalledProcessError as failure:
+                rows.append((label, "meshq", failure.stderr.strip().splitlines()[-1], None))
             und = np.unique(np.sort(np.concatenate([f_in[:, [0, 1]], f_in[:, [1, 2]], f_in[:, [2, 0]]]), axis=1), axis=0)
             h = float(np.linalg.norm(v_in[und[:, 0]] - v_in[und[:, 1]], axis=1).mean())
             gpy_s, result = float("inf"), None
-            for _ in range(3):
-                t0 = time.perf_counter()
-                result = gpy.remesh_botsch(v_in, f_in.astype(np.int32), i=10, h=h,
-                                           detect_feature_edges=angle is not None,
-                                           feature_dihedral_threshold=angle or 45.0)
-                gpy_s = min(gpy_s, time.perf_counter() - t0)
-            gv, gf = result
-            label = name + (f", creases {angle:g}°" if angle else "")
-            rows.append((label, "meshq", quality(mv, mf, v_in, f_in), meshq_s))
-            rows.append((label, "gpytoolbox", quality(gv, gf, v_in, f_in), gpy_s))
-    print("| mesh | remesher | triangles | % valence 6 | min angle off boundary | % tri < 30° | edge CV | distance | time (s) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+            try:
+                for _ in range(3):
+                    t0 = time.perf_counter()
+                    result = gpy.remesh_botsch(v_in, f_in.astype(np.int32), i=10, h=h,
+                                               detect_feature_edges=angle is not None,
+                                               feature_dihedral_threshold=angle or 45.0)
+                    gpy_s = min(gpy_s, time.perf_counter() - t0)
+                gv, gf = result
+                rows.append((label, "gpytoolbox", quality(gv, gf, v_in, f_in), gpy_s))
+            except Exception as failure:  # the peer's own refusal, reported as such
+                rows.append((label, "gpytoolbox", f"failed: {failure}", None))
+    print("| mesh | remesher | triangles | degenerate | flipped | % valence 6 | min angle off boundary | % tri < 30° | edge CV | distance | time (s) |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for label, who, q, s in rows:
-        print(f"| {label} | {who} | {q['triangles']} | {q['valence6']:.2f} | {q['min_angle']:.2f}° | "
-              f"{q['under30']:.3f} | {q['edge_cv']:.3f} | {q['distance']:.2e} | {s:.3f} |")
+        if isinstance(q, str):
+            print(f"| {label} | {who} | {q} | | | | | | | | |")
+            continue
+        print(f"| {label} | {who} | {q['triangles']} | {q['degenerate']} | {q['flipped']} | {q['valence6']:.2f} | "
+              f"{q['min_angle']:.2f}° | {q['under30']:.3f} | {q['edge_cv']:.3f} | {q['distance']:.2e} | {s:.3f} |")
 
 
 if __name__ == "__main__":

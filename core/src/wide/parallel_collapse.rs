@@ -264,8 +264,8 @@ mod tests {
     use super::{PARALLEL_FROM, collapse_vec_parallel, solve_parallel};
     use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, node_capacity};
     use crate::mesh::MeshRef;
-    use crate::wide::plan::PlanEntry;
     use crate::wide::collapse::collapse_vec;
+    use crate::wide::plan::PlanEntry;
     use crate::wide::plan::{CollapsePlan, plan_capacity};
     use crate::wide::{WideNode, WideNode8};
 

@@ -1,0 +1,431 @@
+#!/usr/bin/env python3
+"""Runs the benchmarks and writes docs/benchmarks.md (and the README's summary table) from
+their results.
+
+  python3 scripts/benchmarks.py run [SECTION ...]   run sections (all by default), store results
+  python3 scripts/benchmarks.py render              rewrite docs/benchmarks.md and the README table
+  python3 scripts/benchmarks.py list                the sections and when each was last run
+
+Each run stores bench/results/SECTION.json: the UTC date, the machine (CPU, cores, OS, rustc,
+node), the commit, the exact commands and what they measured. `render` only reads those files,
+so a table always shows the run that made it, with that run's machine, date and command; a
+section never run shows the command to run it. Benchmarks are never part of CI: they take
+minutes each and want an otherwise idle machine. Sections that need the benchmark-only peers
+(Embree, gpytoolbox) need `scripts/peers-setup.sh` first; `node` needs `scripts/build-web.sh`.
+"""
+import datetime
+import json
+import os
+import pathlib
+import platform
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "bench" / "results"
+CRITERION = ROOT / "target" / "criterion"
+PEERS_PY = "target/peers-venv/bin/python"
+BUILD_CLI = "cargo build --release -p meshq-cli"
+
+
+def sh(command, env=None):
+    """Runs `command` in the repository root, echoing it; returns its stdout."""
+    print(f"$ {command}", file=sys.stderr, flush=True)
+    merged = dict(os.environ, **(env or {}))
+    done = subprocess.run(command, shell=True, cwd=ROOT, env=merged, check=True,
+                          stdout=subprocess.PIPE, text=True)
+    return done.stdout
+
+
+def first_line(command):
+    try:
+        return subprocess.run(command, shell=True, capture_output=True, text=True,
+                              cwd=ROOT).stdout.strip().splitlines()[0]
+    except (IndexError, OSError):
+        return "unknown"
+
+
+def machine():
+    cpu = first_line("lscpu | sed -n 's/^Model name: *//p'")
+    return {
+        "cpu": cpu,
+        "cores": os.cpu_count(),
+        "os": f"{platform.system()} {platform.release()}",
+        "rustc": first_line("rustc -V"),
+        "node": first_line("node -v"),
+    }
+
+
+def criterion_means(prefix):
+    """Mean time in ms of every criterion benchmark whose group starts with `prefix`."""
+    means = {}
+    for estimates in sorted(CRITERION.glob("**/new/estimates.json")):
+        parts = estimates.relative_to(CRITERION).parts[:-2]
+        group, bench = "/".join(parts[:-1]), parts[-1]
+        if group.startswith(prefix):
+            ns = json.loads(estimates.read_text())["mean"]["point_estimate"]
+            means.setdefault(group, {})[bench] = ns / 1e6
+    return means
+
+
+NUMBER = re.compile(r"^[-+]?[\d.,]+(e[-+]?\d+)?\s*(×|%|°|ms|µs|ns|s)?$|^—$|^$")
+
+
+def table(header, rows):
+    """A Markdown table; columns whose every cell is a number are right-aligned."""
+    numeric = [all(NUMBER.match(str(row[i]).strip()) for row in rows) and bool(rows)
+               for i in range(len(header))]
+    out = ["| " + " | ".join(header) + " |",
+           "|" + "|".join("---:" if n else "---" for n in numeric) + "|"]
+    out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(out)
+
+
+def markdown_tables(text):
+    """The markdown table lines a tool printed."""
+    return "\n".join(line for line in text.splitlines() if line.startswith("|"))
+
+
+# --- native: against obvhs, parry3d and the bvh crate ---------------------------------------
+
+NATIVE_ROWS = [
+    ("random rays, closest hit", "raycast_random", "meshq_eight_wide_packed_watertight", "obvhs_cwbvh_medium", "obvhs CWBVH `medium_build`"),
+    ("random rays, closest hit", "raycast_random", "meshq_eight_wide_packed_watertight", "obvhs_medium", "obvhs BVH2 `medium_build`"),
+    ("random rays, closest hit", "raycast_random", "meshq_eight_wide_packed_watertight", "parry3d", "parry3d `TriMesh`"),
+    ("random rays, closest hit", "raycast_random", "meshq_eight_wide_packed_watertight", "bvh_crate", "`bvh` crate"),
+    ("random rays, closest hit, four-wide", "raycast_random", "meshq_wide_packed_watertight", "obvhs_cwbvh_medium", "obvhs CWBVH `medium_build`"),
+    ("camera rays, closest hit", "raycast_camera", "meshq_eight_wide_packed_watertight", "obvhs_medium", "obvhs BVH2 `medium_build`"),
+    ("camera rays, closest hit", "raycast_camera", "meshq_eight_wide_packed_watertight", "obvhs_cwbvh_medium", "obvhs CWBVH `medium_build`"),
+    ("random rays, any hit, four-wide", "raycast_any_random", "meshq_wide_packed_watertight", "obvhs_medium", "obvhs BVH2 `medium_build`"),
+    ("closest points, batch", "closest_point", "meshq_eight_wide_packed_batch", "parry3d", "parry3d `TriMesh`, one call each"),
+    ("closest points, one call each", "closest_point", "meshq_eight_wide_packed", "parry3d", "parry3d `TriMesh`"),
+    ("build, `balanced` (binned SAH)", "build", "meshq_balanced", "obvhs_medium", "obvhs `medium_build`"),
+    ("build, `fast`", "build", "meshq_fast", "obvhs_fast", "obvhs `fast_build`"),
+    ("build, `balanced`", "build", "meshq_balanced", "parry3d_trimesh", "parry3d `TriMesh`"),
+]
+
+
+def run_native():
+    command = "cargo bench -p meshq-bench --bench queries"
+    sh(command)
+    return [command], {"means_ms": criterion_means("")}
+
+
+def render_native(data):
+    means = data["means_ms"]
+    rows = []
+    for label, group, ours, theirs, peer in NATIVE_ROWS:
+        m, p = means.get(group, {}).get(ours), means.get(group, {}).get(theirs)
+        if m is None or p is None:
+            continue
+        rows.append((label, f"`{ours}`", peer, f"{m:.2f}", f"{p:.2f}", f"{p / m:.2f}×"))
+    return ("Bunny (69,451 triangles), 200,000 random rays, the 1024×1024 camera, 100,000 "
+            "closest points, one thread; criterion means. Ratio: the peer's time over meshq's.\n\n"
+            + table(["workload", "meshq", "peer", "meshq ms", "peer ms", "ratio"], rows))
+
+
+# --- Embree 4 --------------------------------------------------------------------------------
+
+def run_embree():
+    commands = [BUILD_CLI, f"{PEERS_PY} bench/peers/embree.py --json"]
+    sh(commands[0])
+    return commands, {"rows": json.loads(sh(commands[1]))}
+
+
+def render_embree(data):
+    rows = []
+    for r in data["rows"]:
+        rnd, cam = r["random"], r["camera"]
+        rows.append((r["mesh"], f"{r['triangles']:,}", f"{rnd['ratio']:.2f}×",
+                     f"{rnd['ratio_batch']:.2f}×", f"{cam['ratio']:.2f}×",
+                     f"{cam['ratio_batch']:.2f}×", f"{rnd['ratio_any']:.2f}×",
+                     f"{cam['ratio_any']:.2f}×", f"{r['meshq_build_s'] / r['embree_build_s']:.2f}",
+                     f"{rnd['agree']:,} / {rnd['rays']:,}"))
+    return ("One core each, Embree's robust scene, one ray per call (`rtcIntersect1`, "
+            "`rtcOccluded1`) against `meshq raycast --per-ray` and meshq's batch entry point, "
+            "best of 5 interleaved rounds. Ray columns: meshq's throughput over Embree's; build: "
+            "meshq's time over Embree's commit; the last column counts random rays whose answers "
+            "agree.\n\n"
+            + table(["mesh", "triangles", "random rays", "random, batch", "camera rays",
+                     "camera, batch", "random, any hit", "camera, any hit", "build time",
+                     "random rays agreeing"], rows))
+
+
+# --- the four structures ----------------------------------------------------------------------
+
+def run_structures():
+    commands = ["cargo bench -p meshq-bench --bench structures", "python3 scripts/structure_table.py"]
+    sh(commands[0])
+    return commands, {"table": markdown_tables(sh(commands[1]))}
+
+
+def render_text_table(data):
+    return data["table"]
+
+
+# --- mesh–mesh intersection -------------------------------------------------------------------
+
+def run_collide():
+    command = "cargo bench -p meshq-bench --bench collide"
+    sh(command)
+    return [command], {"means_ms": criterion_means("collide")}
+
+
+def duration(ms):
+    """A time given in ms, in the unit that shows three figures."""
+    if ms >= 1.0:
+        return f"{ms:.2f} ms"
+    if ms >= 1e-3:
+        return f"{ms * 1e3:.2f} µs"
+    return f"{ms * 1e6:.1f} ns"
+
+
+def render_collide(data):
+    rows = []
+    for group, entries in sorted(data["means_ms"].items()):
+        case = group.removeprefix("collide_").replace("_", ", ")
+        if "meshq_intersects" in entries and "parry3d_intersection_test" in entries:
+            m, p = entries["meshq_intersects"], entries["parry3d_intersection_test"]
+            rows.append((f"{case}: yes/no", duration(m), duration(p), f"{p / m:.2f}×"))
+        if "meshq_all_pairs" in entries:
+            rows.append((f"{case}: every pair", duration(entries["meshq_all_pairs"]), "—", ""))
+        if "meshq_self_pairs" in entries:
+            rows.append((f"{case}-intersection", duration(entries["meshq_self_pairs"]), "—", ""))
+    return ("A mesh against a copy of itself in each placement: meshq's `meshes_intersect` "
+            "against parry3d's `intersection_test` (answers checked to agree first), criterion "
+            "means.\n\n" + table(["case", "meshq", "parry3d", "ratio"], rows))
+
+
+# --- Node: WebAssembly against three-mesh-bvh -------------------------------------------------
+
+def run_node():
+    command = "node bench/node/bench.mjs --json"
+    return [command], json.loads(sh(command))
+
+
+def render_node(data):
+    peers = [r for r in data["results"] if "three_mesh_bvh_ms" in r]
+    pool = [r for r in data["results"] if "workers" in r]
+    rows = [(r["workload"], f"{r['meshq_ms']:.1f}", f"{r['three_mesh_bvh_ms']:.1f}", f"{r['ratio']:.2f}×")
+            for r in peers]
+    text = (f"The npm package's Node build against three-mesh-bvh in one process, the bunny "
+            f"({data['triangles']:,} triangles), the same rays and points for both. Ratio: "
+            f"three-mesh-bvh's time over meshq's.\n\n"
+            + table(["workload", "meshq ms", "three-mesh-bvh ms", "ratio"], rows))
+    if pool:
+        rows = [(r["workload"], r["workers"], f"{r['one_worker_ms']:.1f}", f"{r['all_workers_ms']:.1f}",
+                 f"{r['ratio']:.2f}×") for r in pool]
+        text += ("\n\nThe worker pool (`meshq-wasm/pool`) against one worker on the same batch:\n\n"
+                 + table(["workload", "workers", "one worker ms", "pool ms", "speed-up"], rows))
+    return text
+
+
+# --- remeshing against gpytoolbox -------------------------------------------------------------
+
+def run_remesh():
+    corpus = "target/hard-corpus"
+    commands = [BUILD_CLI,
+                f"cargo run --release -p meshq-bench --example hard_corpus -- {corpus}",
+                f"{PEERS_PY} bench/peers/remesh.py --corpus {corpus}"]
+    sh(commands[0])
+    sh(commands[1])
+    return commands, {"table": markdown_tables(sh(commands[2]))}
+
+
+def render_remesh(data):
+    return ("meshq and gpytoolbox's `remesh_botsch` on the same meshes at each mesh's mean edge "
+            "length, 10 iterations, best of 3: the bundled meshes (the creases row keeps "
+            "dihedral angles sharper than 45°) and the remeshing tests' hard inputs (capsules "
+            "with long side strips and high-valence poles, an open tube of strips, boxes, "
+            "slivers, stretched spheres). Both outputs are measured by the same code: "
+            "degenerate (zero-area triangles and coincident vertices), flipped (facing against "
+            "the nearest input triangle), the distance two ways over the bounding-box "
+            "diagonal.\n\n" + data["table"])
+
+
+# --- threads ----------------------------------------------------------------------------------
+
+def run_threads():
+    command = "cargo run --release -p meshq-bench --example scaling"
+    return [command], {"lines": [l for l in sh(command).splitlines() if l.strip()]}
+
+
+def render_lines(data):
+    return "\n".join(f"- {line}" for line in data["lines"])
+
+
+# --- firmware ---------------------------------------------------------------------------------
+
+# The summary the script prints last (each run before it prints its own stack marks).
+FIRMWARE_LINE = re.compile(r"^(flash,|static RAM|stack high-water mark,|remeshing \(|heap:)")
+
+
+def run_firmware():
+    command = "./scripts/firmware.sh"
+    out = sh(command)
+    return [command], {"lines": [l for l in out.splitlines() if FIRMWARE_LINE.match(l)]}
+
+
+def render_firmware(data):
+    return ("The example firmware (`firmware/`, release profile, `opt-level = \"s\"`, fat LTO) "
+            "on QEMU's `mps2-an386`, reading blobs from flash; details in "
+            "[firmware.md](firmware.md).\n\n"
+            + render_lines({"lines": [l for l in data["lines"] if FIRMWARE_LINE.match(l)]}))
+
+
+SECTIONS = {
+    "native": ("Native: against obvhs, parry3d and the `bvh` crate", run_native, render_native),
+    "embree": ("Native: against Embree 4", run_embree, render_embree),
+    "structures": ("Native: the four structures", run_structures, render_text_table),
+    "collide": ("Mesh–mesh intersection against parry3d", run_collide, render_collide),
+    "threads": ("Threads", run_threads, render_lines),
+    "node": ("Node: WebAssembly against three-mesh-bvh", run_node, render_node),
+    "remesh": ("Remeshing against gpytoolbox", run_remesh, render_remesh),
+    "firmware": ("Firmware: Cortex-M4F in QEMU", run_firmware, render_firmware),
+}
+
+
+# --- the README's summary ---------------------------------------------------------------------
+
+def summary_rows(results):
+    """(workload, peer, ratio) rows for the README, each from a stored result."""
+    rows = []
+    if "embree" in results:
+        rows_e = results["embree"]["data"]["rows"]
+        bundled = [r for r in rows_e if r["triangles"] < 500_000]
+        big = [r for r in rows_e if r["triangles"] >= 500_000]
+        span = lambda key, kind: (min(r[kind][key] for r in bundled), max(r[kind][key] for r in bundled))
+        if bundled:
+            lo, hi = span("ratio", "random")
+            rows.append(("random rays, closest hit, one call per ray, bundled meshes", "Embree 4, robust", f"{lo:.2f}–{hi:.2f}×"))
+            lo, hi = span("ratio", "camera")
+            rows.append(("camera rays, closest hit, one call per ray", "Embree 4", f"{lo:.2f}–{hi:.2f}×"))
+            lo, hi = span("ratio_batch", "camera")
+            rows.append(("camera rays, batch (packets)", "Embree 4, one call per ray", f"{lo:.2f}–{hi:.2f}×"))
+        for r in big:
+            rows.append((f"random rays, {r['mesh']} ({r['triangles']:,} triangles)", "Embree 4", f"{r['random']['ratio']:.2f}×"))
+    if "native" in results:
+        means = results["native"]["data"]["means_ms"]
+        for label, group, ours, theirs, peer in NATIVE_ROWS[:1] + NATIVE_ROWS[8:9] + NATIVE_ROWS[10:11]:
+            m, p = means.get(group, {}).get(ours), means.get(group, {}).get(theirs)
+            if m and p:
+                rows.append((f"{label}, bunny", peer, f"{p / m:.2f}×"))
+    if "node" in results:
+        wanted = {"random rays, batched vs raycastFirst": "random rays, batch",
+                  "random rays, one call each: raycastXyz": "random rays, one call each",
+                  "closest point, batched vs closestPointToPoint": "closest points, batch"}
+        for r in results["node"]["data"]["results"]:
+            if r["workload"] in wanted:
+                peer = "three-mesh-bvh " + ("`closestPointToPoint`" if "closest" in r["workload"] else "`raycastFirst`")
+                rows.append((f"Node (WebAssembly), bunny: {wanted[r['workload']]}", peer, f"{r['ratio']:.2f}×"))
+    if "collide" in results:
+        for group, e in sorted(results["collide"]["data"]["means_ms"].items()):
+            if group.endswith("overlapping") and "meshq_intersects" in e and "parry3d_intersection_test" in e:
+                rows.append(("mesh–mesh yes/no, two overlapping bunnies", "parry3d `intersection_test`",
+                             f"{e['parry3d_intersection_test'] / e['meshq_intersects']:.1f}×"))
+    if "remesh" in results:
+        times = {}
+        lines = results["remesh"]["data"]["table"].splitlines()
+        header = [c.strip() for c in lines[0].strip("|").split("|")] if lines else []
+        for line in lines[2:]:
+            cells = [c.strip() for c in line.strip("|").split("|")]
+            if len(cells) == len(header) and cells[0] == "stanford-bunny" and cells[-1]:
+                times[cells[1]] = float(cells[-1])
+        if "meshq" in times and "gpytoolbox" in times:
+            rows.append(("remeshing the bunny, 10 iterations", "gpytoolbox `remesh_botsch`", f"{times['gpytoolbox'] / times['meshq']:.1f}×"))
+    return rows
+
+
+def stamp(result):
+    m = result["machine"]
+    commands = "; ".join(f"`{c}`" for c in result["commands"])
+    return (f"*Run {result['date']} at `{result['commit']}` on {m['cpu']} ({m['cores']} cores), "
+            f"{m['os']}, {m['rustc']}, node {m['node']}: {commands}.*")
+
+
+def load_results():
+    results = {}
+    for name in SECTIONS:
+        f = RESULTS / f"{name}.json"
+        if f.is_file():
+            results[name] = json.loads(f.read_text())
+    return results
+
+
+def render():
+    results = load_results()
+    out = ["# Benchmarks", "",
+           "The current result of every benchmark, written by `python3 scripts/benchmarks.py render` "
+           "from the results `python3 scripts/benchmarks.py run` stored in `bench/results/`; each "
+           "table names the run, machine and commands that made it. Peers run in the same process "
+           "or script on the same inputs, so each table compares meshq with its peer in one run. "
+           "Earlier runs, what moved the numbers and the probes that were dropped are in "
+           "[`log/`](log/benchmarks-2026-12-02.md).", ""]
+    for name, (title, _, draw) in SECTIONS.items():
+        out += [f"## {title}", ""]
+        if name in results:
+            out += [stamp(results[name]), "", draw(results[name]["data"]), ""]
+        else:
+            out += [f"Not run yet: `python3 scripts/benchmarks.py run {name}`.", ""]
+    out += ["## Probes run by hand", "",
+            "These compare meshq's own paths or need a set-up the script does not make; their "
+            "last results, with their commands, are in the "
+            "[log](log/benchmarks-2026-12-02.md): instructions per ray under callgrind, "
+            "profile-guided and `target-cpu=native` builds against Embree, packets, compact and "
+            "eight-wide nodes (`--example ab`), sorted ray batches, spatial splits "
+            "(`--example spatial`), the worker pool's balance, and Chromium against "
+            "three-mesh-bvh (`bench/browser`).", ""]
+    (ROOT / "docs" / "benchmarks.md").write_text("\n".join(out))
+    rows = summary_rows(results)
+    readme = ROOT / "README.md"
+    text = readme.read_text()
+    start, end = "<!-- benchmarks:summary -->", "<!-- /benchmarks:summary -->"
+    if start in text and end in text:
+        head, rest = text.split(start, 1)
+        _, tail = rest.split(end, 1)
+        text = head + start + "\n" + table(["workload", "peer", "ratio"], rows) + "\n" + end + tail
+        readme.write_text(text)
+    print(f"wrote docs/benchmarks.md ({len(results)} of {len(SECTIONS)} sections) and {len(rows)} README rows")
+
+
+def run(names):
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    commit = first_line("git rev-parse --short HEAD")
+    # Only changes to what is built and run count: docs and results do not move a number.
+    code = ["core", "cli", "wasm", "web", "bench", "workload", "firmware", "tests", "Cargo.lock"]
+    changed = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", *code], cwd=ROOT,
+                             capture_output=True, text=True).stdout.strip()
+    if changed:
+        commit += " with uncommitted changes"
+    for name in names:
+        title, go, _ = SECTIONS[name]
+        print(f"== {name}: {title}", file=sys.stderr, flush=True)
+        date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+        commands, data = go()
+        result = {"section": name, "date": date, "commit": commit, "machine": machine(),
+                  "commands": commands, "data": data}
+        (RESULTS / f"{name}.json").write_text(json.dumps(result, indent=1) + "\n")
+
+
+def main():
+    args = sys.argv[1:]
+    if not args or args[0] not in ("run", "render", "list"):
+        sys.exit(__doc__)
+    if args[0] == "list":
+        results = load_results()
+        for name, (title, _, _) in SECTIONS.items():
+            print(f"{name:12} {results.get(name, {}).get('date', 'never run'):22} {title}")
+    elif args[0] == "render":
+        render()
+    else:
+        names = args[1:] or list(SECTIONS)
+        unknown = [n for n in names if n not in SECTIONS]
+        if unknown:
+            sys.exit(f"unknown sections {unknown}; known: {', '.join(SECTIONS)}")
+        run(names)
+        render()
+
+
+if __name__ == "__main__":
+    main()
