@@ -17,50 +17,6 @@ pub(crate) enum CheckLevel {
     Full,
 }
 
-/// Where a box problem goes: returned at once, or held (the first one) while the walk goes on
-/// checking topology, for a caller that reports every topology problem before any box
-/// problem ([`check_boxes_last`]).
-enum BoxProblems<'h> {
-    Return,
-    // Only blob validation holds them.
-    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
-    Hold(&'h mut Option<StructureError>),
-}
-
-impl BoxProblems<'_> {
-    /// `Err(problem)` to return it now, `Ok` when it is held (or a first one already was).
-    fn report(&mut self, problem: StructureError) -> Result<(), StructureError> {
-        match self {
-            Self::Return => Err(problem),
-            Self::Hold(held) => {
-                held.get_or_insert(problem);
-                Ok(())
-            }
-        }
-    }
-}
-
-/// [`check`] at [`CheckLevel::Full`] in one walk that reports topology problems first: the
-/// first box problem (bad bounds, a child outside its parent, a triangle outside its leaf) is
-/// returned beside the shape only when the whole tree's topology is sound, for the caller to
-/// report after its own topology checks.
-#[cfg(feature = "blob")]
-pub(crate) fn check_boxes_last<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
-    tree: &A,
-    mesh: Option<&S>,
-    extent: Extent,
-) -> Result<(Shape, Option<StructureError>), StructureError> {
-    let mut held = None;
-    let shape = walk(
-        tree,
-        mesh,
-        CheckLevel::Full,
-        extent,
-        BoxProblems::Hold(&mut held),
-    )?;
-    Ok((shape, held))
-}
-
 /// Whether nodes and slots past those the tree uses are allowed (the untrimmed buffers a build
 /// was given) or refused (a blob, whose counts must be exact).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,16 +43,6 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
     mesh: Option<&S>,
     level: CheckLevel,
     extent: Extent,
-) -> Result<Shape, StructureError> {
-    walk(tree, mesh, level, extent, BoxProblems::Return)
-}
-
-fn walk<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
-    tree: &A,
-    mesh: Option<&S>,
-    level: CheckLevel,
-    extent: Extent,
-    mut boxes: BoxProblems<'_>,
 ) -> Result<Shape, StructureError> {
     let (node_count, slot_count) = (tree.node_count(), tree.slot_count());
     let empty = Shape {
@@ -138,7 +84,7 @@ fn walk<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
             .ok_or(StructureError::ChildOutOfRange { node: index })?;
         let bounds = node.aabb();
         if level == CheckLevel::Full && (bounds.is_empty() || !bounds.is_finite()) {
-            boxes.report(StructureError::BadBounds { node: index })?;
+            return Err(StructureError::BadBounds { node: index });
         }
         if node.is_leaf() {
             let first = node.first as usize;
@@ -177,7 +123,7 @@ fn walk<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                         && (tree.split_refs().range_of(tri).is_empty()
                             || !bounds.overlaps(&t.bounds()))
                     {
-                        boxes.report(StructureError::TriangleOutsideLeaf { node: index, tri })?;
+                        return Err(StructureError::TriangleOutsideLeaf { node: index, tri });
                     }
                 }
             }
@@ -200,7 +146,7 @@ fn walk<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                         .node(child as usize)
                         .is_some_and(|c| bounds.contains_aabb(&c.aabb()));
                     if !inside {
-                        boxes.report(StructureError::ChildOutsideParent { node: child })?;
+                        return Err(StructureError::ChildOutsideParent { node: child });
                     }
                 }
             }
