@@ -14,7 +14,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use meshq::Traverse;
 use meshq::bvh::BuildConfig;
 use meshq::collide::{
-    Affine, TrianglePair, intersecting_pairs, meshes_intersect, self_intersecting_pairs,
+    Affine, PairBudget, TrianglePair, intersecting_pairs, meshes_intersect, self_intersecting_pairs,
 };
 use meshq::owned::MeshBvh;
 use meshq_tests::{LoadedMesh, load_mesh, load_obj};
@@ -104,6 +104,8 @@ fn collide(c: &mut Criterion) {
     let packed = bvh.packed();
     let ours = tree.with(&packed);
     let parry_a = parry_mesh(&scene, 1.0);
+    let n = mesh.triangle_count();
+    let budget = PairBudget::for_triangles(n, n);
     for p in &placements {
         let place = p.affine();
         let parry_b = parry_mesh(&scene, p.scale);
@@ -116,7 +118,7 @@ fn collide(c: &mut Criterion) {
                 .expect("parry3d supports two meshes")
                 .intersecting
         };
-        let meshq_says = meshes_intersect(ours, ours, Some(&place));
+        let meshq_says = meshes_intersect(ours, ours, Some(&place), budget).expect("within budget");
         assert_eq!(
             meshq_says,
             parry_says(&parry_b),
@@ -124,7 +126,8 @@ fn collide(c: &mut Criterion) {
             p.name
         );
         let mut pairs = vec![TrianglePair::default(); 1 << 16];
-        let found = intersecting_pairs(ours, ours, Some(&place), &mut pairs);
+        let found = intersecting_pairs(ours, ours, Some(&place), budget, &mut pairs)
+            .expect("within budget");
         eprintln!(
             "{} / {}: meets {meshq_says}, {} pairs of {} tested",
             scene.name, p.name, found.total, found.tested
@@ -134,19 +137,27 @@ fn collide(c: &mut Criterion) {
         group.warm_up_time(Duration::from_millis(500));
         group.measurement_time(Duration::from_secs(2));
         group.bench_function("meshq_intersects", |b| {
-            b.iter(|| black_box(meshes_intersect(ours, ours, Some(&place))))
+            b.iter(|| black_box(meshes_intersect(ours, ours, Some(&place), budget)))
         });
         group.bench_function("parry3d_intersection_test", |b| {
             b.iter(|| black_box(parry_says(&parry_b)))
         });
         group.throughput(Throughput::Elements(found.tested.max(1) as u64));
         group.bench_function("meshq_all_pairs", |b| {
-            b.iter(|| black_box(intersecting_pairs(ours, ours, Some(&place), &mut pairs)))
+            b.iter(|| {
+                black_box(intersecting_pairs(
+                    ours,
+                    ours,
+                    Some(&place),
+                    budget,
+                    &mut pairs,
+                ))
+            })
         });
         group.finish();
     }
     let mut out = vec![TrianglePair::default(); 1 << 16];
-    let found = self_intersecting_pairs(&tree, &mesh, &mut out);
+    let found = self_intersecting_pairs(&tree, &mesh, budget, &mut out).expect("within budget");
     eprintln!(
         "{} / self: {} pairs of {} tested",
         scene.name, found.total, found.tested
@@ -157,7 +168,7 @@ fn collide(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(3));
     group.throughput(Throughput::Elements(found.tested as u64));
     group.bench_function("meshq_self_pairs", |b| {
-        b.iter(|| black_box(self_intersecting_pairs(&tree, &mesh, &mut out)))
+        b.iter(|| black_box(self_intersecting_pairs(&tree, &mesh, budget, &mut out)))
     });
     group.finish();
 }

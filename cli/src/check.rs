@@ -8,8 +8,10 @@ use clap::Args;
 use meshq::Traverse;
 use meshq::bvh::BuildConfig;
 use meshq::collide::{
-    Affine, Found, TrianglePair, intersecting_pairs, intersection_segments, self_intersecting_pairs,
+    Affine, Found, PairBudget, TrianglePair, intersecting_pairs, intersection_segments,
+    self_intersecting_pairs,
 };
+use meshq::error::PairBudgetSpent;
 use meshq::mesh::MeshRef;
 use meshq::owned::MeshBvh;
 use serde::Serialize;
@@ -36,6 +38,11 @@ pub struct CheckArgs {
     /// How many intersecting pairs to list.
     #[arg(long, default_value_t = 10)]
     pub first: usize,
+    /// The most triangle pairs each check may test before it stops with an error. Default:
+    /// 2^20 + 256 per triangle of the meshes checked, far above what well-shaped meshes need;
+    /// meshes whose triangles pile up in one place (copies, zero-area triangles) need more.
+    #[arg(long, value_name = "N")]
+    pub max_pair_tests: Option<usize>,
     /// Print the result as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -52,6 +59,9 @@ struct Report {
     self_first_pairs: Vec<[u32; 2]>,
     /// Triangle pairs the self-check tested (the rest were ruled out by boxes).
     self_pairs_tested: usize,
+    /// Triangles of zero area (corners in a line or at one point): they meet nothing, so
+    /// the checks pass over them.
+    degenerate_triangles: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     against: Option<Against>,
     /// Time of the checks, BVH builds included, file reading not.
@@ -106,19 +116,34 @@ fn parse_transform(text: &str) -> Result<Affine> {
 
 /// Runs `query` to count the pairs, then, when there are any, again into a buffer of the
 /// first `wanted` of them (never larger than the count, so a huge `--first` allocates
-/// nothing more).
+/// nothing more). A spent budget is an error naming the check, the mesh and the flag.
 fn first_pairs(
     wanted: usize,
-    query: impl Fn(&mut [TrianglePair]) -> Found,
-) -> (Found, Vec<TrianglePair>) {
-    let counted = query(&mut []);
+    what: &str,
+    query: impl Fn(&mut [TrianglePair]) -> Result<Found, PairBudgetSpent>,
+) -> Result<(Found, Vec<TrianglePair>)> {
+    let counted = within_budget(what, query(&mut []))?;
     if counted.total == 0 || wanted == 0 {
-        return (counted, Vec::new());
+        return Ok((counted, Vec::new()));
     }
     let mut first = vec![TrianglePair::default(); wanted.min(counted.total)];
-    let found = query(&mut first);
+    let found = within_budget(what, query(&mut first))?;
     first.truncate(found.written);
-    (found, first)
+    Ok((found, first))
+}
+
+/// The found pairs, or an error saying which check ran out and how to give it more.
+fn within_budget(what: &str, found: Result<Found, PairBudgetSpent>) -> Result<Found> {
+    found.map_err(|spent| anyhow::anyhow!("{what}: {spent} (--max-pair-tests)"))
+}
+
+/// The budget for a check over meshes of `a` and `b` triangles: `--max-pair-tests` or the
+/// default that scales with them.
+fn budget(args: &CheckArgs, a: usize, b: usize) -> PairBudget {
+    args.max_pair_tests.map_or_else(
+        || PairBudget::for_triangles(a, b),
+        |max_tests| PairBudget { max_tests },
+    )
 }
 
 fn as_pairs(pairs: &[TrianglePair]) -> Vec<[u32; 2]> {
@@ -132,7 +157,22 @@ pub fn run(args: &CheckArgs) -> Result<()> {
     let start = Instant::now();
     let bvh = bvh_of(&data, &name)?;
     let (mesh, tree) = (bvh.mesh(), bvh.bvh());
-    let (found, first) = first_pairs(args.first, |out| self_intersecting_pairs(&tree, &mesh, out));
+    let n = mesh.triangle_count();
+    let degenerate_triangles = (0..n)
+        .filter_map(|t| mesh.triangle(t as u32))
+        .filter(|t| t.is_degenerate())
+        .count();
+    // Zero-area triangles are the usual reason for a spent budget: the error says how many.
+    let described = if degenerate_triangles > 0 {
+        format!("{name} ({degenerate_triangles} of {n} triangles have zero area)")
+    } else {
+        name.clone()
+    };
+    let self_budget = budget(args, n, n);
+    let what = format!("{described}: self-intersection check");
+    let (found, first) = first_pairs(args.first, &what, |out| {
+        self_intersecting_pairs(&tree, &mesh, self_budget, out)
+    })?;
     let self_first_pairs = as_pairs(&first);
     let against = match &other {
         None => None,
@@ -140,10 +180,15 @@ pub fn run(args: &CheckArgs) -> Result<()> {
             let other_bvh = bvh_of(other_data, other_name)?;
             let (other_mesh, other_tree) = (other_bvh.mesh(), other_bvh.bvh());
             let (a, b) = (tree.with(&mesh), other_tree.with(&other_mesh));
-            let (pairs, first) = first_pairs(args.first, |out| {
-                intersecting_pairs(a, b, place.as_ref(), out)
-            });
-            let crossing = intersection_segments(a, b, place.as_ref(), &mut []);
+            let pair_budget = budget(args, n, other_mesh.triangle_count());
+            let what = format!("{described} against {other_name}");
+            let (pairs, first) = first_pairs(args.first, &what, |out| {
+                intersecting_pairs(a, b, place.as_ref(), pair_budget, out)
+            })?;
+            let crossing = within_budget(
+                &what,
+                intersection_segments(a, b, place.as_ref(), pair_budget, &mut []),
+            )?;
             Some(Against {
                 mesh: other_name.clone(),
                 triangles: other_mesh.triangle_count(),
@@ -160,6 +205,7 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         self_intersecting_pairs: found.total,
         self_first_pairs,
         self_pairs_tested: found.tested,
+        degenerate_triangles,
         against,
         check_seconds: start.elapsed().as_secs_f64(),
     };
@@ -180,6 +226,12 @@ fn print_report(r: &Report) -> Result<()> {
         }
     };
     say!("{}: {} triangles", r.mesh, r.triangles);
+    if r.degenerate_triangles > 0 {
+        say!(
+            "  {} degenerate (zero-area) triangles, which meet nothing",
+            r.degenerate_triangles
+        );
+    }
     if r.self_intersecting_pairs == 0 {
         say!("  no self-intersections");
     } else {

@@ -431,3 +431,59 @@ fn many_hits_per_ray_run_in_bounded_memory() {
     let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(summary["rays"], 5000, "{summary}");
 }
+
+/// An OBJ of `n` zero-area triangles at one point (`point`) or `n` copies of one triangle.
+fn piled_obj(path: &Path, n: usize, at_one_point: bool) {
+    let mut text = String::new();
+    if at_one_point {
+        for t in 0..n {
+            text.push_str("v 0.25 0.5 0.75\nv 0.25 0.5 0.75\nv 0.25 0.5 0.75\n");
+            text.push_str(&format!("f {} {} {}\n", 3 * t + 1, 3 * t + 2, 3 * t + 3));
+        }
+    } else {
+        text.push_str("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        text.push_str(&"f 1 2 3\n".repeat(n));
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+/// `check` on triangles that no box separates ends in one error naming the check and the flag
+/// that raises its budget, in bounded work, instead of testing every pair; within the budget
+/// it reports the pairs and the zero-area triangles.
+#[test]
+fn checks_on_piled_up_triangles_stop_at_their_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = dir.path().join("point.obj");
+    piled_obj(&points, 50_000, true);
+    let out = meshq(&[&"check", &points]);
+    refused(&out, "self-intersection check");
+    refused(&out, "--max-pair-tests");
+    let against = meshq(&[&"check", &points, &"--against", &points]);
+    refused(&against, "--max-pair-tests");
+
+    let copies = dir.path().join("same.obj");
+    piled_obj(&copies, 1_000, false);
+    let out = meshq(&[&"check", &copies, &"--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // Every pair of copies lies on each other.
+    assert_eq!(
+        report["self_intersecting_pairs"],
+        1_000 * 999 / 2,
+        "{report}"
+    );
+    assert!(report["self_pairs_tested"].as_u64().unwrap() <= (1 << 20) + 512 * 1_000);
+    let small = meshq(&[&"check", &copies, &"--max-pair-tests", &"1000"]);
+    refused(&small, "budget of 1000 pairs is spent");
+
+    let few = dir.path().join("few.obj");
+    piled_obj(&few, 10, true);
+    let out = meshq(&[&"check", &few, &"--json"]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["degenerate_triangles"], 10, "{report}");
+    assert_eq!(report["self_intersecting_pairs"], 0, "{report}");
+}

@@ -8,7 +8,7 @@ use meshq::Traverse;
 use meshq::Vec3;
 use meshq::bvh::BuildConfig;
 use meshq::collide::{
-    Affine, CrossingSegment, TrianglePair, intersecting_pairs, intersection_segments,
+    Affine, CrossingSegment, PairBudget, TrianglePair, intersecting_pairs, intersection_segments,
     meshes_intersect, self_intersecting_pairs, self_intersects, touching_pairs_unfiltered,
 };
 use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
@@ -92,8 +92,10 @@ fn check_two_meshes(
     let (with_a, with_b) = (tree_a.with(&mesh_a), tree_b.with(&mesh_b));
     let packed_b = b.packed();
     let with_b_packed = tree_b.with(&packed_b);
+    // The default budget: meshes like these must be answered within it.
+    let budget = PairBudget::for_triangles(mesh_a.triangle_count(), mesh_b.triangle_count());
     let mut pairs = vec![TrianglePair::default(); 1 << 20];
-    let found = intersecting_pairs(with_a, with_b, Some(place), &mut pairs);
+    let found = intersecting_pairs(with_a, with_b, Some(place), budget, &mut pairs).unwrap();
     assert!(!found.overflowed(), "{label}");
     let got: BTreeSet<TrianglePair> = pairs[..found.written].iter().copied().collect();
     assert_eq!(got.len(), found.written, "{label}: a pair reported twice");
@@ -103,13 +105,20 @@ fn check_two_meshes(
     let want: BTreeSet<(u32, u32)> = expected.iter().map(|&(i, j, _)| (i, j)).collect();
     assert_eq!(got_kept, want, "{label}: pairs against brute force");
     assert_eq!(
-        meshes_intersect(with_a, with_b, Some(place)),
+        meshes_intersect(with_a, with_b, Some(place), budget).unwrap(),
         found.total > 0,
         "{label}: yes/no"
     );
     // Packed triangles answer exactly as the mesh does, in the same order.
     let mut packed_pairs = vec![TrianglePair::default(); found.total + 1];
-    let again = intersecting_pairs(with_a, with_b_packed, Some(place), &mut packed_pairs);
+    let again = intersecting_pairs(
+        with_a,
+        with_b_packed,
+        Some(place),
+        budget,
+        &mut packed_pairs,
+    )
+    .unwrap();
     assert_eq!(again, found, "{label}: packed");
     assert_eq!(
         packed_pairs[..again.written],
@@ -119,7 +128,7 @@ fn check_two_meshes(
     // A short buffer holds the first pairs of the same walk, and the count goes on.
     if found.total > 2 {
         let mut short = vec![TrianglePair::default(); found.total / 2];
-        let part = intersecting_pairs(with_a, with_b, Some(place), &mut short);
+        let part = intersecting_pairs(with_a, with_b, Some(place), budget, &mut short).unwrap();
         assert!(part.overflowed(), "{label}");
         assert_eq!(
             (part.total, part.written),
@@ -141,7 +150,8 @@ fn check_two_meshes(
         };
         found.total + 1
     ];
-    let crossing = intersection_segments(with_a, with_b, Some(place), &mut segments);
+    let crossing =
+        intersection_segments(with_a, with_b, Some(place), budget, &mut segments).unwrap();
     let crossing_pairs: BTreeSet<(u32, u32)> = segments[..crossing.written]
         .iter()
         .map(|s| (s.pair.a, s.pair.b))
@@ -414,16 +424,18 @@ fn self_pairs(mesh: &ValidMesh<'_>, unfiltered: bool) -> (BTreeSet<(u32, u32)>, 
     let bvh = MeshBvh::build(mesh, &BuildConfig::default()).unwrap();
     let tree = bvh.bvh();
     let mut out = vec![TrianglePair::default(); 1 << 20];
+    let n = mesh.triangle_count();
+    let budget = PairBudget::for_triangles(n, n);
     let found = if unfiltered {
         touching_pairs_unfiltered(&tree, mesh, &mut out)
     } else {
-        self_intersecting_pairs(&tree, mesh, &mut out)
+        self_intersecting_pairs(&tree, mesh, budget, &mut out).unwrap()
     };
     assert!(!found.overflowed());
     let set: BTreeSet<(u32, u32)> = out[..found.written].iter().map(|p| (p.a, p.b)).collect();
     assert_eq!(set.len(), found.written, "a pair reported twice");
     assert!(out[..found.written].iter().all(|p| p.a < p.b));
-    (set, self_intersects(&tree, mesh))
+    (set, self_intersects(&tree, mesh, budget).unwrap())
 }
 
 #[test]

@@ -13,6 +13,7 @@ mod collapse_roles;
 mod collide;
 mod compact_nodes;
 mod degenerate_builds;
+mod degenerate_pairs;
 mod doc_links;
 mod edge_cases;
 mod eight_wide;

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use meshq::advanced::SplitRef;
 use meshq::advanced::{BlobHeader, BvhNode, FORMAT_VERSION, PrimRef, reseal};
 use meshq::bvh::{BuildConfig, Bvh, SpatialSplits};
-use meshq::collide::{intersecting_pairs, self_intersecting_pairs};
+use meshq::collide::{PairBudget, intersecting_pairs, self_intersecting_pairs};
 use meshq::error::{BufferKind, BuildError};
 use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
 use meshq::math::Triangle;
@@ -304,7 +304,9 @@ fn triangle_pairs_come_once_from_spatial_split_trees() {
     }
     assert!(want.len() > 50, "{} crossings", want.len());
     let mut out = vec![meshq::collide::TrianglePair { a: 0, b: 0 }; 4 * want.len()];
-    let found = self_intersecting_pairs(&scene.bvh(), &mesh, &mut out);
+    let n = mesh.triangle_count();
+    let budget = PairBudget::for_triangles(n, n);
+    let found = self_intersecting_pairs(&scene.bvh(), &mesh, budget, &mut out).unwrap();
     let got: Vec<(u32, u32)> = out[..found.written]
         .iter()
         .map(|p| (p.a, p.b))
@@ -342,8 +344,10 @@ fn triangle_pairs_come_once_from_spatial_split_trees() {
         scene.bvh().with(&mesh),
         other.bvh().with(&other_mesh),
         None,
+        PairBudget::for_triangles(n, other_mesh.triangle_count()),
         &mut out,
-    );
+    )
+    .unwrap();
     let got: Vec<(u32, u32)> = out[..found.written].iter().map(|p| (p.a, p.b)).collect();
     let unique: BTreeSet<_> = got.iter().copied().collect();
     assert_eq!(unique.len(), got.len(), "a pair reported twice");

@@ -116,7 +116,8 @@ export function computeBoundsTree(options) {
  * three-mesh-bvh's `boundsTree.intersectsGeometry(geometry, geometryToBvh)`: whether
  * `geometry`, placed in this tree's frame by the Matrix4 `geometryToBvh`, meets this tree's
  * mesh (touching counts). Uses `geometry.boundsTree` when it has one, else builds one for
- * the call and frees it.
+ * the call and frees it. Throws a `RangeError` when the two meshes pile so many triangles in
+ * one place that `intersectsMesh`'s default pair budget is spent before an answer.
  */
 MeshBvh.prototype.intersectsGeometry = function intersectsGeometry(geometry, geometryToBvh) {
   const temporary = geometry.boundsTree ? null : buildFor(geometry);

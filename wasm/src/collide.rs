@@ -7,9 +7,10 @@ use meshq::Traverse;
 use meshq::advanced::{BvhNode, TreeArrays};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::collide::{
-    Affine, CrossingSegment, Found, TrianglePair, intersecting_pairs, intersection_segments,
-    meshes_intersect, self_intersecting_pairs,
+    Affine, CrossingSegment, Found, PairBudget, TrianglePair, intersecting_pairs,
+    intersection_segments, meshes_intersect, self_intersecting_pairs,
 };
+use meshq::error::PairBudgetSpent;
 use meshq::owned::{MeshBvh as CoreBvh, MeshIndex};
 use meshq::query::{PackedTriangles, With};
 use wasm_bindgen::prelude::*;
@@ -41,9 +42,39 @@ fn placement(matrix: Option<JsValue>) -> Result<Option<Affine>, JsValue> {
         .map_err(|e| range_error(&format!("matrix: {e}")))
 }
 
-/// `maxPairs`: omitted → no cap; otherwise a whole number.
-fn pair_limit(max_pairs: Option<JsValue>) -> Result<Option<u32>, JsValue> {
-    optional_u32(&max_pairs.unwrap_or(JsValue::UNDEFINED), "maxPairs")
+/// Pairs returned when `maxPairs` is omitted: 2²⁰ (8 MiB of indices); `total` and
+/// `overflowed` tell when there were more.
+const DEFAULT_MAX_PAIRS: u32 = 1 << 20;
+
+/// `maxPairs`: omitted → [`DEFAULT_MAX_PAIRS`]; otherwise a whole number.
+fn pair_limit(max_pairs: Option<JsValue>) -> Result<u32, JsValue> {
+    let given = optional_u32(&max_pairs.unwrap_or(JsValue::UNDEFINED), "maxPairs")?;
+    Ok(given.unwrap_or(DEFAULT_MAX_PAIRS))
+}
+
+/// `maxTests`: omitted → [`PairBudget::for_triangles`] of the two meshes; otherwise a whole
+/// number of triangle pairs.
+fn test_budget(max_tests: Option<JsValue>, a: usize, b: usize) -> Result<PairBudget, JsValue> {
+    let given = optional_u32(&max_tests.unwrap_or(JsValue::UNDEFINED), "maxTests")?;
+    Ok(given.map_or_else(
+        || PairBudget::for_triangles(a, b),
+        |max_tests| PairBudget {
+            max_tests: max_tests as usize,
+        },
+    ))
+}
+
+/// A spent budget as a `RangeError` naming the option that raises it.
+fn spent(error: PairBudgetSpent) -> JsValue {
+    range_error(&format!("{error} (maxTests)"))
+}
+
+/// Triangle counts of the two meshes.
+fn triangle_counts(one: &MeshBvh, other: &MeshBvh) -> (usize, usize) {
+    (
+        one.storage.scene.mesh().triangle_count(),
+        other.storage.scene.mesh().triangle_count(),
+    )
 }
 
 /// The two meshes' trees with their packed triangles, as the mesh–mesh queries take them.
@@ -75,10 +106,13 @@ fn pairs_object(pairs: &[TrianglePair], found: Found) -> Result<Object, JsError>
 }
 
 /// Room for results: as many as were found (counted by a first pass that stores none), at
-/// most `limit` when given, so a large `maxPairs` allocates nothing more.
-fn room(limit: Option<u32>, count: impl FnOnce() -> usize) -> usize {
-    let found = count();
-    limit.map_or(found, |l| found.min(l as usize))
+/// most `limit`, so a large `maxPairs` allocates nothing more.
+fn room(
+    limit: u32,
+    count: impl FnOnce() -> Result<Found, PairBudgetSpent>,
+) -> Result<usize, JsValue> {
+    let found = count().map_err(spent)?;
+    Ok(found.total.min(limit as usize))
 }
 
 #[wasm_bindgen]
@@ -88,23 +122,33 @@ impl MeshBvh {
     /// `Matrix4`; omitted or `null`: as it is). Touching counts: a shared point, a corner on a
     /// face, a coplanar overlap. Stops at the first pair found. Throws a `TypeError` or
     /// `RangeError` for a matrix that is not 16 finite numbers with a bottom row `0, 0, 0, 1`.
+    ///
+    /// `maxTests` is the most triangle pairs the walk may consider (a whole number; omitted:
+    /// 2²⁰ + 256 per triangle of the two meshes, far above what well-shaped meshes need).
+    /// When it is spent before an answer — many triangles in one place, such as copies of one
+    /// triangle — the call throws a `RangeError` instead of working for minutes.
     #[wasm_bindgen(js_name = intersectsMesh)]
     pub fn intersects_mesh(
         &self,
         other: &MeshBvh,
         #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxTests, unchecked_param_type = "number | null")]
+        max_tests: Option<JsValue>,
     ) -> Result<bool, JsValue> {
         let place = placement(matrix)?;
-        Ok(on_both(self, other, |a, b| {
-            meshes_intersect(a, b, place.as_ref())
-        })?)
+        let (na, nb) = triangle_counts(self, other);
+        let budget = test_budget(max_tests, na, nb)?;
+        on_both(self, other, |a, b| {
+            meshes_intersect(a, b, place.as_ref(), budget)
+        })?
+        .map_err(spent)
     }
 
     /// Every pair of triangles (this mesh's, `other`'s) that meets, with `other` placed by
     /// `matrix` as in `intersectsMesh`: `{ pairs: Uint32Array, total, tested, overflowed }`,
     /// `pairs` holding triangle indices two by two. `maxPairs` caps how many are returned
     /// (a whole number; `total` still counts all, `overflowed` says some were left out);
-    /// omitted: all.
+    /// omitted: 2²⁰. `maxTests` bounds the work as in `intersectsMesh`.
     #[wasm_bindgen(js_name = intersectingPairs, unchecked_return_type = "PairsResult")]
     pub fn intersecting_pairs(
         &self,
@@ -112,43 +156,56 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
         #[wasm_bindgen(js_name = maxPairs, unchecked_param_type = "number | null")]
         max_pairs: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxTests, unchecked_param_type = "number | null")]
+        max_tests: Option<JsValue>,
     ) -> Result<Object, JsValue> {
         let place = placement(matrix)?;
         let max_pairs = pair_limit(max_pairs)?;
+        let (na, nb) = triangle_counts(self, other);
+        let budget = test_budget(max_tests, na, nb)?;
         let (pairs, found) = on_both(self, other, |a, b| {
             let n = room(max_pairs, || {
-                intersecting_pairs(a, b, place.as_ref(), &mut []).total
-            });
+                intersecting_pairs(a, b, place.as_ref(), budget, &mut [])
+            })?;
             let mut pairs = vec![TrianglePair::default(); n];
-            let found = intersecting_pairs(a, b, place.as_ref(), &mut pairs);
-            (pairs, found)
-        })?;
+            let found =
+                intersecting_pairs(a, b, place.as_ref(), budget, &mut pairs).map_err(spent)?;
+            Ok::<_, JsValue>((pairs, found))
+        })??;
         Ok(pairs_object(&pairs, found)?)
     }
 
     /// Where this mesh and `other` (placed by `matrix`) cross, for drawing: a `Float32Array`
     /// with 6 numbers per segment (start x, y, z, end x, y, z) in this mesh's frame, one
     /// segment per pair of crossing triangles. Coplanar overlaps have no segment and are
-    /// left out.
+    /// left out. At most 2²⁰ segments (the first in walk order); `maxTests` bounds the work
+    /// as in `intersectsMesh`.
     #[wasm_bindgen(js_name = intersectionSegments)]
     pub fn intersection_segments(
         &self,
         other: &MeshBvh,
         #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxTests, unchecked_param_type = "number | null")]
+        max_tests: Option<JsValue>,
     ) -> Result<Float32Array, JsValue> {
         let place = placement(matrix)?;
+        let (na, nb) = triangle_counts(self, other);
+        let budget = test_budget(max_tests, na, nb)?;
         let segments = on_both(self, other, |a, b| {
-            let n = intersection_segments(a, b, place.as_ref(), &mut []).total;
+            let n = room(DEFAULT_MAX_PAIRS, || {
+                intersection_segments(a, b, place.as_ref(), budget, &mut [])
+            })?;
             let empty = CrossingSegment {
                 pair: TrianglePair::default(),
                 start: glam::Vec3::ZERO,
                 end: glam::Vec3::ZERO,
             };
             let mut segments = vec![empty; n];
-            let found = intersection_segments(a, b, place.as_ref(), &mut segments);
+            let found = intersection_segments(a, b, place.as_ref(), budget, &mut segments)
+                .map_err(spent)?;
             segments.truncate(found.written);
-            segments
-        })?;
+            Ok::<_, JsValue>(segments)
+        })??;
         let flat: Vec<f32> = segments
             .iter()
             .flat_map(|s| [s.start.to_array(), s.end.to_array()])
@@ -162,21 +219,26 @@ impl MeshBvh {
     /// a neighbour); triangles sharing nothing count when they touch at all. Corners are shared
     /// by index or by position (within about 2⁻²⁰ of the coordinates' magnitude), so an
     /// unwelded mesh's seams do not count. Returns
-    /// `{ pairs, total, tested, overflowed }` as `intersectingPairs` does.
+    /// `{ pairs, total, tested, overflowed }` as `intersectingPairs` does, `maxPairs` (omitted:
+    /// 2²⁰) and `maxTests` (omitted: 2²⁰ + 512 per triangle) as there.
     #[wasm_bindgen(js_name = selfIntersections, unchecked_return_type = "PairsResult")]
     pub fn self_intersections(
         &self,
         #[wasm_bindgen(js_name = maxPairs, unchecked_param_type = "number | null")]
         max_pairs: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxTests, unchecked_param_type = "number | null")]
+        max_tests: Option<JsValue>,
     ) -> Result<Object, JsValue> {
         let max_pairs = pair_limit(max_pairs)?;
         let bvh = bvh_of(&self.storage.scene)?;
         let (tree, mesh) = (bvh.bvh(), bvh.mesh());
-        let n = room(max_pairs, || {
-            self_intersecting_pairs(&tree, &mesh, &mut []).total
-        });
-        let mut pairs = vec![TrianglePair::default(); n];
-        let found = self_intersecting_pairs(&tree, &mesh, &mut pairs);
+        let n = mesh.triangle_count();
+        let budget = test_budget(max_tests, n, n)?;
+        let room = room(max_pairs, || {
+            self_intersecting_pairs(&tree, &mesh, budget, &mut [])
+        })?;
+        let mut pairs = vec![TrianglePair::default(); room];
+        let found = self_intersecting_pairs(&tree, &mesh, budget, &mut pairs).map_err(spent)?;
         Ok(pairs_object(&pairs, found)?)
     }
 }

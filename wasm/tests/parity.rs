@@ -662,11 +662,16 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
         let one = build(obj, &options);
         let other = build(obj, &JsValue::UNDEFINED);
         assert!(
-            one.intersects_mesh(&other, Some(Float32Array::from(&matrix[..]).into()))
+            one.intersects_mesh(&other, Some(Float32Array::from(&matrix[..]).into()), None)
                 .unwrap()
         );
         let found = one
-            .intersecting_pairs(&other, Some(Float32Array::from(&matrix[..]).into()), None)
+            .intersecting_pairs(
+                &other,
+                Some(Float32Array::from(&matrix[..]).into()),
+                None,
+                None,
+            )
             .unwrap();
         assert_eq!(number(&found, &["total"]) as usize, pairs.len());
         let flat = Uint32Array::from(Reflect::get(&found, &"pairs".into()).unwrap()).to_vec();
@@ -678,6 +683,7 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
                 &other,
                 Some(Float32Array::from(&matrix[..]).into()),
                 Some(JsValue::from(3)),
+                None,
             )
             .unwrap();
         assert_eq!(number(&capped, &["total"]) as usize, pairs.len());
@@ -687,6 +693,7 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
                 &other,
                 Some(Float32Array::from(&matrix[..]).into()),
                 Some(JsValue::from(u32::MAX)),
+                None,
             )
             .unwrap();
         let listed = Uint32Array::from(Reflect::get(&all, &"pairs".into()).unwrap()).length();
@@ -696,7 +703,7 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
             JsValue::TRUE
         );
         let segments = one
-            .intersection_segments(&other, Some(Float32Array::from(&matrix[..]).into()))
+            .intersection_segments(&other, Some(Float32Array::from(&matrix[..]).into()), None)
             .unwrap();
         assert_eq!(segments.length() as usize, 6 * crossing);
         let apart = one.intersects_mesh(
@@ -706,13 +713,18 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
                 m[12] = 5.0;
                 Float32Array::from(&m[..]).into()
             }),
+            None,
         );
         assert!(!apart.unwrap());
-        let itself = one.self_intersections(None).unwrap();
+        let itself = one.self_intersections(None, None).unwrap();
         assert_eq!(number(&itself, &["total"]), 0.0);
         assert!(
-            one.intersects_mesh(&other, Some(Float32Array::from(&[1.0f32; 3][..]).into()))
-                .is_err()
+            one.intersects_mesh(
+                &other,
+                Some(Float32Array::from(&[1.0f32; 3][..]).into()),
+                None
+            )
+            .is_err()
         );
     }
 }

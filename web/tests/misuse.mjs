@@ -222,6 +222,10 @@ const cases = [
   [() => bvh.intersectingPairs(bvh, null, -3), RangeError, /maxPairs must be a whole number/],
   [() => bvh.intersectionSegments(bvh, [0]), RangeError, /matrix must hold exactly 16/],
   [() => bvh.selfIntersections(0.5), RangeError, /maxPairs must be a whole number/],
+  [() => bvh.selfIntersections(null, 'many'), TypeError, /maxTests must be a number/],
+  [() => bvh.intersectsMesh(bvh, null, -1), RangeError, /maxTests must be a whole number/],
+  [() => bvh.intersectsMesh(bvh, null, 10), RangeError, /budget of 10 pairs is spent.*maxTests/],
+  [() => bvh.intersectionSegments(bvh, null, 10), RangeError, /budget of 10 pairs is spent/],
   [() => bvh.overlapsSphere([0, 0, 0]), TypeError, /radius must be a number/],
   [() => bvh.overlapsOrientedBox([0, 0, 0], [1, 0, 0, 0, 1, 0, 0, 0], [1, 1, 1]), RangeError, /axes must hold exactly 9 numbers, got 8/],
   [() => bvh.overlapsOrientedBox([0, 0, 0], 'xyz', [1, 1, 1]), TypeError, /axes must be an array/],
@@ -313,6 +317,30 @@ for (const [i, [f, type, words]] of cases.entries()) throws(f, type, words, `cas
   [r, hits] = shared(0, (b) => new Uint8Array(b, 4 * 6 * MeshBvh.RAY_CHUNK + 1, n));
   bvh.raycastAnyBatch(r, 0, Infinity, hits);
   assert.deepEqual(hits, want[3], 'any-hit flags over the rays');
+}
+
+// Triangles no box separates stop at the pair budget with a RangeError, in bounded time and
+// memory: 20,000 copies of one triangle (200 million meeting pairs), and 50,000 zero-area
+// triangles at one point. Within the budget the pairs are listed, at most 2^20 by default.
+{
+  const corners = Float32Array.from([0, 0, 0, 1, 0, 0, 0, 1, 0]);
+  const copiesOf = (n) => Uint32Array.from({ length: 3 * n }, (_, i) => i % 3);
+  const copies = MeshBvh.build(corners, copiesOf(20_000));
+  throws(() => copies.selfIntersections(), RangeError, /budget of \d+ pairs is spent.*maxTests/, 'copies: self');
+  throws(() => copies.intersectingPairs(copies), RangeError, /budget .* is spent/, 'copies: pairs');
+  assert.equal(copies.intersectsMesh(copies), true, 'a yes before the budget runs out');
+  const fewer = MeshBvh.build(corners, copiesOf(1_200));
+  const listed = fewer.selfIntersections();
+  assert.equal(listed.total, (1_200 * 1_199) / 2, 'every pair of copies meets');
+  assert.equal(listed.pairs.length, 2 * listed.total);
+  const all = fewer.intersectingPairs(fewer);
+  assert.equal(all.total, 1_200 * 1_200);
+  assert.equal(all.pairs.length, 2 * (1 << 20), 'at most 2^20 pairs by default');
+  assert.equal(all.overflowed, true);
+  const point = MeshBvh.build(new Float32Array(3 * 150_000).fill(0.5), Uint32Array.from({ length: 150_000 }, (_, i) => i));
+  throws(() => point.intersectsMesh(point), RangeError, /budget .* is spent/, 'points: yes/no');
+  throws(() => point.selfIntersections(null, 1e6), RangeError, /budget of 1000000 pairs/, 'points: given budget');
+  for (const m of [copies, fewer, point]) m.free();
 }
 
 // A mesh too large for WebAssembly's 4 GiB is refused with an Error naming the limit, before

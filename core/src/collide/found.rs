@@ -35,7 +35,8 @@ pub struct Found {
     /// Results written to the front of the buffer: `min(total, buffer length)`.
     pub written: usize,
     /// Triangle pairs tested: those in pairs of leaves whose boxes overlap (a measure of the
-    /// walk's work; all pairs but those the boxes rule out).
+    /// walk's work; all pairs but those the boxes rule out). At most the walk's
+    /// [`PairBudget`](super::PairBudget).
     pub tested: usize,
 }
 

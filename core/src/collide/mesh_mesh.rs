@@ -3,19 +3,22 @@
 
 use core::ops::ControlFlow;
 
+use super::budget::Tally;
 use super::tree_pairs::for_each_leaf_pair;
-use super::{Affine, CrossingSegment, Found, TrianglePair};
+use super::{Affine, CrossingSegment, Found, PairBudget, TrianglePair};
 use crate::bvh::{BvhNode, TreeArrays};
+use crate::error::PairBudgetSpent;
 use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
 use crate::math::Aabb;
 use crate::query::{LeafTriangles, With};
 
 /// Calls `on` with every pair of triangles, one of `a` and one of `b` (placed by `b_to_a`),
-/// that meets, and how; in walk order. Stops when `on` breaks.
+/// that meets, and how; in walk order. Stops when `on` breaks or `tally` runs out.
 fn for_each_meeting_pair<A, SA, B, SB>(
     a: With<'_, A, SA>,
     b: With<'_, B, SB>,
     b_to_a: Option<&Affine>,
+    tally: &mut Tally,
     tested: &mut usize,
     mut on: impl FnMut(TrianglePair, TriangleTriangle) -> ControlFlow<()>,
 ) -> ControlFlow<()>
@@ -34,6 +37,10 @@ where
         tree_b,
         b_to_a,
         |leaf_a: BvhNode, leaf_b: BvhNode| {
+            let pairs = (leaf_a.count as usize).saturating_mul(leaf_b.count as usize);
+            if !tally.take(pairs) {
+                return ControlFlow::Break(());
+            }
             let (Some(ids_a), Some(ids_b)) = (
                 tree_a.leaf_triangles(leaf_a.first as usize, leaf_a.count as usize),
                 tree_b.leaf_triangles(leaf_b.first as usize, leaf_b.count as usize),
@@ -89,38 +96,61 @@ where
 /// tree with [`PackedTriangles`](crate::query::PackedTriangles)). Both trees are walked
 /// together from the roots, and the walk stops at the first meeting pair. No allocation: a
 /// fixed stack of about 1 KiB.
-#[must_use]
+///
+/// # Errors
+/// [`PairBudgetSpent`] when the walk considered `budget`'s pairs without finding one that
+/// meets (see [`PairBudget`]; [`PairBudget::for_triangles`] is the usual choice).
 pub fn meshes_intersect<A, SA, B, SB>(
     a: With<'_, A, SA>,
     b: With<'_, B, SB>,
     b_to_a: Option<&Affine>,
-) -> bool
+    budget: PairBudget,
+) -> Result<bool, PairBudgetSpent>
 where
     A: TreeArrays + ?Sized,
     SA: LeafTriangles + ?Sized,
     B: TreeArrays + ?Sized,
     SB: LeafTriangles + ?Sized,
 {
-    for_each_meeting_pair(a, b, b_to_a, &mut 0, |_, _| ControlFlow::Break(())).is_break()
+    let mut tally = Tally::new(budget);
+    let (mut tested, mut met) = (0, false);
+    let _ = for_each_meeting_pair(a, b, b_to_a, &mut tally, &mut tested, |_, _| {
+        met = true;
+        ControlFlow::Break(())
+    });
+    if met {
+        return Ok(true);
+    }
+    tally
+        .finish(Found {
+            tested,
+            ..Found::default()
+        })
+        .map(|_| false)
 }
 
 /// Every pair of triangles, one of `a` and one of `b`, that meets (as in
 /// [`meshes_intersect`]), written to the front of `out` in walk order. Returns how many were
 /// found and how many were written: when `out` is too short, the first ones are written and
 /// the count goes on ([`Found::overflowed`]).
+///
+/// # Errors
+/// [`PairBudgetSpent`] when the walk considered `budget`'s pairs before its end; the pairs
+/// found until then are in `out` and in the error's count.
 pub fn intersecting_pairs<A, SA, B, SB>(
     a: With<'_, A, SA>,
     b: With<'_, B, SB>,
     b_to_a: Option<&Affine>,
+    budget: PairBudget,
     out: &mut [TrianglePair],
-) -> Found
+) -> Result<Found, PairBudgetSpent>
 where
     A: TreeArrays + ?Sized,
     SA: LeafTriangles + ?Sized,
     B: TreeArrays + ?Sized,
     SB: LeafTriangles + ?Sized,
 {
-    collect(a, b, b_to_a, out, |pair, _| Some(pair))
+    collect(a, b, b_to_a, budget, out, |pair, _| Some(pair))
 }
 
 /// Where the meshes cross: for every pair of triangles whose planes cross and that meet, the
@@ -128,19 +158,23 @@ where
 /// walk order, counted as in [`intersecting_pairs`]. Pairs that lie in one plane and overlap
 /// share an area, not a segment: they are left out here ([`intersecting_pairs`] lists them).
 /// Drawn together, the segments trace the curves where the surfaces cross.
+///
+/// # Errors
+/// As [`intersecting_pairs`].
 pub fn intersection_segments<A, SA, B, SB>(
     a: With<'_, A, SA>,
     b: With<'_, B, SB>,
     b_to_a: Option<&Affine>,
+    budget: PairBudget,
     out: &mut [CrossingSegment],
-) -> Found
+) -> Result<Found, PairBudgetSpent>
 where
     A: TreeArrays + ?Sized,
     SA: LeafTriangles + ?Sized,
     B: TreeArrays + ?Sized,
     SB: LeafTriangles + ?Sized,
 {
-    collect(a, b, b_to_a, out, |pair, how| match how {
+    collect(a, b, b_to_a, budget, out, |pair, how| match how {
         TriangleTriangle::Segment { a, b } => Some(CrossingSegment {
             pair,
             start: a,
@@ -156,9 +190,10 @@ fn collect<A, SA, B, SB, T>(
     a: With<'_, A, SA>,
     b: With<'_, B, SB>,
     b_to_a: Option<&Affine>,
+    budget: PairBudget,
     out: &mut [T],
     keep: impl Fn(TrianglePair, TriangleTriangle) -> Option<T>,
-) -> Found
+) -> Result<Found, PairBudgetSpent>
 where
     A: TreeArrays + ?Sized,
     SA: LeafTriangles + ?Sized,
@@ -166,13 +201,13 @@ where
     SB: LeafTriangles + ?Sized,
 {
     let mut found = Found::default();
-    let mut tested = 0;
-    let _ = for_each_meeting_pair(a, b, b_to_a, &mut tested, |pair, how| {
+    let (mut tally, mut tested) = (Tally::new(budget), 0);
+    let _ = for_each_meeting_pair(a, b, b_to_a, &mut tally, &mut tested, |pair, how| {
         if let Some(item) = keep(pair, how) {
             found.push(out, item);
         }
         ControlFlow::Continue(())
     });
     found.tested = tested;
-    found
+    tally.finish(found)
 }

@@ -10,9 +10,13 @@
 //!   an intersection, crossing beyond it or folding over is.
 //!
 //! Results go into caller buffers with the true count ([`Found`]); nothing allocates, and
-//! the walks use fixed stacks bounded by the trees' depth.
+//! the walks use fixed stacks bounded by the trees' depth. Every walk takes a [`PairBudget`],
+//! the most triangle pairs it may consider, so that meshes whose triangles no box separates
+//! (copies of one triangle, triangles at one point) end in a typed error, not in work that
+//! grows with the square of the count.
 
 mod affine;
+mod budget;
 mod found;
 mod mesh_mesh;
 mod neighbours;
@@ -20,6 +24,7 @@ mod self_intersect;
 mod tree_pairs;
 
 pub use affine::Affine;
+pub use budget::PairBudget;
 pub use found::{CrossingSegment, Found, TrianglePair};
 pub use mesh_mesh::{intersecting_pairs, intersection_segments, meshes_intersect};
 #[doc(hidden)]

@@ -3,20 +3,23 @@
 
 use core::ops::ControlFlow;
 
+use super::budget::Tally;
 use super::neighbours::meets_beyond_shared;
 use super::tree_pairs::for_each_self_leaf_pair;
-use super::{Found, TrianglePair};
+use super::{Found, PairBudget, TrianglePair};
 use crate::bvh::{BvhNode, TreeArrays};
+use crate::error::PairBudgetSpent;
 use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 
 /// Calls `on` with every pair of `mesh`'s triangles (`a < b`) that meets beyond what the two
-/// share; in walk order. Stops when `on` breaks.
+/// share; in walk order. Stops when `on` breaks or `tally` runs out.
 fn for_each_self_pair<A: TreeArrays + ?Sized>(
     tree: &A,
     mesh: &ValidMesh<'_>,
     skip_shared: bool,
+    tally: &mut Tally,
     tested: &mut usize,
     mut on: impl FnMut(TrianglePair) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
@@ -24,6 +27,15 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
     let splits = tree.split_refs();
     for_each_self_leaf_pair(tree, |one: BvhNode, other: BvhNode| {
         let same_leaf = one.first == other.first;
+        let (n_one, n_other) = (one.count as usize, other.count as usize);
+        let pairs = if same_leaf {
+            n_one.saturating_mul(n_one.saturating_sub(1)) / 2
+        } else {
+            n_one.saturating_mul(n_other)
+        };
+        if !tally.take(pairs) {
+            return ControlFlow::Break(());
+        }
         let (Some(ids_one), Some(ids_other)) = (
             tree.leaf_triangles(one.first as usize, one.count as usize),
             tree.leaf_triangles(other.first as usize, other.count as usize),
@@ -89,20 +101,47 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
 /// `tree` is a BVH built over `mesh` (a [`Bvh`](crate::bvh::Bvh), or a blob's tree with the
 /// blob's mesh). It is walked against itself, and the walk stops at the first pair. No
 /// allocation: a fixed stack of about 2 KiB.
-#[must_use]
-pub fn self_intersects<A: TreeArrays + ?Sized>(tree: &A, mesh: &ValidMesh<'_>) -> bool {
-    for_each_self_pair(tree, mesh, true, &mut 0, |_| ControlFlow::Break(())).is_break()
+///
+/// # Errors
+/// [`PairBudgetSpent`] when the walk considered `budget`'s pairs without finding one (see
+/// [`PairBudget`]; [`PairBudget::for_triangles`] with the triangle count twice is the usual
+/// choice).
+pub fn self_intersects<A: TreeArrays + ?Sized>(
+    tree: &A,
+    mesh: &ValidMesh<'_>,
+    budget: PairBudget,
+) -> Result<bool, PairBudgetSpent> {
+    let mut tally = Tally::new(budget);
+    let (mut tested, mut met) = (0, false);
+    let _ = for_each_self_pair(tree, mesh, true, &mut tally, &mut tested, |_| {
+        met = true;
+        ControlFlow::Break(())
+    });
+    if met {
+        return Ok(true);
+    }
+    tally
+        .finish(Found {
+            tested,
+            ..Found::default()
+        })
+        .map(|_| false)
 }
 
 /// Every pair of `mesh`'s triangles that meets itself (as in [`self_intersects`]), `a < b`,
 /// written to the front of `out` in walk order; counted as
 /// [`intersecting_pairs`](super::intersecting_pairs) counts.
+///
+/// # Errors
+/// [`PairBudgetSpent`] when the walk considered `budget`'s pairs before its end; the pairs
+/// found until then are in `out` and in the error's count.
 pub fn self_intersecting_pairs<A: TreeArrays + ?Sized>(
     tree: &A,
     mesh: &ValidMesh<'_>,
+    budget: PairBudget,
     out: &mut [TrianglePair],
-) -> Found {
-    collect_self_pairs(tree, mesh, true, out)
+) -> Result<Found, PairBudgetSpent> {
+    collect_self_pairs(tree, mesh, true, budget, out)
 }
 
 /// [`self_intersecting_pairs`] without the rule for neighbours: every pair that meets at
@@ -114,7 +153,9 @@ pub fn touching_pairs_unfiltered<A: TreeArrays + ?Sized>(
     mesh: &ValidMesh<'_>,
     out: &mut [TrianglePair],
 ) -> Found {
-    collect_self_pairs(tree, mesh, false, out)
+    let all = collect_self_pairs(tree, mesh, false, PairBudget::UNLIMITED, out);
+    // An unlimited budget is never spent.
+    all.unwrap_or_default()
 }
 
 /// Writes the pairs [`for_each_self_pair`] finds to the front of `out`, counting them all.
@@ -122,14 +163,15 @@ fn collect_self_pairs<A: TreeArrays + ?Sized>(
     tree: &A,
     mesh: &ValidMesh<'_>,
     skip_shared: bool,
+    budget: PairBudget,
     out: &mut [TrianglePair],
-) -> Found {
+) -> Result<Found, PairBudgetSpent> {
     let mut found = Found::default();
-    let mut tested = 0;
-    let _ = for_each_self_pair(tree, mesh, skip_shared, &mut tested, |pair| {
+    let (mut tally, mut tested) = (Tally::new(budget), 0);
+    let _ = for_each_self_pair(tree, mesh, skip_shared, &mut tally, &mut tested, |pair| {
         found.push(out, pair);
         ControlFlow::Continue(())
     });
     found.tested = tested;
-    found
+    tally.finish(found)
 }

@@ -6,6 +6,7 @@ mod batch;
 #[cfg(feature = "blob")]
 mod blob;
 mod build;
+mod collide;
 mod mesh;
 mod remesh;
 mod structure;
@@ -15,6 +16,7 @@ pub use batch::{BatchBuffer, BatchError};
 #[cfg(feature = "blob")]
 pub use blob::{BlobError, BlobSection};
 pub use build::{BufferKind, BuildError};
+pub use collide::PairBudgetSpent;
 pub use mesh::{FlatSlice, MeshError};
 pub use remesh::{RemeshBuffer, RemeshError};
 pub use structure::StructureError;

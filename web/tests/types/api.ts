@@ -58,8 +58,12 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const pairs: PairsResult = bvh.intersectingPairs(grid, [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], 10);
   bvh.intersectingPairs(grid, { elements: new Float64Array(16) });
   bvh.intersectsMesh(grid);
+  const met: boolean = bvh.intersectsMesh(grid, null, 1_000_000);
+  bvh.intersectingPairs(grid, null, null, 1_000_000);
   bvh.intersectionSegments(grid, null);
+  bvh.intersectionSegments(grid, null, 1_000_000);
   bvh.selfIntersections();
+  bvh.selfIntersections(100, 1_000_000);
   bvh.overlapsSphere([0, 0, 0], 1);
   bvh.overlapsOrientedBox([0, 0, 0], [1, 0, 0, 0, 1, 0, 0, 0, 1], [1, 1, 1]);
   bvh.overlapsTriangle([0, 0, 0], [1, 0, 0], [0, 1, 0]);

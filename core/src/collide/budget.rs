@@ -1,0 +1,95 @@
+//! How much work a walk over triangle pairs may do: the cap that keeps mesh–mesh and
+//! self-intersection queries bounded when boxes cannot tell triangles apart.
+
+use super::Found;
+use crate::error::PairBudgetSpent;
+
+/// The most triangle pairs a mesh–mesh or self-intersection query may consider before it
+/// stops with [`PairBudgetSpent`].
+///
+/// On ordinary meshes the boxes rule out all but a few pairs per triangle, so a walk
+/// considers a small multiple of the triangle count. When many triangles share one place —
+/// copies of one triangle, all corners at one point, long slivers that all cross one spot —
+/// no box separates them and the pairs grow with the square of the count; the budget turns
+/// that into an error instead of minutes of work.
+///
+/// The walk counts, for every pair of leaves whose boxes overlap, the triangle pairs the two
+/// leaves hold (`a × b`, or `n (n − 1) / 2` for a leaf with itself, at least 1) *before* it
+/// tests them, and stops before the pair of leaves that would take that count past
+/// [`max_tests`](Self::max_tests). So [`Found::tested`] never exceeds it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PairBudget {
+    /// The most triangle pairs the walk may consider (see above).
+    pub max_tests: usize,
+}
+
+impl PairBudget {
+    /// No cap: the walk goes on however long it takes.
+    pub const UNLIMITED: Self = Self {
+        max_tests: usize::MAX,
+    };
+
+    /// Pairs allowed per triangle of the two meshes by [`for_triangles`](Self::for_triangles).
+    pub const TESTS_PER_TRIANGLE: usize = 256;
+
+    /// Pairs allowed by [`for_triangles`](Self::for_triangles) whatever the triangle count, so
+    /// that small meshes with a dense spot still get an answer.
+    pub const LEAST_TESTS: usize = 1 << 20;
+
+    /// The default budget for meshes of `a` and `b` triangles (for a self-intersection, pass
+    /// the count twice): [`LEAST_TESTS`](Self::LEAST_TESTS) +
+    /// [`TESTS_PER_TRIANGLE`](Self::TESTS_PER_TRIANGLE) × (`a` + `b`), saturating. Linear in
+    /// the meshes' size, and well above what well-shaped meshes need.
+    #[must_use]
+    pub const fn for_triangles(a: usize, b: usize) -> Self {
+        let per_triangle = Self::TESTS_PER_TRIANGLE.saturating_mul(a.saturating_add(b));
+        Self {
+            max_tests: Self::LEAST_TESTS.saturating_add(per_triangle),
+        }
+    }
+}
+
+/// A walk's running count against its budget.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tally {
+    budget: PairBudget,
+    considered: usize,
+    stopped: bool,
+}
+
+impl Tally {
+    pub(crate) const fn new(budget: PairBudget) -> Self {
+        Self {
+            budget,
+            considered: 0,
+            stopped: false,
+        }
+    }
+
+    /// Takes `pairs` (at least 1) from the budget; `false`, and the tally marked stopped,
+    /// when they do not fit.
+    pub(crate) fn take(&mut self, pairs: usize) -> bool {
+        let next = self.considered.saturating_add(pairs.max(1));
+        if next > self.budget.max_tests {
+            self.stopped = true;
+            return false;
+        }
+        self.considered = next;
+        true
+    }
+
+    /// `found` when the walk went to its end, the error with what was found before it
+    /// stopped otherwise.
+    pub(crate) const fn finish(&self, found: Found) -> Result<Found, PairBudgetSpent> {
+        if self.stopped {
+            Err(PairBudgetSpent {
+                max_tests: self.budget.max_tests,
+                tested: found.tested,
+                total: found.total,
+                written: found.written,
+            })
+        } else {
+            Ok(found)
+        }
+    }
+}
