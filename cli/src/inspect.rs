@@ -10,6 +10,7 @@ use clap::Args;
 use meshq::advanced::{BlobHeader, LEAF_HISTOGRAM_LEN, MAGIC, TreeStats};
 use meshq::blob::{BlobStructure, BlobTree};
 use meshq::bvh::BuildConfig;
+use meshq::error::BlobError;
 use meshq::mesh::MeshRef;
 use meshq::owned::{MeshIndex, StructureKind};
 use serde::Serialize;
@@ -96,6 +97,15 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     check_blob_kind(&bytes, args.structure, &args.blob)?;
     let (header, structure) = BlobStructure::parse(&bytes)
         .with_context(|| format!("{}: invalid blob", args.blob.display()))?;
+    // What the loaders check besides the structure (the stored mesh's references and bounds,
+    // the mesh checksum, the order as a permutation): a blob every loader refuses is not
+    // described as if it were fine. A blob without its mesh has nothing more to check.
+    match MeshIndex::from_blob(&bytes) {
+        Ok(_) | Err(BlobError::MeshNotIncluded) => {}
+        Err(e) => {
+            return Err(e).with_context(|| format!("{}: invalid blob", args.blob.display()));
+        }
+    }
     let (BlobStructure::Bvh(tree), Some(config)) = (structure, header.config.bvh()) else {
         let report = cell_blob_report(&header, &structure, bytes.len());
         if args.json {

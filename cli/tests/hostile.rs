@@ -487,3 +487,58 @@ fn checks_on_piled_up_triangles_stop_at_their_budget() {
     assert_eq!(report["degenerate_triangles"], 10, "{report}");
     assert_eq!(report["self_intersecting_pairs"], 0, "{report}");
 }
+
+/// `inspect` validates a blob as the loaders do: a BVH blob (resealed, so its checksum
+/// passes) whose stored triangle names a vertex that does not exist is refused by `inspect`
+/// with the same error as by `raycast`, not described as a sound blob.
+#[test]
+fn inspect_refuses_what_the_loaders_refuse() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = asset("spot.obj");
+    let blob = dir.path().join("spot.meshq");
+    assert!(meshq(&[&"bake", &mesh, &"-o", &blob]).status.success());
+    assert!(meshq(&[&"inspect", &blob]).status.success());
+    let mut bytes = std::fs::read(&blob).unwrap();
+    let loaded = meshq_tests::load_obj(&mesh);
+    // The first stored triangle whose 12 bytes occur once in the blob: its first index
+    // becomes 999,999.
+    let at = loaded
+        .triangles
+        .iter()
+        .find_map(|t| {
+            let needle: Vec<u8> = t.iter().flat_map(|i| i.to_le_bytes()).collect();
+            let mut hits = bytes.windows(12).enumerate().filter(|(_, w)| *w == needle);
+            match (hits.next(), hits.next()) {
+                (Some((at, _)), None) => Some(at),
+                _ => None,
+            }
+        })
+        .expect("a stored triangle");
+    bytes[at..at + 4].copy_from_slice(&999_999u32.to_le_bytes());
+    meshq::advanced::reseal(&mut bytes).unwrap();
+    let damaged = dir.path().join("damaged.meshq");
+    std::fs::write(&damaged, &bytes).unwrap();
+    let inspect = meshq(&[&"inspect", &damaged]);
+    refused(&inspect, "invalid blob");
+    let rays = dir.path().join("rays.bin");
+    assert!(
+        meshq(&[&"workload", &mesh, &"-o", &rays, &"--count", &"10"])
+            .status
+            .success()
+    );
+    let raycast = meshq(&[
+        &"raycast",
+        &damaged,
+        &"--rays",
+        &rays,
+        &"--out",
+        &"/dev/null",
+    ]);
+    refused(&raycast, "cannot use blob");
+    // The same cause, word for word, after each command's own context.
+    let cause = |out: &Output| {
+        let text = String::from_utf8_lossy(&out.stderr).trim_end().to_string();
+        text.rsplit(": ").next().unwrap_or_default().to_string()
+    };
+    assert_eq!(cause(&inspect), cause(&raycast));
+}
