@@ -346,3 +346,129 @@ fn version_2_bvh_blobs_still_load() {
     assert_eq!(view.header().version, 2);
     check_all(&view, &BruteForce::new(&mesh), &loaded, "cow as version 2");
 }
+
+/// Rays from around `bounds` towards points inside it, and points around it: the probes a
+/// damaged blob's answers are compared on.
+fn probes(bounds: &Aabb, count: usize) -> Vec<meshq::math::Ray> {
+    let mut state = 0x9E37_79B9u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32
+    };
+    let (lo, size) = (bounds.min, bounds.extent());
+    let mut at = |grow: f32| {
+        lo - size * (grow - 1.0) / 2.0 + size * grow * meshq::Vec3::new(next(), next(), next())
+    };
+    (0..count)
+        .map(|_| {
+            let (from, to) = (at(3.0), at(1.0));
+            meshq::math::Ray::new(from, (to - from).normalize())
+        })
+        .collect()
+}
+
+/// The mesh a self-contained indexed blob stores, as vectors.
+fn stored_mesh(view: &BlobView<'_>) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let h = view.header();
+    let m = view.mesh();
+    let positions = (0..h.vertex_count)
+        .map(|v| m.position(v).unwrap())
+        .collect();
+    let triangles = (0..h.triangle_count)
+        .map(|t| m.triangle_indices(t).unwrap())
+        .collect();
+    (positions, triangles)
+}
+
+/// How many of the probes `view` answers otherwise than a scan of its own stored mesh (what
+/// a fresh build of that mesh answers: every structure answers as the scan does).
+fn answers_unlike_its_own_mesh(view: &BlobView<'_>, bounds: &Aabb) -> usize {
+    use meshq::MeshQuery;
+    let (positions, triangles) = stored_mesh(view);
+    let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+    let brute = BruteForce::new(&mesh);
+    probes(bounds, 300)
+        .iter()
+        .filter(|ray| {
+            view.raycast(ray) != brute.raycast(ray, &Default::default())
+                || view.closest_point(ray.origin, f32::INFINITY)
+                    != brute.closest_point(ray.origin, f32::INFINITY)
+        })
+        .count()
+}
+
+/// The sweep's method kept: every byte of an indexed cell blob damaged three ways with the
+/// checksum recomputed, and the two damages it found answering wrongly (an octree header
+/// whose `bounds_min.x` is doubled, a k-d tree blob with two stored vertices swapped). Each
+/// mutant is refused, or answers exactly as a fresh build of the mesh it stores.
+#[test]
+fn resealed_cell_blobs_are_refused_or_answer_as_a_fresh_build() {
+    let (positions, triangles) = spot_patch();
+    let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
+    let bounds = mesh.bounds();
+    for kind in CELL_KINDS {
+        let bytes = MeshIndex::build(&mesh, kind)
+            .unwrap()
+            .to_blob(MeshLayout::Indexed)
+            .unwrap();
+        let mut mutants: Vec<(String, Vec<u8>)> = Vec::new();
+        for i in 0..bytes.len() {
+            for flip in [0x01u8, 0x10, 0x80] {
+                let mut damaged = bytes.clone();
+                damaged[i] ^= flip;
+                mutants.push((format!("byte {i} ^ {flip:#x}"), damaged));
+            }
+        }
+        // The header's bounds follow its six varint counts: min x is the first f32.
+        let mut rest = &bytes[5..];
+        for _ in 0..6 {
+            take::<u32>(&mut rest);
+        }
+        let min_x = bytes.len() - rest.len();
+        let mut doubled = bytes.clone();
+        let x = f32::from_le_bytes(doubled[min_x..min_x + 4].try_into().unwrap());
+        // The mesh's bounds, or for an octree the cube around them.
+        assert!(
+            x <= bounds.min.x && x > bounds.min.x - bounds.extent().max_element(),
+            "{kind}: {x}"
+        );
+        doubled[min_x..min_x + 4].copy_from_slice(&(2.0 * x).to_le_bytes());
+        mutants.push(("bounds_min.x doubled".into(), doubled));
+        // Vertices 0 and 1 swapped where they are stored.
+        let encode = |p: [f32; 3]| -> Vec<u8> { p.iter().flat_map(|c| c.to_le_bytes()).collect() };
+        let (v0, v1) = (encode(positions[0]), encode(positions[1]));
+        let at = bytes
+            .windows(24)
+            .position(|w| w[..12] == v0[..] && w[12..] == v1[..]);
+        let at = at.expect("vertices 0 and 1 stored side by side");
+        let mut swapped = bytes.clone();
+        swapped[at..at + 12].copy_from_slice(&v1);
+        swapped[at + 12..at + 24].copy_from_slice(&v0);
+        mutants.push(("vertices 0 and 1 swapped".into(), swapped));
+
+        let (mut refused, mut accepted) = (0, 0);
+        for (what, mut damaged) in mutants {
+            if meshq::advanced::reseal(&mut damaged).is_err() {
+                continue;
+            }
+            let Ok(view) = BlobView::parse(&damaged) else {
+                refused += 1;
+                continue;
+            };
+            accepted += 1;
+            let wrong = answers_unlike_its_own_mesh(&view, &bounds);
+            assert_eq!(
+                wrong, 0,
+                "{kind} {what}: accepted, and {wrong} answers differ"
+            );
+            // The owned loader accepts what the view accepts.
+            assert!(MeshIndex::from_blob(&damaged).is_ok(), "{kind} {what}");
+        }
+        println!(
+            "{kind}: resealed mutants {refused} refused, {accepted} accepted and answering right"
+        );
+        assert!(refused > 0 && accepted > 0, "{kind}: {refused} {accepted}");
+    }
+}

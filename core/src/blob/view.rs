@@ -20,6 +20,8 @@ use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::bvh::split_coverage::check_split_coverage;
 use crate::cells::LeWords;
 #[cfg(feature = "blob-cells")]
+use crate::cells::ReferencePad;
+#[cfg(feature = "blob-cells")]
 use crate::error::StructureError;
 use crate::error::{BlobError, BlobSection};
 #[cfg(feature = "blob-cells")]
@@ -377,7 +379,11 @@ fn check_structure<'a>(
             if !header.config.is_valid() {
                 return Err(bad_config);
             }
-            check_cells(header, words, items)?
+            let (structure, depth) = check_cells(header, words, items)?;
+            if let Some(mesh) = mesh {
+                check_cell_coverage(&structure, header, mesh)?;
+            }
+            (structure, depth)
         }
         #[cfg(not(feature = "blob-cells"))]
         RawStructure::Cells(..) => {
@@ -423,6 +429,43 @@ fn check_cells<'a>(
     };
     let deepest = structure.cell_stats(n).map_or(0, |s| s.max_depth);
     Ok((structure, u32::try_from(deepest).unwrap_or(u32::MAX)))
+}
+
+#[cfg(feature = "blob-cells")]
+/// Proves a cell structure answers as a fresh build of `mesh` would: every triangle inside the
+/// header's bounds (the root cell), and listed by every cell it touches as the builds decide
+/// touching. A packed mesh stores corners per reference, not per triangle, and is checked by
+/// its references' ranges only.
+#[inline(never)]
+fn check_cell_coverage(
+    structure: &BlobStructure<'_>,
+    header: &BlobHeader,
+    mesh: &BlobMesh<'_>,
+) -> Result<(), BlobError> {
+    if matches!(mesh, BlobMesh::Packed { .. }) {
+        return Ok(());
+    }
+    let n = header.triangle_count as usize;
+    let triangle = |tri: u32| mesh.triangle(tri);
+    for tri in 0..header.triangle_count {
+        let inside = triangle(tri).is_some_and(|t| header.bounds.contains_aabb(&t.bounds()));
+        if !inside {
+            return Err(BlobError::HeaderMismatch { field: "bounds" });
+        }
+    }
+    // The builds pad cells by the mesh's bounds (every vertex, used or not), which for an
+    // octree are not the header's (its root cube).
+    let mesh_bounds = (0..header.vertex_count)
+        .filter_map(|v| mesh.position(v))
+        .fold(Aabb::EMPTY, |b, p| b.grown(Vec3::from_array(p)));
+    let pad = ReferencePad::of(&mesh_bounds);
+    let unlisted = match structure {
+        BlobStructure::KdTree(t) => t.first_unlisted(pad, n, triangle),
+        BlobStructure::Octree(t) => t.first_unlisted(pad, n, triangle),
+        BlobStructure::Grid(t) => t.first_unlisted(pad, n, triangle),
+        BlobStructure::Bvh(_) => None,
+    };
+    unlisted.map_or(Ok(()), |tri| Err(BlobError::UnlistedTriangle { tri }))
 }
 
 /// Refuses collapse roles (version 5) that do not describe an eight-wide collapse of the tree,

@@ -20,6 +20,8 @@ pub const REFERENCES_PER_TRIANGLE: usize = 32;
 
 mod cell_walk;
 mod check;
+#[cfg(feature = "blob-cells")]
+mod coverage;
 mod mailbox;
 mod offer;
 pub(crate) mod pack;
@@ -32,6 +34,8 @@ pub(crate) mod words;
 
 pub(crate) use cell_walk::{CellNode, CellTree, for_each_cell, stats};
 pub(crate) use check::{Visits, first_bad_reference};
+#[cfg(feature = "blob-cells")]
+pub(crate) use coverage::{first_unlisted_in_tree, lists};
 pub(crate) use mailbox::Mailbox;
 pub(crate) use offer::Offer;
 pub(crate) use reference::ReferencePad;

@@ -148,6 +148,14 @@ pub enum BlobError {
     /// (see [`CollapseRoles::check`](crate::advanced::CollapseRoles::check)). No encoder writes
     /// that. Fix: bake again.
     BadCollapsePlan,
+    /// A k-d tree, octree or grid cell that triangle `tri` touches does not list it, so
+    /// queries would miss it there (or a triangle lies outside the header's bounds: then
+    /// [`BlobError::HeaderMismatch`] with field `bounds`). No encoder writes that: builds list a
+    /// triangle in every cell it touches, in ascending order. Fix: bake again.
+    UnlistedTriangle {
+        /// The triangle index.
+        tri: u32,
+    },
     /// The stored mesh fails validation; the payload names the vertex or triangle.
     InvalidMesh(MeshError),
     /// The blob was baked without its mesh. Fix: use
@@ -228,6 +236,9 @@ impl fmt::Display for BlobError {
             }
             Self::BadCollapsePlan => {
                 f.write_str("the collapse plan does not describe an eight-wide collapse of the tree")
+            }
+            Self::UnlistedTriangle { tri } => {
+                write!(f, "triangle {tri} touches a cell that does not list it")
             }
             Self::InvalidMesh(e) => write!(f, "invalid stored mesh: {e}"),
             Self::MeshNotIncluded => f.write_str(

@@ -1,11 +1,8 @@
 //! Building a grid: count the references of a resolution, shrink it until they fit, fill.
 
-use glam::Vec3;
-
 use super::{Grid, GridConfig, GridLayout};
 use crate::cells::{REFERENCES_PER_TRIANGLE, ReferencePad};
 use crate::error::{BufferKind, BuildError};
-use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 
 /// What a grid build needs: its layout and the exact length of each buffer.
@@ -26,30 +23,10 @@ pub(crate) fn for_each_cell(
     pad: ReferencePad,
     mesh: &ValidMesh<'_>,
     tri: u32,
-    mut each: impl FnMut(usize),
+    each: impl FnMut(usize),
 ) {
-    let Some(t) = mesh.triangle(tri) else {
-        return;
-    };
-    let (lo, hi) = layout.cells_touching(&pad.grow(&t.bounds()));
-    if lo == hi {
-        // The padded bounds lie in one cell, which the triangle therefore touches.
-        each(layout.index(lo));
-        return;
-    }
-    // Cell boxes from the boundaries directly: the same values as `layout.cell`.
-    let [bx, by, bz] = layout.boundaries();
-    for k in lo[2]..=hi[2] {
-        let (z0, z1) = (bz.at(k), bz.at(k + 1));
-        for j in lo[1]..=hi[1] {
-            let (y0, y1) = (by.at(j), by.at(j + 1));
-            for i in lo[0]..=hi[0] {
-                let cell = Aabb::new(Vec3::new(bx.at(i), y0, z0), Vec3::new(bx.at(i + 1), y1, z1));
-                if pad.touches(&t, &cell) {
-                    each(layout.index([i, j, k]));
-                }
-            }
-        }
+    if let Some(t) = mesh.triangle(tri) {
+        layout.for_each_cell_touched(pad, &t, each);
     }
 }
 

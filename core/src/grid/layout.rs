@@ -2,7 +2,8 @@
 
 use glam::Vec3;
 
-use crate::math::{Aabb, max_f32};
+use crate::cells::ReferencePad;
+use crate::math::{Aabb, Triangle, max_f32};
 use crate::query::Cell;
 
 /// A grid's geometry: the box it covers and its resolution. Cell `(i, j, k)` has index
@@ -18,6 +19,37 @@ pub struct GridLayout {
 }
 
 impl GridLayout {
+    /// Calls `each(cell index)` for every cell `t` touches (cells padded by `pad`, as a build
+    /// decides which cells list a triangle), in ascending index order.
+    pub(crate) fn for_each_cell_touched(
+        &self,
+        pad: ReferencePad,
+        t: &Triangle,
+        mut each: impl FnMut(usize),
+    ) {
+        let (lo, hi) = self.cells_touching(&pad.grow(&t.bounds()));
+        if lo == hi {
+            // The padded bounds lie in one cell, which the triangle therefore touches.
+            each(self.index(lo));
+            return;
+        }
+        // Cell boxes from the boundaries directly: the same values as `self.cell`.
+        let [bx, by, bz] = self.boundaries();
+        for k in lo[2]..=hi[2] {
+            let (z0, z1) = (bz.at(k), bz.at(k + 1));
+            for j in lo[1]..=hi[1] {
+                let (y0, y1) = (by.at(j), by.at(j + 1));
+                for i in lo[0]..=hi[0] {
+                    let cell =
+                        Aabb::new(Vec3::new(bx.at(i), y0, z0), Vec3::new(bx.at(i + 1), y1, z1));
+                    if pad.touches(t, &cell) {
+                        each(self.index([i, j, k]));
+                    }
+                }
+            }
+        }
+    }
+
     /// The layout for `triangles` triangles in `bounds` with about `cells_per_triangle` cells
     /// per triangle, at most `max_resolution` along an axis. Cells are as near cubic as the
     /// bounds allow: each axis gets `extent · ∛(λN / volume)` cells, rounded up, where a flat

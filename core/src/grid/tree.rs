@@ -2,7 +2,11 @@
 
 use super::GridLayout;
 use crate::cells::{CellStats, Words};
+#[cfg(feature = "blob-cells")]
+use crate::cells::{ReferencePad, lists};
 use crate::error::StructureError;
+#[cfg(feature = "blob-cells")]
+use crate::math::Triangle;
 
 /// A uniform grid: its [`GridLayout`] cut into cells, each listing the triangles it touches.
 ///
@@ -79,6 +83,32 @@ impl<W: Words> Grid<W> {
         let first = self.offsets.word(index)? as usize;
         let end = self.offsets.word(index + 1)? as usize;
         Some((first, end.checked_sub(first)?))
+    }
+
+    #[cfg(feature = "blob-cells")]
+    /// The first triangle of `0..triangles` (corners from `triangle`, cells padded by `pad`, the
+    /// build's pad: [`ReferencePad::of`] the mesh bounds) that touches a cell
+    /// not listing it, as the build decides touching; `None` when every cell lists every
+    /// triangle it touches.
+    pub(crate) fn first_unlisted(
+        &self,
+        pad: ReferencePad,
+        triangles: usize,
+        triangle: impl Fn(u32) -> Option<Triangle>,
+    ) -> Option<u32> {
+        (0..u32::try_from(triangles).unwrap_or(u32::MAX)).find(|&tri| {
+            let Some(t) = triangle(tri) else {
+                return true;
+            };
+            let mut missing = false;
+            self.layout.for_each_cell_touched(pad, &t, |c| {
+                let listed = self
+                    .cell_range(c)
+                    .is_some_and(|(first, n)| lists(self.items, first, first + n, tri));
+                missing |= !listed;
+            });
+            missing
+        })
     }
 
     /// Cells, references and empty cells, in one pass over the offsets.

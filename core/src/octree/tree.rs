@@ -146,6 +146,20 @@ impl<N: Words, W: Words> Octree<N, W> {
         cells::for_each_cell::<_, STACK>(self, stop_depth, each);
     }
 
+    #[cfg(feature = "blob-cells")]
+    /// The first triangle of `0..triangles` (corners from `triangle`, cells padded by `pad`, the
+    /// build's pad: [`ReferencePad::of`] the mesh bounds) that reaches a leaf not
+    /// listing it, handed down as the build hands references to the children it touches;
+    /// `None` when every leaf lists every triangle that reaches it.
+    pub(crate) fn first_unlisted(
+        &self,
+        pad: ReferencePad,
+        triangles: usize,
+        triangle: impl Fn(u32) -> Option<crate::math::Triangle>,
+    ) -> Option<u32> {
+        cells::first_unlisted_in_tree::<_, _, STACK>(self, self.items, pad, triangles, triangle)
+    }
+
     /// Nodes, leaf cells, empty cells, references, depth.
     #[must_use]
     pub fn stats(&self, triangles: usize) -> CellStats {
