@@ -52,8 +52,10 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    // clap prints usage errors itself and exits with status 2.
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return parse_failure(&e),
+    };
     let result = match &cli.command {
         Command::Bake(args) => bake::run(args),
         Command::Inspect(args) => inspect::run(args),
@@ -77,6 +79,44 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `--help`, `--version` or a usage error: clap's text, written and checked here (clap's own
+/// `exit` ignores a failed write, so `meshq --help > /dev/full` reported success). Help and
+/// version go to stdout with status 0, usage errors to stderr with status 2; a closed pipe
+/// gives 141 and any other failed write 1, with a line on stderr when stdout failed.
+fn parse_failure(e: &clap::Error) -> ExitCode {
+    use std::io::IsTerminal;
+    // Colours only for a terminal, as clap decides for itself.
+    let terminal = if e.use_stderr() {
+        std::io::stderr().is_terminal()
+    } else {
+        std::io::stdout().is_terminal()
+    };
+    let rendered = e.render();
+    let text = if terminal {
+        rendered.ansi().to_string()
+    } else {
+        rendered.to_string()
+    };
+    if !e.use_stderr() {
+        let written = std::io::stdout()
+            .write_all(text.as_bytes())
+            .and_then(|()| std::io::stdout().flush());
+        return match written {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::from(141),
+            Err(w) => {
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "meshq: error: cannot write to stdout: {w}"
+                );
+                ExitCode::FAILURE
+            }
+        };
+    }
+    let _ = std::io::stderr().write_all(text.as_bytes());
+    ExitCode::from(2)
 }
 
 /// Whether `e` is a write to standard output that failed because its reader closed the pipe.

@@ -310,6 +310,10 @@ fn a_closed_pipe_or_a_full_disk_is_never_a_panic() {
                 &"-o",
                 &dir.path().join("b.meshq"),
             ],
+            // Help and version text are written and checked like any output.
+            vec![&"--help"],
+            vec![&"--version"],
+            vec![&"inspect", &"--help"],
         ] {
             let out = Command::new(bin())
                 .args(args.iter().map(|a| a.as_ref()))
@@ -336,6 +340,19 @@ fn a_closed_pipe_or_a_full_disk_is_never_a_panic() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(bin())
+        .arg("--help")
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(141), "--help: {:?}", out);
+    // A usage error is still clap's text on stderr, status 2.
+    let out = meshq(&[&"--no-such-flag"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unexpected argument"));
 }
 
 #[test]

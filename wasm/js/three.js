@@ -95,6 +95,17 @@ function buildOptions(options) {
 }
 
 /**
+ * The geometry's tree when it has one that was not freed: a tree freed by hand
+ * (`geometry.boundsTree.free()`) counts as none, so the next `computeBoundsTree` replaces it
+ * and raycasts fall back to three's own until then. (wasm-bindgen zeroes `__wbg_ptr` on
+ * `free`; the version is pinned, and `web/tests/three-dropin.mjs` checks this.)
+ */
+function liveTree(geometry) {
+  const tree = geometry.boundsTree;
+  return tree && tree.__wbg_ptr !== 0 ? tree : null;
+}
+
+/**
  * Builds `this.boundsTree` (a MeshBvh) from a BufferGeometry's position and index arrays, with
  * three-mesh-bvh's options or meshq's (see `buildOptions`).
  */
@@ -120,9 +131,10 @@ export function computeBoundsTree(options) {
  * one place that `intersectsMesh`'s default pair budget is spent before an answer.
  */
 MeshBvh.prototype.intersectsGeometry = function intersectsGeometry(geometry, geometryToBvh) {
-  const temporary = geometry.boundsTree ? null : buildFor(geometry);
+  const own = liveTree(geometry);
+  const temporary = own ? null : buildFor(geometry);
   try {
-    return this.intersectsMesh(geometry.boundsTree ?? temporary, geometryToBvh.elements);
+    return this.intersectsMesh(own ?? temporary, geometryToBvh.elements);
   } finally {
     temporary?.free();
   }
@@ -321,7 +333,7 @@ MeshBvh.prototype.closestPointToGeometry = function closestPointToGeometry() {
 
 /** Frees `this.boundsTree`. */
 export function disposeBoundsTree() {
-  if (this.boundsTree) this.boundsTree.free();
+  liveTree(this)?.free();
   this.boundsTree = null;
 }
 
@@ -430,7 +442,7 @@ function facingAllows(geometry, triangle, side) {
 /** Replacement for `THREE.Mesh.prototype.raycast` that uses `geometry.boundsTree`. */
 export function acceleratedRaycast(raycaster, intersects) {
   const geometry = this.geometry;
-  const bvh = geometry.boundsTree;
+  const bvh = liveTree(geometry);
   const material = this.material;
   const ranges = bvh && material !== undefined ? triangleRanges(geometry, material) : undefined;
   if (ranges === undefined || this.isInstancedMesh || this.isSkinnedMesh ||

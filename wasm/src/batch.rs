@@ -76,14 +76,9 @@ impl RayInput {
     /// that writing a chunk's answers never changes rays not yet read: the answers are those
     /// of separate arrays, whatever the caller shares.
     fn read_before_writing(&mut self, outputs: &[&js_sys::Object]) {
-        let span = |a: &js_sys::Object| {
-            let view = a.unchecked_ref::<js_sys::Uint8Array>();
-            let start = f64::from(view.byte_offset());
-            (view.buffer(), start, start + f64::from(view.byte_length()))
-        };
-        let (buffer, start, end) = span(self.values.unchecked_ref());
+        let (buffer, start, end) = byte_span(self.values.unchecked_ref());
         let shared = outputs.iter().any(|o| {
-            let (b, s, e) = span(o);
+            let (b, s, e) = byte_span(o);
             js_sys::Object::is(&b, &buffer) && s < end && start < e
         });
         if shared {
@@ -137,6 +132,30 @@ impl RayInput {
 
 /// The elements `first..first + part.len()` of `values` set to `part` (a run of a batch's
 /// answers).
+/// The bytes a typed array covers: its buffer and the range in it.
+fn byte_span(a: &js_sys::Object) -> (js_sys::ArrayBuffer, f64, f64) {
+    let view = a.unchecked_ref::<js_sys::Uint8Array>();
+    let start = f64::from(view.byte_offset());
+    (view.buffer(), start, start + f64::from(view.byte_length()))
+}
+
+/// A `RangeError` when two of the `outputs` (typed arrays, with their argument names) share
+/// bytes: one answer would overwrite another, so the call refuses before writing anything.
+fn outputs_apart(outputs: &[(&js_sys::Object, &str)]) -> Result<(), JsValue> {
+    for (i, (a, name_a)) in outputs.iter().enumerate() {
+        let (buffer_a, start_a, end_a) = byte_span(a);
+        for (b, name_b) in outputs.iter().skip(i + 1) {
+            let (buffer_b, start_b, end_b) = byte_span(b);
+            if js_sys::Object::is(&buffer_a, &buffer_b) && start_a < end_b && start_b < end_a {
+                return Err(range_error(&format!(
+                    "{name_a} and {name_b} share memory: pass separate arrays"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn write_f32(values: &Float32Array, first: u32, part: &[f32]) {
     values
         .subarray(first, first + part.len() as u32)
@@ -278,6 +297,11 @@ impl MeshBvh {
         let closest = output_f32(closest, "closest", 3 * n, " (3 per point)")?;
         let triangles = output_u32(triangles, "triangles", n, " (one per point)")?;
         let distances = output_f32(distances, "distances", n, " (one per point)")?;
+        outputs_apart(&[
+            (&closest, "closest"),
+            (&triangles, "triangles"),
+            (&distances, "distances"),
+        ])?;
         let queries: Vec<Vec3> = values
             .chunks_exact(3)
             .map(|p| Vec3::new(p[0], p[1], p[2]))
@@ -343,8 +367,18 @@ impl MeshBvh {
             .map(|b| output_f32(b, "barycentrics", 2 * n, " (two per ray)"))
             .transpose()?;
         match &barycentrics {
-            Some(uv) => input.read_before_writing(&[&t_out, &triangles, uv]),
-            None => input.read_before_writing(&[&t_out, &triangles]),
+            Some(uv) => {
+                outputs_apart(&[
+                    (&t_out, "t"),
+                    (&triangles, "triangles"),
+                    (uv, "barycentrics"),
+                ])?;
+                input.read_before_writing(&[&t_out, &triangles, uv]);
+            }
+            None => {
+                outputs_apart(&[(&t_out, "t"), (&triangles, "triangles")])?;
+                input.read_before_writing(&[&t_out, &triangles]);
+            }
         }
         let (mut answers, mut ts, mut tris, mut uvs) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());

@@ -16,14 +16,24 @@ pub fn omitted(value: &JsValue) -> bool {
     value.is_undefined() || value.is_null()
 }
 
-/// An options object. Omitted: `None`. Otherwise a plain object whose every own key is one
-/// of `allowed` (a key whose value is `undefined` counts as omitted).
+/// An options object. Omitted: `None`. Otherwise a plain object (not an array, a function, a
+/// `Map` or another keyed collection, whose entries are not properties) whose every own key
+/// is one of `allowed` (a key whose value is `undefined` counts as omitted).
 pub fn options(value: &JsValue, what: &str, allowed: &[&str]) -> Result<Option<Object>, JsValue> {
     if omitted(value) {
         return Ok(None);
     }
     let object = match value.dyn_ref::<Object>() {
-        Some(o) if value.is_object() && !Array::is_array(value) && !value.is_function() => o,
+        Some(o)
+            if value.is_object()
+                && !Array::is_array(value)
+                && !value.is_function()
+                && !value.is_instance_of::<js_sys::Map>()
+                && !value.is_instance_of::<js_sys::Set>()
+                && !value.is_instance_of::<js_sys::WeakMap>() =>
+        {
+            o
+        }
         _ => {
             return Err(type_error(&format!(
                 "{what} must be an object, got {}",
@@ -43,11 +53,12 @@ pub fn options(value: &JsValue, what: &str, allowed: &[&str]) -> Result<Option<O
     Ok(Some(object.clone()))
 }
 
-/// `options[key]`, or `undefined` when there are no options.
-pub fn field(options: Option<&Object>, key: &str) -> JsValue {
-    options
-        .and_then(|o| Reflect::get(o, &JsValue::from_str(key)).ok())
-        .unwrap_or(JsValue::UNDEFINED)
+/// `options[key]`, or `undefined` when there are no options. A getter that throws passes its
+/// error on, untouched.
+pub fn field(options: Option<&Object>, key: &str) -> Result<JsValue, JsValue> {
+    options.map_or(Ok(JsValue::UNDEFINED), |o| {
+        Reflect::get(o, &JsValue::from_str(key))
+    })
 }
 
 /// An optional number: omitted → `None`; a number that is not NaN → `Some`.

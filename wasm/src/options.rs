@@ -63,7 +63,7 @@ pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
     let o = options(value, "options", BUILD_KEYS)?;
     let o = o.as_ref();
     let kind = match optional_choice(
-        &field(o, "structure"),
+        &field(o, "structure")?,
         "options.structure",
         &["bvh", "kdtree", "octree", "grid"],
     )? {
@@ -73,7 +73,7 @@ pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
             .map_err(|e| JsValue::from(JsError::new(&format!("{e}"))))?,
     };
     let mut config = match optional_choice(
-        &field(o, "quality"),
+        &field(o, "quality")?,
         "options.quality",
         &["fast", "balanced", "high"],
     )? {
@@ -81,13 +81,13 @@ pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
         Some("high") => BuildConfig::high_quality(),
         _ => BuildConfig::balanced(),
     };
-    if let Some(n) = optional_u32(&field(o, "maxLeafSize"), "options.maxLeafSize")? {
+    if let Some(n) = optional_u32(&field(o, "maxLeafSize")?, "options.maxLeafSize")? {
         config.max_leaf_size = n;
     }
-    if let Some(n) = optional_u32(&field(o, "bins"), "options.bins")? {
+    if let Some(n) = optional_u32(&field(o, "bins")?, "options.bins")? {
         config.bins = n;
     }
-    if let Some(n) = optional_u32(&field(o, "maxDepth"), "options.maxDepth")? {
+    if let Some(n) = optional_u32(&field(o, "maxDepth")?, "options.maxDepth")? {
         config.max_depth = n;
     }
     if let Err(e) = config.check() {
@@ -112,7 +112,7 @@ pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
         };
         return Err(range_error(&message));
     }
-    let spatial = spatial_option(&field(o, "spatialSplits"))?;
+    let spatial = spatial_option(&field(o, "spatialSplits")?)?;
     if spatial.is_some() && kind != StructureKind::Bvh {
         return Err(type_error(&format!(
             "options.spatialSplits applies to the BVH, not a {kind}"

@@ -7,7 +7,7 @@ use meshq::math::{Obb, Triangle};
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
-use crate::args::{finite, range_error, vector};
+use crate::args::{JsNumber, finite, range_error, vector};
 use crate::fields::finite_numbers;
 
 /// Whether `query` reports anything, stopping at the first report.
@@ -22,8 +22,8 @@ fn any(query: impl FnOnce(&mut dyn FnMut(u32) -> ControlFlow<()>)) -> bool {
 
 #[wasm_bindgen]
 impl MeshBvh {
-    /// Whether a triangle of the mesh comes within `radius` (a finite number) of `center`
-    /// (`Vec3Like`), touching included. A negative radius touches nothing.
+    /// Whether a triangle of the mesh comes within `radius` (a finite number ≥ 0) of `center`
+    /// (`Vec3Like`), touching included. A negative radius is a `RangeError`.
     #[wasm_bindgen(js_name = overlapsSphere)]
     pub fn overlaps_sphere(
         &self,
@@ -32,6 +32,12 @@ impl MeshBvh {
     ) -> Result<bool, JsValue> {
         let c = vector(center, "center")?;
         let radius = finite(radius, "radius")?;
+        if radius < 0.0 {
+            return Err(range_error(&format!(
+                "radius must be a finite number >= 0, got {}",
+                JsNumber(f64::from(radius))
+            )));
+        }
         Ok(any(|f| self.storage.scene.overlap_sphere(c, radius, f)))
     }
 

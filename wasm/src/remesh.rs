@@ -25,7 +25,7 @@ fn config(options_in: &JsValue) -> Result<RemeshConfig, JsValue> {
     let o = o.as_ref();
     let positive = |name: &str| -> Result<Option<f64>, JsValue> {
         let what = format!("options.{name}");
-        match optional_number(&field(o, name), &what)? {
+        match optional_number(&field(o, name)?, &what)? {
             Some(x) if !(x > 0.0 && x.is_finite()) => Err(range_error(&format!(
                 "{what} must be a positive finite number, got {}",
                 JsNumber(x)
@@ -44,14 +44,14 @@ fn config(options_in: &JsValue) -> Result<RemeshConfig, JsValue> {
         (None, None) => {}
     }
     if let Some(n) = optional_whole(
-        &field(o, "iterations"),
+        &field(o, "iterations")?,
         "options.iterations",
         f64::from(RemeshConfig::MAX_ITERATIONS),
     )? {
         config.iterations = n as u32;
     }
     config.feature_angle =
-        optional_number(&field(o, "featureAngle"), "options.featureAngle")?.map(|a| a as f32);
+        optional_number(&field(o, "featureAngle")?, "options.featureAngle")?.map(|a| a as f32);
     config.validate().map_err(|e| range_error(&e.to_string()))?;
     Ok(config)
 }

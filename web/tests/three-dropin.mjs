@@ -273,6 +273,26 @@ brute.material = material;
   unit.disposeBoundsTree();
 }
 
+// A tree freed by hand counts as none: raycasts fall back to three's own (the same hits), and
+// computeBoundsTree and disposeBoundsTree replace or clear it without a "null pointer" error.
+{
+  const geometry = new THREE.SphereGeometry(1, 24, 12);
+  const ours = new THREE.Mesh(geometry, material);
+  ours.raycast = acceleratedRaycast;
+  const reference = new THREE.Mesh(geometry, material);
+  geometry.computeBoundsTree();
+  geometry.boundsTree.free();
+  const caster = new THREE.Raycaster(new THREE.Vector3(0.1, 0.2, 5), new THREE.Vector3(0, 0, -1));
+  const freed = caster.intersectObject(ours, false);
+  assert.deepEqual(freed.map((h) => h.faceIndex), caster.intersectObject(reference, false).map((h) => h.faceIndex));
+  assert.ok(freed.length === 2, 'through both sides');
+  geometry.computeBoundsTree();
+  assert.equal(caster.intersectObject(ours, false)[0].faceIndex, freed[0].faceIndex, 'rebuilt');
+  geometry.boundsTree.free();
+  geometry.disposeBoundsTree();
+  assert.equal(geometry.boundsTree, null);
+}
+
 // shapecast against brute force: the triangles of the bunny within a sphere, found with
 // three's own box and triangle maths, once with INTERSECTED only and once letting contained
 // boxes pass their triangles through; an early stop; the order callback.
