@@ -76,11 +76,16 @@ impl AtomicFile {
             Some(d) if !d.as_os_str().is_empty() => d,
             _ => Path::new("."),
         };
+        let prefix = partial_prefix(path);
+        remove_stale_partials(dir, &prefix);
         let temp = tempfile::Builder::new()
-            .prefix(".meshq-")
-            .suffix(".partial")
+            .prefix(&prefix)
+            .suffix(PARTIAL_SUFFIX)
             .tempfile_in(dir)
             .with_context(|| format!("cannot create a file in {}", dir.display()))?;
+        // Held until this process ends, however it ends: a later run tells a partial file
+        // still being written from one a killed run left behind by trying this lock.
+        let _ = temp.as_file().try_lock();
         Ok(Self {
             out: Sink::Temp(BufWriter::with_capacity(1 << 20, temp)),
             path: path.to_owned(),
@@ -109,6 +114,50 @@ impl AtomicFile {
         match &mut self.out {
             Sink::Temp(out) => out,
             Sink::Stream(out) => out,
+        }
+    }
+}
+
+/// How the temporary files of a run end.
+const PARTIAL_SUFFIX: &str = ".partial";
+
+/// How the temporary files of a run writing `path` start: `.meshq-NAME-`, so that the next run
+/// writing the same output finds those a killed run left.
+fn partial_prefix(path: &Path) -> String {
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    format!(".meshq-{name}-")
+}
+
+/// Removes the temporary files in `dir` starting with `prefix` that no running process holds
+/// locked: what a killed run (`kill -9`, a power cut) left behind. Files another run is still
+/// writing keep their lock and are left alone; failures only leave a file in place.
+fn remove_stale_partials(dir: &Path, prefix: &str) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        let random = name
+            .strip_prefix(prefix)
+            .and_then(|rest| rest.strip_suffix(PARTIAL_SUFFIX));
+        // tempfile's random part: six letters or digits, nothing else.
+        if !random.is_some_and(|r| r.len() == 6 && r.chars().all(|c| c.is_ascii_alphanumeric())) {
+            continue;
+        }
+        // Only regular files (not links, and not pipes, whose opening would block).
+        if !entry.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
+        let path = entry.path();
+        let unlocked = File::options()
+            .write(true)
+            .open(&path)
+            .is_ok_and(|f| f.try_lock().is_ok());
+        if unlocked {
+            let _ = std::fs::remove_file(&path);
         }
     }
 }

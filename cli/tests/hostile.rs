@@ -165,6 +165,34 @@ fn failed_and_killed_runs_leave_earlier_outputs_whole() {
             String::from_utf8_lossy(&inspected.stderr)
         );
     }
+    // What killed runs leave behind is cleaned up by the next run writing the same output;
+    // a partial file another process still holds (locked while it writes) is left alone, as
+    // are files of other outputs.
+    let partials = |dir: &Path| -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".partial"))
+            .collect();
+        names.sort();
+        names
+    };
+    let stale = dir.path().join(".meshq-bunny.meshq-AbC123.partial");
+    std::fs::write(&stale, b"cut short").unwrap();
+    let busy = dir.path().join(".meshq-bunny.meshq-Busy42.partial");
+    let held = std::fs::File::create(&busy).unwrap();
+    held.try_lock().unwrap();
+    let other = dir.path().join(".meshq-other.bin-XyZ789.partial");
+    std::fs::write(&other, b"not ours").unwrap();
+    assert!(meshq(&[&"bake", &good, &"-o", &blob]).status.success());
+    assert_eq!(
+        partials(dir.path()),
+        [
+            ".meshq-bunny.meshq-Busy42.partial",
+            ".meshq-other.bin-XyZ789.partial"
+        ]
+    );
+    drop(held);
 }
 
 /// An output path that already names a pipe or a device (`/dev/null`, `/dev/stdout`, a named
