@@ -96,11 +96,10 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
                 })?,
             }
             query_seconds += start.elapsed().as_secs_f64();
-            for found in &results[..points.len()] {
+            for (found, &p) in results[..points.len()].iter().zip(&points) {
                 found_count += u64::from(found.is_some());
-                let (d, tri) = found.map_or((f32::INFINITY, u32::MAX), |c| {
-                    (c.distance_squared.sqrt(), c.tri)
-                });
+                let (d, tri) =
+                    found.map_or((f32::INFINITY, u32::MAX), |c| (c.distance_from(p), c.tri));
                 writer.write(d, tri)?;
             }
             bar.inc(points.len() as u64);

@@ -418,32 +418,6 @@ fn suspicious_inputs_get_errors_or_documented_answers() {
     let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(summary["rays"], 500);
     assert_eq!(std::fs::metadata(&hits).unwrap().len(), 500 * 8);
-    // A query point too far for its squared distance to fit in f32 gets the miss record.
-    let points = dir.path().join("points.bin");
-    let far: Vec<u8> = [2e19f32, 0.0, 0.0, 0.5, 0.5, 0.5]
-        .iter()
-        .flat_map(|v| v.to_le_bytes())
-        .collect();
-    std::fs::write(&points, far).unwrap();
-    let closest = dir.path().join("closest.bin");
-    assert!(
-        meshq(&[&"closest", &mesh, &"--points", &points, &"--out", &closest])
-            .status
-            .success()
-    );
-    let record = std::fs::read(&closest).unwrap();
-    assert_eq!(
-        f32::from_le_bytes(record[0..4].try_into().unwrap()),
-        f32::INFINITY
-    );
-    assert_eq!(
-        u32::from_le_bytes(record[4..8].try_into().unwrap()),
-        u32::MAX
-    );
-    assert_ne!(
-        u32::from_le_bytes(record[12..16].try_into().unwrap()),
-        u32::MAX
-    );
 }
 
 /// `--hits 4096` keeps memory flat: rays are read in chunks of at most a million records, so
@@ -586,4 +560,35 @@ fn inspect_refuses_what_the_loaders_refuse() {
         text.rsplit(": ").next().unwrap_or_default().to_string()
     };
     assert_eq!(cause(&inspect), cause(&raycast));
+}
+
+/// A point so far away that squared distances overflow `f32` (2e19 from a unit triangle) gets
+/// its nearest triangle and a finite distance, not "nothing found".
+#[test]
+fn closest_points_from_very_far_away_are_answered() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("tri.obj");
+    std::fs::write(&mesh, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let points = dir.path().join("far.bin");
+    let coords: [f32; 6] = [2e19, 0.0, 0.0, 0.0, -3e30, 0.0];
+    let bytes: Vec<u8> = coords.iter().flat_map(|c| c.to_le_bytes()).collect();
+    std::fs::write(&points, bytes).unwrap();
+    let out = dir.path().join("closest.bin");
+    let run = meshq(&[&"closest", &mesh, &"--points", &points, &"--out", &out]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let records = std::fs::read(&out).unwrap();
+    let word = |i: usize| <[u8; 4]>::try_from(&records[4 * i..4 * i + 4]).unwrap();
+    for (k, want) in [(0usize, 2e19f64 - 1.0), (1, 3e30)] {
+        let distance = f64::from(f32::from_le_bytes(word(2 * k)));
+        let triangle = u32::from_le_bytes(word(2 * k + 1));
+        assert_eq!(triangle, 0, "point {k}");
+        assert!(
+            (distance - want).abs() <= want * 1e-6,
+            "point {k}: {distance}"
+        );
+    }
 }

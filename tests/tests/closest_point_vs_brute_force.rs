@@ -168,3 +168,134 @@ fn key(c: Option<ClosestPoint>) -> Option<(u32, u32, [u32; 3])> {
         )
     })
 }
+
+/// The distance from `p` to triangle `(a, b, c)` in f64, by its own method: the nearest of
+/// the plane's foot (when it falls inside) and the three edges' nearest points.
+fn distance_f64(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let cross = |x: [f64; 3], y: [f64; 3]| {
+        [
+            x[1] * y[2] - x[2] * y[1],
+            x[2] * y[0] - x[0] * y[2],
+            x[0] * y[1] - x[1] * y[0],
+        ]
+    };
+    let segment = |s: [f64; 3], e: [f64; 3]| {
+        let d = sub(e, s);
+        let t = (dot(sub(p, s), d) / dot(d, d)).clamp(0.0, 1.0);
+        let q = [s[0] + t * d[0], s[1] + t * d[1], s[2] + t * d[2]];
+        dot(sub(p, q), sub(p, q)).sqrt()
+    };
+    let mut best = segment(a, b).min(segment(b, c)).min(segment(c, a));
+    let n = cross(sub(b, a), sub(c, a));
+    let nn = dot(n, n);
+    if nn > 0.0 {
+        let h = dot(sub(p, a), n) / nn;
+        let foot = [p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]];
+        let inside = [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|&(s, e)| dot(cross(sub(e, s), sub(foot, s)), n) >= 0.0);
+        if inside {
+            best = best.min(h.abs() * nn.sqrt());
+        }
+    }
+    best
+}
+
+/// Points so far from the mesh that squared distances overflow f32 (beyond 1.8e19) are
+/// answered: the same answer, bit for bit, as the ordinary search gives the whole scene scaled
+/// down by 2⁻⁶⁴ (an exact scaling), the nearest triangle by an f64 scan to f32 precision, the
+/// distance `distance_from` reports within f32 rounding of f64's, and the same answer from
+/// every structure.
+#[test]
+fn points_beyond_squared_distance_overflow_are_answered() {
+    use meshq::mesh::MeshRef;
+    use meshq::owned::{MeshIndex, StructureKind};
+    let loaded = load_mesh("spot");
+    const DOWN: f32 = 1.0 / 18_446_744_073_709_551_616.0;
+    // The mesh as large as a valid mesh may be (1e14 times spot, within MAX_COORDINATE), and
+    // scaled down again, exactly.
+    let big: Vec<[f32; 3]> = loaded
+        .positions
+        .iter()
+        .map(|p| p.map(|x| x * 1e14))
+        .collect();
+    let small: Vec<[f32; 3]> = big.iter().map(|p| p.map(|x| x * DOWN)).collect();
+    let big_mesh = MeshRef::new(&big, &loaded.triangles).validate().unwrap();
+    let small_mesh = MeshRef::new(&small, &loaded.triangles).validate().unwrap();
+    let small_bvh = MeshBvh::build(&small_mesh, &BuildConfig::default()).unwrap();
+    let kinds = [
+        StructureKind::Bvh,
+        StructureKind::KdTree,
+        StructureKind::Octree,
+        StructureKind::Grid,
+    ];
+    let structures: Vec<MeshIndex> = kinds
+        .iter()
+        .map(|&k| MeshIndex::build(&big_mesh, k).unwrap())
+        .collect();
+    let directions = workload::closest_points(&loaded.positions, 60, 0xFA12);
+    let mut answered = Vec::new();
+    for (i, d) in directions.iter().enumerate() {
+        let d = (*d - Vec3::splat(0.1)).normalize_or(Vec3::X);
+        let far = [3e19f32, 1e21, 1e30, 3e38][i % 4];
+        let p = d * far;
+        let got = structures[0].closest_point(p, f32::INFINITY).unwrap();
+        assert_eq!(got.distance_squared, f32::INFINITY, "{p}: overflowed");
+        for (kind, s) in kinds.iter().zip(&structures) {
+            assert_eq!(
+                s.closest_point(p, f32::INFINITY),
+                Some(got),
+                "{kind:?} at {p}"
+            );
+        }
+        let scaled = small_bvh.closest_point(p * DOWN, f32::INFINITY).unwrap();
+        assert_eq!(
+            (scaled.tri, scaled.point),
+            (got.tri, got.point * DOWN),
+            "{p}"
+        );
+        // f64: the chosen triangle is the nearest to f32 precision, the distance right.
+        let p64 = p.to_array().map(f64::from);
+        let corners = |t: &[u32; 3]| t.map(|v| big[v as usize].map(f64::from));
+        let dist = |t: &[u32; 3]| {
+            let [a, b, c] = corners(t);
+            distance_f64(p64, a, b, c)
+        };
+        let nearest = loaded
+            .triangles
+            .iter()
+            .map(dist)
+            .fold(f64::INFINITY, f64::min);
+        let chosen = dist(&loaded.triangles[got.tri as usize]);
+        assert!(
+            chosen <= nearest * (1.0 + 1e-6),
+            "{p}: {chosen} vs {nearest}"
+        );
+        let reported = f64::from(got.distance_from(p));
+        assert!(
+            (reported - nearest).abs() <= nearest * 1e-6,
+            "{p}: {reported} vs {nearest}"
+        );
+        // A limit below the distance finds nothing; one above it finds the same.
+        assert_eq!(
+            structures[0].closest_point(p, (nearest * 0.99) as f32),
+            None
+        );
+        assert_eq!(
+            structures[0].closest_point(p, (nearest * 1.01) as f32),
+            Some(got)
+        );
+        answered.push(p);
+    }
+    // The batch call answers them as one call each.
+    let mut out = vec![None; answered.len()];
+    let mut keys = vec![0u64; answered.len()];
+    structures[0]
+        .closest_points(&answered, f32::INFINITY, &mut keys, &mut out)
+        .unwrap();
+    for (p, o) in answered.iter().zip(&out) {
+        assert_eq!(*o, structures[0].closest_point(*p, f32::INFINITY), "{p}");
+    }
+}

@@ -313,12 +313,12 @@ impl MeshBvh {
         let mut points_out = Vec::with_capacity(3 * n);
         let mut tris = Vec::with_capacity(n);
         let mut dists = Vec::with_capacity(n);
-        for answer in &answers {
+        for (answer, &query) in answers.iter().zip(&queries) {
             match answer {
                 Some(hit) => {
                     points_out.extend_from_slice(&hit.point.to_array());
                     tris.push(hit.tri);
-                    dists.push(hit.distance_squared.sqrt());
+                    dists.push(hit.distance_from(query));
                 }
                 None => {
                     points_out.extend_from_slice(&[f32::NAN; 3]);

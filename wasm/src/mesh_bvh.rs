@@ -110,14 +110,14 @@ pub(crate) fn hit_object(views: &Storage, ray: &Ray, hit: RayHit) -> JsValue {
     )
 }
 
-fn closest_object(views: &Storage, c: ClosestPoint) -> JsValue {
+fn closest_object(views: &Storage, query: Vec3, c: ClosestPoint) -> JsValue {
     let n = views
         .triangle(c.tri)
         .and_then(|t| t.unit_normal())
         .unwrap_or(Vec3::ZERO);
     let p = c.point;
     meshq_closest_point(
-        c.distance_squared.sqrt(),
+        c.distance_from(query),
         p.x,
         p.y,
         p.z,
@@ -354,7 +354,7 @@ impl MeshBvh {
         let views = &self.storage;
         Ok(views
             .closest_point(p, limit)
-            .map_or(JsValue::NULL, |c| closest_object(views, c)))
+            .map_or(JsValue::NULL, |c| closest_object(views, p, c)))
     }
 
     /// Every triangle's corners, 9 numbers per triangle in triangle order (non-indexed), e.g.

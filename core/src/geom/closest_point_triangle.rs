@@ -54,7 +54,12 @@ pub fn closest_point_triangle_2d(
 }
 
 /// The Voronoi-region walk for a non-degenerate triangle. Returns `(point, u, v, feature)`.
-#[inline(always)]
+///
+/// Inlined into the hot scalar loops where code size is free; on bare metal one copy is
+/// shared, for the firmware's flash budget. (Inlining never changes a result: no operation is
+/// fused or reordered.)
+#[cfg_attr(not(target_os = "none"), inline(always))]
+#[cfg_attr(target_os = "none", inline(never))]
 pub(crate) fn closest_point_regions(
     p: Vec3,
     a: Vec3,

@@ -52,18 +52,35 @@ pub struct ClosestPoint {
     pub u: f32,
     /// Barycentric weight of the triangle's third corner.
     pub v: f32,
-    /// Squared Euclidean distance from the query point to `point`.
+    /// Squared Euclidean distance from the query point to `point`; `+∞` when the distance
+    /// exceeds about 1.8e19 and its square overflows `f32` (the point and triangle are still
+    /// the nearest: see [`ClosestPoint::distance_from`]).
     pub distance_squared: f32,
     /// Which feature of the triangle `point` lies on.
     pub feature: TriangleFeature,
 }
 
 impl ClosestPoint {
-    /// The Euclidean distance `√distance_squared`.
+    /// The Euclidean distance `√distance_squared` (`+∞` when the square overflowed).
     #[inline]
     #[must_use]
     pub fn distance(&self) -> f32 {
         libm::sqrtf(self.distance_squared)
+    }
+
+    /// The Euclidean distance from `query` (the point this answers) to [`point`](Self::point),
+    /// finite whenever it fits in `f32`, also past the 1.8e19 where
+    /// [`distance_squared`](Self::distance_squared) overflows: the same as
+    /// [`distance`](Self::distance) up to rounding when that is finite.
+    #[must_use]
+    pub fn distance_from(&self, query: Vec3) -> f32 {
+        if self.distance_squared.is_finite() {
+            return self.distance();
+        }
+        // Scaled by 2⁻⁶⁴ and back, exactly: the square of the scaled difference fits.
+        const DOWN: f32 = 1.0 / 18_446_744_073_709_551_616.0;
+        let d = (query - self.point) * DOWN;
+        libm::sqrtf(d.dot(d)) * 18_446_744_073_709_551_616.0
     }
 
     /// True when `self` should replace `best`: a strictly smaller squared distance wins; on

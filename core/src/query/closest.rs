@@ -4,6 +4,7 @@ use core::ops::ControlFlow;
 
 use glam::{Vec3, Vec3A, Vec4};
 
+use super::closest_far::SCALE;
 use super::leaf_batches::{LANES_PAY, for_each_batch};
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor, VisitorHints};
 use crate::geom::aabb_lanes::{MARGIN, enter_point};
@@ -14,10 +15,16 @@ use crate::math::{Aabb, Aabb4, ClosestPoint, Triangle, dot};
 struct Closest<'m, S: ?Sized, const LANES: bool> {
     source: &'m S,
     point: Vec3,
-    /// The same point in SIMD lanes, for box distances (see [`box_distance_squared`]).
+    /// The query point as given (not scaled), in SIMD lanes, for box distances (see
+    /// [`box_distance_squared`]).
     lanes: Vec3A,
     /// Current bound on the squared distance: the best so far, or the caller's maximum.
     limit: f32,
+    /// What coordinates are multiplied by before distances are taken: 1, or
+    /// [`SCALE`](super::closest_far::SCALE) for a point so far away that squared distances
+    /// overflow (then `point`, `lanes` and `limit` are scaled too). A power of two, so the
+    /// distances keep their order and ties.
+    scale: f32,
     /// The best triangle so far (mesh index and corners), at squared distance `limit`. Its
     /// closest point is worked out once, at the end.
     best: Option<(u32, Triangle)>,
@@ -26,7 +33,12 @@ struct Closest<'m, S: ?Sized, const LANES: bool> {
 impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LANES> {
     #[inline(always)]
     fn enter(&mut self, aabb: &Aabb) -> Option<f32> {
-        let d2 = box_distance_squared(Vec3A::from(aabb.min), Vec3A::from(aabb.max), self.lanes);
+        let d2 = box_distance_squared(
+            Vec3A::from(aabb.min),
+            Vec3A::from(aabb.max),
+            self.lanes,
+            self.scale,
+        );
         // A product, not `d2 − d2·MARGIN`: an overflowed (infinite) distance stays comparable.
         let lo = d2 * (1.0 - MARGIN);
         (lo <= self.limit).then_some(lo)
@@ -34,11 +46,31 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
 
     #[inline(always)]
     fn enter_lanes(&mut self, boxes: &Aabb4) -> (u32, [f32; 4]) {
+        if self.scale != 1.0 {
+            let s = self.scale;
+            let scaled = Aabb4 {
+                min_x: boxes.min_x.map(|x| x * s),
+                min_y: boxes.min_y.map(|x| x * s),
+                min_z: boxes.min_z.map(|x| x * s),
+                max_x: boxes.max_x.map(|x| x * s),
+                max_y: boxes.max_y.map(|x| x * s),
+                max_z: boxes.max_z.map(|x| x * s),
+            };
+            return enter_point(&scaled, self.point, self.limit, MARGIN);
+        }
         enter_point(boxes, self.point, self.limit, MARGIN)
     }
 
     #[inline(always)]
     fn enter_lanes8(&mut self, boxes: &crate::math::Aabb8) -> (u32, [f32; 8]) {
+        if self.scale != 1.0 {
+            let (m0, k0) = self.enter_lanes(&boxes.half(0));
+            let (m1, k1) = self.enter_lanes(&boxes.half(1));
+            return (
+                (m0 & 0xF) | ((m1 & 0xF) << 4),
+                [k0[0], k0[1], k0[2], k0[3], k1[0], k1[1], k1[2], k1[3]],
+            );
+        }
         crate::geom::aabb_lanes::enter_point8(boxes, self.point, self.limit, MARGIN)
     }
 
@@ -58,7 +90,7 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
     }
 
     fn leaf(&mut self, tris: LeafTriangleIds<'_>) -> ControlFlow<()> {
-        if LANES {
+        if LANES && self.scale == 1.0 {
             let source = self.source;
             for_each_batch(source, tris, |batch| {
                 let d2 = batch.lanes.closest_distance_squared(self.point);
@@ -81,20 +113,24 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
 }
 
 impl<S: LeafTriangles + ?Sized, const LANES: bool> Closest<'_, S, LANES> {
-    /// A leaf on a target without SIMD: the scalar walk per triangle, after a cheap cull by
-    /// the triangle's own box.
+    /// A leaf on a target without SIMD (or of a scaled search): the scalar walk per triangle,
+    /// after a cheap cull by the triangle's own box.
     #[inline(always)]
     fn leaf_one_by_one(&mut self, tris: LeafTriangleIds<'_>) {
         for (slot, tri) in tris {
             let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
-            let (a, b, c) = (Vec3A::from(t.a), Vec3A::from(t.b), Vec3A::from(t.c));
-            let box_d2 = box_distance_squared(a.min(b).min(c), a.max(b).max(c), self.lanes);
+            // Times 1 (exact) but in a far search.
+            let s = self.scale;
+            let (ta, tb, tc) = (t.a * s, t.b * s, t.c * s);
+            let (a, b, c) = (Vec3A::from(ta), Vec3A::from(tb), Vec3A::from(tc));
+            let box_d2 =
+                box_distance_squared(a.min(b).min(c), a.max(b).max(c), self.point.into(), 1.0);
             if box_d2 * (1.0 - MARGIN) > self.limit {
                 continue;
             }
-            let (q, ..) = closest_point_regions(self.point, t.a, t.b, t.c);
+            let (q, ..) = closest_point_regions(self.point, ta, tb, tc);
             let d = self.point - q;
             self.consider(dot(d, d), tri, t);
         }
@@ -123,8 +159,10 @@ impl<S: ?Sized, const LANES: bool> Closest<'_, S, LANES> {
 /// distance, so lane-wise rounding cannot change an answer: the answer is the minimum under a
 /// total order (distance, then triangle index), whatever order triangles are visited in.
 #[inline(always)]
-fn box_distance_squared(min: Vec3A, max: Vec3A, p: Vec3A) -> f32 {
-    let d = (min - p).max(p - max).max(Vec3A::ZERO);
+fn box_distance_squared(min: Vec3A, max: Vec3A, p: Vec3A, scale: f32) -> f32 {
+    // The gap itself never overflows (coordinates of a valid mesh are small); its square may,
+    // so a far search scales the gap (by a power of two: exact) before squaring it.
+    let d = (min - p).max(p - max).max(Vec3A::ZERO) * scale;
     d.dot(d)
 }
 
@@ -165,38 +203,57 @@ pub(super) fn search<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANE
     if !point.is_finite() || !(max_distance >= 0.0) {
         return None;
     }
+    let scale = scale_for(point);
+    let scaled = point * scale;
+    let scaled_max = max_distance * scale;
     let mut v = Closest::<S, LANES> {
         source,
-        point,
+        point: scaled,
         lanes: point.into(),
-        // A squared distance that overflows is no answer: points beyond about 1.8e19 of
-        // the mesh find nothing rather than every triangle tied at infinity.
-        limit: (max_distance * max_distance).min(f32::MAX),
+        // Capped: a bound that overflowed would let every triangle tie at infinity.
+        limit: (scaled_max * scaled_max).min(f32::MAX),
+        scale,
         best: None,
     };
     if let Some((tri, t)) = seed {
         // The scalar walk gives the lanes' bits, so the seed ties with itself when its leaf
         // comes up, and the tie rule sees one distance per triangle.
-        let (q, ..) = closest_point_regions(point, t.a, t.b, t.c);
-        let d = point - q;
+        let (q, ..) = closest_point_regions(scaled, t.a * scale, t.b * scale, t.c * scale);
+        let d = scaled - q;
         v.consider(dot(d, d), tri, t);
     }
     tree.traverse(&mut v);
     v.best
 }
 
+/// What a search from `point` multiplies coordinates by: 1, or [`SCALE`] (2⁻⁶⁴) for a point
+/// beyond 2⁶² (4.6e18) on some axis, whose squared distances to a valid mesh (coordinates
+/// within [`MAX_COORDINATE`](crate::math::MAX_COORDINATE)) could overflow `f32`. A power of two:
+/// the scaled distances keep the order and ties of the exact ones.
+fn scale_for(point: Vec3) -> f32 {
+    if point.abs().max_element() > 4_611_686_018_427_387_904.0 {
+        SCALE
+    } else {
+        1.0
+    }
+}
+
 /// The answer for the nearest triangle `tri` with corners `t`.
 pub(super) fn answer(point: Vec3, (tri, t): (u32, Triangle)) -> ClosestPoint {
     // The lanes computed this triangle's distance with the walk's own arithmetic, so the walk
-    // agrees with the distance it was chosen by.
-    let (q, u, v, feature) = closest_point_regions(point, t.a, t.b, t.c);
-    let d = point - q;
+    // agrees with the distance it was chosen by; a far point is worked out scaled, as it was
+    // found, and scaled back (exact, or +inf for a squared distance past f32).
+    let scale = scale_for(point);
+    let p = point * scale;
+    let (q, u, v, feature) = closest_point_regions(p, t.a * scale, t.b * scale, t.c * scale);
+    let d = p - q;
+    let up = 1.0 / scale;
     ClosestPoint {
-        point: q,
+        point: q * up,
         tri,
         u,
         v,
-        distance_squared: dot(d, d),
+        distance_squared: dot(d, d) * up * up,
         feature,
     }
 }

@@ -86,9 +86,12 @@ pub trait MeshQuery: Traverse + LeafTriangles {
     /// [`closest_point_triangle`](crate::geom::closest_point_triangle()) over all
     /// non-degenerate triangles, with the same bits; on equal squared distance the lower
     /// triangle index wins. Distances are compared squared, so `max_distance` is squared once
-    /// first. `None` for a non-finite `point`, a negative or NaN `max_distance`, no
-    /// triangles, or a point so far away that its squared distance overflows `f32` (about
-    /// 1.8e19 from the mesh).
+    /// first. `None` for a non-finite `point`, a negative or NaN `max_distance` or no
+    /// triangles. A point beyond 2⁶² (4.6e18) on some axis, whose squared distances could
+    /// overflow `f32`, is searched in coordinates scaled by 2⁻⁶⁴ (a power of two: the same
+    /// order and ties, short of mesh coordinates below about 1e-19 that become subnormal);
+    /// past about 1.8e19 its [`distance_squared`](ClosestPoint::distance_squared) is `+∞`, and
+    /// [`ClosestPoint::distance_from`] gives the distance.
     #[must_use]
     #[inline]
     fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {

@@ -94,6 +94,7 @@ pub(crate) mod batch_order;
 pub(crate) mod cell;
 mod closest;
 mod closest_batch;
+mod closest_far;
 pub(crate) mod leaf;
 mod leaf_batches;
 mod mesh_query;
