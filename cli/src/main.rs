@@ -119,11 +119,14 @@ fn parse_failure(e: &clap::Error) -> ExitCode {
     ExitCode::from(2)
 }
 
-/// Whether `e` is a write to standard output that failed because its reader closed the pipe.
+/// Whether `e` is a write that failed because its reader closed the pipe: to standard output,
+/// or to an output path that is a pipe (`--out /dev/stdout`, a named pipe).
 fn closed_pipe(e: &anyhow::Error) -> bool {
     e.chain().any(|cause| {
-        cause
+        let io = cause
             .downcast_ref::<output::StdoutError>()
-            .is_some_and(|s| s.0.kind() == std::io::ErrorKind::BrokenPipe)
+            .map(|s| &s.0)
+            .or_else(|| cause.downcast_ref::<std::io::Error>());
+        io.is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
 }

@@ -377,6 +377,17 @@ fn a_closed_pipe_or_a_full_disk_is_never_a_panic() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(141), "--help: {:?}", out);
+    // An output path that is the closed pipe (`--out /dev/stdout`) is the same case.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(bin())
+        .args(["workload".as_ref(), asset("spot.obj").as_os_str()])
+        .args(["-o", "/dev/stdout", "--count", "100000"])
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(141), "-o /dev/stdout: {:?}", out);
     // A usage error is still clap's text on stderr, status 2.
     let out = meshq(&[&"--no-such-flag"]);
     assert_eq!(out.status.code(), Some(2));
