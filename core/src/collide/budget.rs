@@ -78,6 +78,27 @@ impl Tally {
         true
     }
 
+    /// The answer of a yes/no walk that tested `tested` pairs: yes when it `met` a pair (an
+    /// answer, whether or not the budget ran out after), no when it went to its end, the
+    /// error otherwise.
+    pub(crate) const fn yes_or_no(
+        &self,
+        met: bool,
+        tested: usize,
+    ) -> Result<bool, PairBudgetSpent> {
+        if met {
+            return Ok(true);
+        }
+        match self.finish(Found {
+            total: 0,
+            written: 0,
+            tested,
+        }) {
+            Ok(_) => Ok(false),
+            Err(spent) => Err(spent),
+        }
+    }
+
     /// `found` when the walk went to its end, the error with what was found before it
     /// stopped otherwise.
     pub(crate) const fn finish(&self, found: Found) -> Result<Found, PairBudgetSpent> {

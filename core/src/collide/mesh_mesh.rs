@@ -118,15 +118,7 @@ where
         met = true;
         ControlFlow::Break(())
     });
-    if met {
-        return Ok(true);
-    }
-    tally
-        .finish(Found {
-            tested,
-            ..Found::default()
-        })
-        .map(|_| false)
+    tally.yes_or_no(met, tested)
 }
 
 /// Every pair of triangles, one of `a` and one of `b`, that meets (as in

@@ -117,15 +117,7 @@ pub fn self_intersects<A: TreeArrays + ?Sized>(
         met = true;
         ControlFlow::Break(())
     });
-    if met {
-        return Ok(true);
-    }
-    tally
-        .finish(Found {
-            tested,
-            ..Found::default()
-        })
-        .map(|_| false)
+    tally.yes_or_no(met, tested)
 }
 
 /// Every pair of `mesh`'s triangles that meets itself (as in [`self_intersects`]), `a < b`,
