@@ -23,7 +23,9 @@ impl SplitMix64 {
 
     /// Uniform in `[0, 1)` with 24 random bits (exact in `f32`).
     pub fn next_f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 * (1.0 / 16_777_216.0)
+        // Through `u32`, which holds the 24 bits: the same exact value, and on bare metal one
+        // instruction instead of the 64-bit conversion routine.
+        ((self.next_u64() >> 40) as u32) as f32 * (1.0 / 16_777_216.0)
     }
 
     /// Uniform in `[lo, hi)`.

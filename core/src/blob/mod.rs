@@ -109,3 +109,5 @@ pub use structure::BlobStructure;
 pub use structure_config::StructureConfig;
 pub use tree::BlobTree;
 pub use view::BlobView;
+#[cfg(feature = "alloc")]
+pub(crate) use view::same_bounds;

@@ -16,12 +16,11 @@ use super::structure_config::StructureConfig;
 use super::{BlobHeader, BlobMesh, BlobStructure, BlobTree};
 use crate::advanced::CollapseRoles;
 use crate::bvh::TreeArrays;
-use crate::bvh::check::{CheckLevel, Extent, check};
+use crate::bvh::check::{Extent, Shape, check_boxes_last};
 use crate::bvh::split_coverage::check_split_coverage;
 use crate::cells::LeWords;
 #[cfg(feature = "blob-cells")]
 use crate::cells::ReferencePad;
-#[cfg(feature = "blob-cells")]
 use crate::error::StructureError;
 use crate::error::{BlobError, BlobSection};
 #[cfg(feature = "blob-cells")]
@@ -336,12 +335,6 @@ fn finish<'a>(
 ) -> Result<BlobView<'a>, BlobError> {
     check_mesh(&mesh)?;
     let structure = check_structure(&header, raw, Some(&mesh))?;
-    // Checked here rather than inside `check_structure`: the firmware's view is then built in
-    // place, without linking a memcpy. (The only kind without `blob-cells`.)
-    #[allow(irrefutable_let_patterns)]
-    if let BlobStructure::Bvh(tree) = &structure {
-        check_roles(tree)?;
-    }
     Ok(BlobView {
         header,
         structure,
@@ -357,15 +350,18 @@ fn check_structure<'a>(
     raw: RawStructure<'a>,
     mesh: Option<&BlobMesh<'_>>,
 ) -> Result<BlobStructure<'a>, BlobError> {
-    let bad_config = BlobError::HeaderMismatch { field: "config" };
     let (structure, depth) = match raw {
         RawStructure::Bvh(mut tree) => {
-            if header.config.bvh().is_none_or(|c| c.check().is_err()) {
-                return Err(bad_config);
+            // One walk: the boxes' first problem is reported after the topology's.
+            if let Some(problem) = check_before_boxes(
+                header,
+                &mut tree,
+                mesh,
+                |t| check_boxes_last(t, mesh, Extent::Exact),
+                false,
+            )? {
+                return Err(problem.into());
             }
-            tree.depth = check(&tree, mesh, CheckLevel::Full, Extent::Exact)?.depth;
-            check_slots(&tree, tree.order_entries(), header.triangle_count as usize)?;
-            check_repeated_corners(&tree, mesh)?;
             if let Some(mesh) = mesh {
                 check_split_coverage(&tree, mesh)?;
             }
@@ -377,7 +373,7 @@ fn check_structure<'a>(
         RawStructure::Cells(words, items) => {
             // The header reader makes the config's kind the header's.
             if !header.config.is_valid() {
-                return Err(bad_config);
+                return Err(BlobError::HeaderMismatch { field: "config" });
             }
             let (structure, depth) = check_cells(header, words, items)?;
             if let Some(mesh) = mesh {
@@ -480,8 +476,45 @@ pub(super) fn check_roles(tree: &BlobTree<'_>) -> Result<(), BlobError> {
     }
 }
 
+/// A BVH blob's checks before its boxes, in the order both [`BlobView::parse`] and
+/// `MeshBvh::from_blob` (which checks the boxes afterwards, on its decoded copy) make them, so
+/// the two report the same first problem of a blob: the config, every order entry below the
+/// triangle count, the topology and leaf ranges (`walk`, which returns the tree's shape and,
+/// when it checks the boxes too, their first problem, held for the caller to report next),
+/// the order's fingerprint against the split references, the corners of split triangles, the
+/// collapse roles (unless `roles_later`: a loader whose collapse walks them next, failing as
+/// [`check_roles`] does).
+///
+/// The walk is the caller's, not a flag: each caller's walk is then the only one in its code,
+/// and the firmware's validation holds one walk's stack, not two.
+pub(super) fn check_before_boxes(
+    header: &BlobHeader,
+    tree: &mut BlobTree<'_>,
+    mesh: Option<&BlobMesh<'_>>,
+    walk: impl FnOnce(&BlobTree<'_>) -> Result<(Shape, Option<StructureError>), StructureError>,
+    roles_later: bool,
+) -> Result<Option<StructureError>, BlobError> {
+    if header.config.bvh().is_none_or(|c| c.check().is_err()) {
+        return Err(BlobError::HeaderMismatch { field: "config" });
+    }
+    for (slot, id) in (0u32..).zip(tree.order) {
+        let tri = u32::from_le_bytes(*id);
+        if tri >= header.triangle_count {
+            return Err(BlobError::OrderOutOfRange { slot, tri });
+        }
+    }
+    let (shape, held) = walk(tree)?;
+    tree.depth = shape.depth;
+    check_slots(&*tree, tree.order_entries(), header.triangle_count as usize)?;
+    check_repeated_corners(&*tree, mesh)?;
+    if !roles_later {
+        check_roles(tree)?;
+    }
+    Ok(held)
+}
+
 /// Refuses a header box that differs from the structure's, bit for bit.
-pub(super) fn same_bounds(found: &Aabb, header: &Aabb) -> Result<(), BlobError> {
+pub(crate) fn same_bounds(found: &Aabb, header: &Aabb) -> Result<(), BlobError> {
     let bits = |v: Vec3| v.to_array().map(f32::to_bits);
     if bits(found.min) != bits(header.min) || bits(found.max) != bits(header.max) {
         return Err(BlobError::HeaderMismatch { field: "bounds" });
@@ -500,19 +533,7 @@ impl<'a> BlobStructure<'a> {
     /// As [`BlobView::parse`], except that a missing mesh is not an error.
     pub fn parse(bytes: &'a [u8]) -> Result<(BlobHeader, Self), BlobError> {
         let s = sections(bytes)?;
-        if let RawStructure::Bvh(tree) = &s.structure {
-            for (slot, id) in (0u32..).zip(tree.order) {
-                let tri = u32::from_le_bytes(*id);
-                if tri >= s.header.triangle_count {
-                    return Err(BlobError::OrderOutOfRange { slot, tri });
-                }
-            }
-        }
         let structure = check_structure(&s.header, s.structure, None)?;
-        #[allow(irrefutable_let_patterns)]
-        if let Self::Bvh(tree) = &structure {
-            check_roles(tree)?;
-        }
         Ok((s.header, structure))
     }
 }

@@ -17,6 +17,50 @@ pub(crate) enum CheckLevel {
     Full,
 }
 
+/// Where a box problem goes: returned at once, or held (the first one) while the walk goes on
+/// checking topology, for a caller that reports every topology problem before any box
+/// problem ([`check_boxes_last`]).
+enum BoxProblems<'h> {
+    Return,
+    // Only blob validation holds them.
+    #[cfg_attr(not(feature = "blob"), allow(dead_code))]
+    Hold(&'h mut Option<StructureError>),
+}
+
+impl BoxProblems<'_> {
+    /// `Err(problem)` to return it now, `Ok` when it is held (or a first one already was).
+    fn report(&mut self, problem: StructureError) -> Result<(), StructureError> {
+        match self {
+            Self::Return => Err(problem),
+            Self::Hold(held) => {
+                held.get_or_insert(problem);
+                Ok(())
+            }
+        }
+    }
+}
+
+/// [`check`] at [`CheckLevel::Full`] in one walk that reports topology problems first: the
+/// first box problem (bad bounds, a child outside its parent, a triangle outside its leaf) is
+/// returned beside the shape only when the whole tree's topology is sound, for the caller to
+/// report after its own topology checks.
+#[cfg(feature = "blob")]
+pub(crate) fn check_boxes_last<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    mesh: Option<&S>,
+    extent: Extent,
+) -> Result<(Shape, Option<StructureError>), StructureError> {
+    let mut held = None;
+    let shape = walk(
+        tree,
+        mesh,
+        CheckLevel::Full,
+        extent,
+        BoxProblems::Hold(&mut held),
+    )?;
+    Ok((shape, held))
+}
+
 /// Whether nodes and slots past those the tree uses are allowed (the untrimmed buffers a build
 /// was given) or refused (a blob, whose counts must be exact).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,6 +88,16 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
     level: CheckLevel,
     extent: Extent,
 ) -> Result<Shape, StructureError> {
+    walk(tree, mesh, level, extent, BoxProblems::Return)
+}
+
+fn walk<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    mesh: Option<&S>,
+    level: CheckLevel,
+    extent: Extent,
+    mut boxes: BoxProblems<'_>,
+) -> Result<Shape, StructureError> {
     let (node_count, slot_count) = (tree.node_count(), tree.slot_count());
     let empty = Shape {
         depth: 0,
@@ -61,7 +115,10 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
         reached: 0,
         total: u32::MAX,
     })?;
-    let mut stack = [(0u32, 0u32); MAX_DEPTH as usize];
+    // The right children still to visit and their depths (at most `MAX_DEPTH`, so a byte), in
+    // two arrays rather than padded pairs: the stack the firmware's validation peaks on.
+    let mut stack_node = [0u32; MAX_DEPTH as usize];
+    let mut stack_depth = [0u8; MAX_DEPTH as usize];
     let mut sp = 0usize;
     let mut current = Some((0u32, 1u32));
     let mut reached = 0u32;
@@ -84,7 +141,7 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
             .ok_or(StructureError::ChildOutOfRange { node: index })?;
         let bounds = node.aabb();
         if level == CheckLevel::Full && (bounds.is_empty() || !bounds.is_finite()) {
-            return Err(StructureError::BadBounds { node: index });
+            boxes.report(StructureError::BadBounds { node: index })?;
         }
         if node.is_leaf() {
             let first = node.first as usize;
@@ -123,13 +180,13 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                         && (tree.split_refs().range_of(tri).is_empty()
                             || !bounds.overlaps(&t.bounds()))
                     {
-                        return Err(StructureError::TriangleOutsideLeaf { node: index, tri });
+                        boxes.report(StructureError::TriangleOutsideLeaf { node: index, tri })?;
                     }
                 }
             }
             current = sp.checked_sub(1).and_then(|top| {
                 sp = top;
-                stack.get(top).copied()
+                Some((*stack_node.get(top)?, u32::from(*stack_depth.get(top)?)))
             });
         } else {
             let left = node.first;
@@ -146,14 +203,15 @@ pub(crate) fn check<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                         .node(child as usize)
                         .is_some_and(|c| bounds.contains_aabb(&c.aabb()));
                     if !inside {
-                        return Err(StructureError::ChildOutsideParent { node: child });
+                        boxes.report(StructureError::ChildOutsideParent { node: child })?;
                     }
                 }
             }
-            let slot = stack
-                .get_mut(sp)
-                .ok_or(StructureError::TooDeep { node: index })?;
-            *slot = (right, node_depth + 1);
+            let too_deep = StructureError::TooDeep { node: index };
+            // `node_depth` is at most `MAX_DEPTH` here (checked on entry).
+            let child_depth = u8::try_from(node_depth + 1).map_err(|_| too_deep)?;
+            *stack_node.get_mut(sp).ok_or(too_deep)? = right;
+            *stack_depth.get_mut(sp).ok_or(too_deep)? = child_depth;
             sp += 1;
             current = Some((left, node_depth + 1));
         }

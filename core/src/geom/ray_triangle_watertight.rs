@@ -92,12 +92,7 @@ impl WatertightRay {
         // An exact zero may be a rounding casualty; recompute all three in f64, where the
         // products of f32 values are exact, so neighbours sharing an edge agree on its side.
         if u == 0.0 || v == 0.0 || w == 0.0 {
-            let f = |p: f32, q: f32, r: f32, s: f32| {
-                (f64::from(p) * f64::from(q) - f64::from(r) * f64::from(s)) as f32
-            };
-            u = f(cx, by, cy, bx);
-            v = f(ax, cy, ay, cx);
-            w = f(bx, ay, by, ax);
+            [u, v, w] = edge_functions_in_f64([ax, ay], [bx, by], [cx, cy]);
         }
         let inside = match cull {
             CullMode::None => !((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)),
@@ -124,6 +119,19 @@ impl WatertightRay {
             v: w * inv_det,
         })
     }
+}
+
+/// The three edge functions of the sheared triangle `a`, `b`, `c` at the origin, as
+/// [`WatertightRay::intersect`] computes them, recomputed in `f64`, where the products of `f32`
+/// values are exact. Every ray walk reaches it; on bare metal, where `f64` is software and
+/// flash is the budget, they share one copy.
+#[cfg_attr(target_os = "none", inline(never))]
+fn edge_functions_in_f64(a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> [f32; 3] {
+    let f = |p: f32, q: f32, r: f32, s: f32| {
+        (f64::from(p) * f64::from(q) - f64::from(r) * f64::from(s)) as f32
+    };
+    let ([ax, ay], [bx, by], [cx, cy]) = (a, b, c);
+    [f(cx, by, cy, bx), f(ax, cy, ay, cx), f(bx, ay, by, ax)]
 }
 
 /// Watertight ray–triangle intersection (Woop, Benthin & Wald 2013).

@@ -5,21 +5,26 @@ use alloc::vec::Vec;
 
 use super::MeshBvh;
 use crate::advanced::CollapseRoles;
-use crate::blob::{self, BlobView, BoxesUnchecked, EncodeOptions, MeshLayout};
+use crate::blob::{
+    self, BlobHeader, BlobView, BoxesUnchecked, EncodeOptions, MeshLayout, same_bounds,
+};
 use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::bvh::split_coverage::check_split_coverage;
 use crate::bvh::{BvhNode, TreeArrays};
-use crate::error::{BlobError, BlobSection};
+use crate::error::{BlobError, BlobSection, BuildError};
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::{SplitRef, SplitRefs};
+use crate::structure_kind::StructureKind;
 use crate::wide::collapse::eight_wide_roles;
 
 impl MeshBvh {
     /// Validates a self-contained blob with every check of [`BlobView::parse`] and decodes it
     /// into owned buffers, so it queries as a built one does and answers the same, bit for bit.
-    /// The config is the one the blob records. The boxes are checked on the decoded copy; a
-    /// blob refused there is parsed again, so the error is the one `parse` reports.
+    /// The config is the one the blob records. The blob is read once: the box checks, which
+    /// `parse` makes after all the others, run on the decoded copy, whose triangles sit
+    /// packed in leaf order, in the same order over the same bits, so a refused blob gets the
+    /// error `parse` gives it.
     ///
     /// A blob baked with [`MeshLayout::Packed`] stores corners, not the indexed mesh: the mesh
     /// becomes three vertices of its own per triangle, in triangle order (same triangles,
@@ -27,34 +32,32 @@ impl MeshBvh {
     ///
     /// # Errors
     /// What [`BlobView::parse`] reports ([`BlobError::MeshNotIncluded`] for a blob baked
-    /// without its mesh: use [`MeshBvh::from_blob_with_mesh`]), and
+    /// without its mesh: use [`MeshBvh::from_blob_with_mesh`];
+    /// [`BlobError::UnsupportedStructure`] for a sound blob of another structure), and
     /// [`BlobError::RepeatedTriangle`] for an order that names a triangle twice.
     pub fn from_blob(bytes: &[u8]) -> Result<Self, BlobError> {
-        // Sound blobs take the quicker path; anything it refuses is loaded again the checked
-        // way, so every error is the one `BlobView::parse` (then `decode`) reports.
-        Self::decode_then_check_boxes(bytes)
-            .or_else(|_| BlobView::parse(bytes).and_then(|view| Self::decode(&view)))
-    }
-
-    /// [`MeshBvh::from_blob`] for a sound BVH blob, with the leaf and node boxes checked on the
-    /// decoded copy, whose triangles are packed in leaf order, instead of on the bytes: the
-    /// same checks over the same bits, without gathering every triangle through the blob's
-    /// indices a second time.
-    pub(super) fn decode_then_check_boxes(bytes: &[u8]) -> Result<Self, BlobError> {
-        let unchecked = BoxesUnchecked::parse(bytes)?;
-        let loaded = Self::decode(unchecked.view())?;
+        if BlobHeader::read(bytes).is_ok_and(|h| h.kind != StructureKind::Bvh) {
+            // Not a BVH: validated in full, so a damaged one is reported as `parse` reports
+            // it, then refused.
+            return Self::decode(&BlobView::parse(bytes)?);
+        }
+        // The eight-wide collapse walks the stored roles, checking them as it goes.
+        let unchecked = BoxesUnchecked::parse(bytes, Self::EIGHT_WIDE_BY_DEFAULT)?;
+        let header = *unchecked.view().header();
+        let loaded = Self::decode_unreferenced(unchecked.view())?;
+        // `parse`'s last checks, in its order, on the copy.
         let shape = check(
             &loaded.bvh(),
             Some(&loaded.packed()),
             CheckLevel::Full,
             Extent::Exact,
         )?;
-        if shape.depth != loaded.depth {
+        check_split_coverage(&loaded.bvh(), &loaded.packed())?;
+        same_bounds(&loaded.bvh().bounds(), &header.bounds)?;
+        if shape.depth != header.depth {
             return Err(BlobError::HeaderMismatch { field: "depth" });
         }
-        // The split references were checked against the blob's tree, whose boxes the decoded
-        // copy repeats: the last check `BlobView::parse` makes, here on the copy.
-        check_split_coverage(&loaded.bvh(), &loaded.packed())?;
+        check_references(&loaded.order, loaded.triangle_count(), &loaded.split_refs())?;
         Ok(loaded)
     }
 
@@ -67,7 +70,16 @@ impl MeshBvh {
         Self::decode(&BlobView::parse_with_mesh(bytes, *mesh)?)
     }
 
+    /// Decodes a validated view, then counts the order's references exactly.
     pub(super) fn decode(view: &BlobView<'_>) -> Result<Self, BlobError> {
+        let loaded = Self::decode_unreferenced(view)?;
+        check_references(&loaded.order, loaded.triangle_count(), &loaded.split_refs())?;
+        Ok(loaded)
+    }
+
+    /// Decodes a view whose order may still name a triangle too often (a load counts them
+    /// last, after the boxes, as [`BlobView::parse`] orders its checks).
+    fn decode_unreferenced(view: &BlobView<'_>) -> Result<Self, BlobError> {
         let header = *view.header();
         let config = *header.config.bvh().ok_or(BlobError::UnsupportedStructure {
             kind: header.kind.tag(),
@@ -81,7 +93,6 @@ impl MeshBvh {
             .tree()
             .map(|t| t.split_refs().iter().collect())
             .unwrap_or_default();
-        check_references(&order, n, &SplitRefs::new(&splits))?;
         let (positions, triangles) = if header.mesh == MeshLayout::Packed {
             // Three vertices of its own per triangle: their indices must fit in `u32`.
             if header.triangle_count > u32::MAX / 3 {
@@ -101,14 +112,15 @@ impl MeshBvh {
         let mut loaded = Self::assemble(
             positions, triangles, nodes, order, depth, config, false, roles,
         )
-        .map_err(|_| {
-            // Unreachable: the buffers are sized from the validated blob's own counts, and
-            // the roles were checked against this very tree.
-            BlobError::BufferTooSmall {
+        .map_err(|e| match e {
+            // Stored roles a load left to the collapse, which walks them (`BoxesUnchecked`).
+            BuildError::InvalidConfig { field: "roles" } => BlobError::BadCollapsePlan,
+            // Unreachable: the buffers are sized from the validated blob's own counts.
+            _ => BlobError::BufferTooSmall {
                 section: BlobSection::PackedTriangles,
                 needed: slots,
                 got: 0,
-            }
+            },
         })?;
         loaded.splits = splits;
         Ok(loaded)
@@ -237,15 +249,14 @@ mod tests {
     }
 
     #[test]
-    fn sound_blobs_take_the_quick_path_and_damaged_boxes_are_refused_there_too() {
+    fn loads_check_boxes_on_the_copy_and_refuse_damaged_boxes_as_parse_does() {
         let (positions, triangles) = sheet(12);
         let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
         let built = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
         for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
             let bytes = built.to_blob(layout).unwrap();
-            // The quick path accepts a sound blob (or every load would silently take the
-            // slower one) and gives what the checked path gives.
-            let quick = MeshBvh::decode_then_check_boxes(&bytes).unwrap();
+            // A load (boxes checked on the copy) gives what decoding a parsed view gives.
+            let quick = MeshBvh::from_blob(&bytes).unwrap();
             let checked = MeshBvh::decode(&BlobView::parse(&bytes).unwrap()).unwrap();
             assert_eq!(quick.bvh().nodes(), checked.bvh().nodes());
             assert_eq!(quick.packed().as_slice(), checked.packed().as_slice());
@@ -276,11 +287,11 @@ mod tests {
                 damaged[at + 16..at + 20].copy_from_slice(&mid.to_le_bytes());
                 crate::advanced::reseal(&mut damaged).unwrap();
                 let expected = BlobView::parse(&damaged).unwrap_err();
-                assert!(
-                    MeshBvh::decode_then_check_boxes(&damaged).is_err(),
+                assert_eq!(
+                    MeshBvh::from_blob(&damaged).err(),
+                    Some(expected),
                     "node {node}"
                 );
-                assert_eq!(MeshBvh::from_blob(&damaged).err(), Some(expected));
                 refused += 1;
             }
             assert_eq!(refused, count);

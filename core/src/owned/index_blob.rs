@@ -9,8 +9,8 @@ use super::cell_scene::CellScene;
 use super::mesh_cells::{GridArrays, TreeArrays};
 use super::{CellKind, MeshBvh, MeshCells, MeshIndex};
 use crate::blob::{
-    BlobSource, BlobStructure, BlobView, MeshLayout, StructureConfig, encode_structure_into,
-    structure_encoded_len,
+    BlobHeader, BlobSource, BlobStructure, BlobView, MeshLayout, StructureConfig,
+    encode_structure_into, structure_encoded_len,
 };
 use crate::cells::Words;
 use crate::error::BlobError;
@@ -18,6 +18,7 @@ use crate::grid::GridLayout;
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::LeafTriangles;
+use crate::structure_kind::StructureKind;
 
 impl MeshIndex {
     /// Validates a self-contained blob of any kind with every check of [`BlobView::parse`]
@@ -34,11 +35,14 @@ impl MeshIndex {
     /// without its mesh: use [`MeshIndex::from_blob_with_mesh`]), and
     /// [`BlobError::RepeatedTriangle`] for a BVH order that names a triangle twice.
     pub fn from_blob(bytes: &[u8]) -> Result<Self, BlobError> {
-        // As `MeshBvh::from_blob`: a sound BVH blob takes the quicker path, anything else the
-        // checked one.
-        MeshBvh::decode_then_check_boxes(bytes)
-            .map(Self::Bvh)
-            .or_else(|_| BlobView::parse(bytes).and_then(|view| Self::decode(&view)))
+        // A BVH blob (or bytes without a readable header, which fail there as in `parse`)
+        // loads as `MeshBvh::from_blob` loads it; a cell structure is validated, then decoded.
+        match BlobHeader::read(bytes) {
+            Ok(header) if header.kind != StructureKind::Bvh => {
+                Self::decode(&BlobView::parse(bytes)?)
+            }
+            _ => MeshBvh::from_blob(bytes).map(Self::Bvh),
+        }
     }
 
     /// [`MeshIndex::from_blob`] for any blob, with the mesh it was baked from

@@ -110,7 +110,10 @@ impl<'a> CollapseRoles<'a> {
         // `inner[l]`: the inner nodes so far of the wide node at level `l` (wide nodes above
         // it) whose subtree the walk is in.
         let mut inner = [0u8; MAX_DEPTH as usize + 1];
-        let mut pending = [(0u32, 0u8); MAX_DEPTH as usize];
+        // The right children still to visit and their levels, in two arrays (a pair would be
+        // padded to eight bytes): this stack is most of the firmware validation's peak.
+        let mut pending_node = [0u32; MAX_DEPTH as usize];
+        let mut pending_level = [0u8; MAX_DEPTH as usize];
         let mut len = 0usize;
         let mut wide = 0usize;
         // (node, the level of the wide node its parent belongs to); the root starts level 0.
@@ -121,7 +124,8 @@ impl<'a> CollapseRoles<'a> {
                 if node.first <= at {
                     return Err(());
                 }
-                *pending.get_mut(len).ok_or(())? = (node.first.checked_add(1).ok_or(())?, level);
+                *pending_node.get_mut(len).ok_or(())? = node.first.checked_add(1).ok_or(())?;
+                *pending_level.get_mut(len).ok_or(())? = level;
                 len += 1;
                 next = Some((node.first, level));
                 Ok(())
@@ -154,7 +158,7 @@ impl<'a> CollapseRoles<'a> {
             if next.is_none() {
                 next = len.checked_sub(1).and_then(|top| {
                     len = top;
-                    pending.get(top).copied()
+                    Some((*pending_node.get(top)?, *pending_level.get(top)?))
                 });
             }
         }
