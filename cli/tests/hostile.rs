@@ -518,6 +518,72 @@ fn checks_on_piled_up_triangles_stop_at_their_budget() {
     assert_eq!(report["self_intersecting_pairs"], 0, "{report}");
 }
 
+/// `remesh` of triangles that all span one box writes its result and reports the distance
+/// from the samples its test budget paid for, saying so, instead of a closest-point search per
+/// sample over every triangle (the square of the count: 10.3 s at 10,000 triangles before);
+/// `--max-distance-tests` raises the budget until every sample is measured.
+#[test]
+fn remeshing_triangles_no_box_separates_reports_a_bounded_distance() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("overlap.obj");
+    let n = 10_000;
+    let mut text = String::new();
+    for i in 0..n {
+        let t = i as f32 / n as f32;
+        text.push_str(&format!(
+            "v -1 {} -1\nv 1 {} -1\nv {} 0 1\n",
+            -1.0 + 2.0 * t,
+            1.0 - 2.0 * t,
+            2.0 * t - 1.0
+        ));
+    }
+    for i in 0..n {
+        text.push_str(&format!("f {} {} {}\n", 3 * i + 1, 3 * i + 2, 3 * i + 3));
+    }
+    std::fs::write(&input, text).unwrap();
+    let output = dir.path().join("out.ply");
+    let out = meshq(&[&"remesh", &input, &"-o", &output, &"--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(output.exists());
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let samples = report["distance_samples"].as_u64().unwrap();
+    let measured = report["distance_samples_measured"].as_u64().unwrap();
+    let tested = report["distance_tests"].as_u64().unwrap();
+    let triangles = n + report["after"]["triangles"].as_u64().unwrap();
+    assert_eq!(samples, 4 * triangles, "{report}");
+    assert!(measured > 0 && measured < samples, "{report}");
+    assert!(tested <= (1 << 20) + 256 * triangles, "{report}");
+    let text = meshq(&[&"remesh", &input, &"-o", &output]);
+    let said = String::from_utf8_lossy(&text.stdout);
+    assert!(said.contains("--max-distance-tests"), "{said}");
+
+    // A small input of the same kind, with room for every sample: all measured.
+    let few = dir.path().join("few.obj");
+    std::fs::write(
+        &few,
+        "v -1 -1 -1\nv 1 1 -1\nv -1 0 1\nv -1 1 -1\nv 1 -1 -1\nv 1 0 1\nf 1 2 3\nf 4 5 6\n",
+    )
+    .unwrap();
+    let out = meshq(&[
+        &"remesh",
+        &few,
+        &"-o",
+        &output,
+        &"--json",
+        &"--max-distance-tests",
+        &"100000000",
+    ]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        report["distance_samples_measured"], report["distance_samples"],
+        "{report}"
+    );
+}
+
 /// `inspect` validates a blob as the loaders do: a BVH blob (resealed, so its checksum
 /// passes) whose stored triangle names a vertex that does not exist is refused by `inspect`
 /// with the same error as by `raycast`, not described as a sound blob.

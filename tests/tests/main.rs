@@ -29,6 +29,7 @@ mod raycast_ties;
 mod raycast_vs_brute_force;
 mod remesh;
 mod remesh_creases;
+mod remesh_distance;
 mod remesh_golden;
 mod remesh_hard_inputs;
 mod remesh_invariants;

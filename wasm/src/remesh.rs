@@ -4,6 +4,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use js_sys::{Float32Array, Object, Uint32Array};
+use meshq::collide::PairBudget;
 use meshq::mesh::MeshRef;
 use meshq::owned::Remeshed;
 use meshq::remesh::{EdgeTarget, MeshQuality, RemeshConfig};
@@ -11,15 +12,22 @@ use wasm_bindgen::prelude::*;
 
 use crate::args::{JsNumber, floats_or_numbers, range_error};
 use crate::build::read_indices;
-use crate::fields::{field, optional_number, optional_whole, options};
+use crate::fields::{field, optional_number, optional_u32, optional_whole, options};
 use crate::js_objects::set;
 
 /// The keys `remesh` options accept.
-const REMESH_KEYS: &[&str] = &["targetLength", "targetRatio", "iterations", "featureAngle"];
+const REMESH_KEYS: &[&str] = &[
+    "targetLength",
+    "targetRatio",
+    "iterations",
+    "featureAngle",
+    "maxDistanceTests",
+];
 
-/// Reads `{ targetLength?, targetRatio?, iterations?, featureAngle? }` (every field optional;
-/// `targetLength` and `targetRatio` not both), strictly (see [`crate::fields`]).
-fn config(options_in: &JsValue) -> Result<RemeshConfig, JsValue> {
+/// Reads `{ targetLength?, targetRatio?, iterations?, featureAngle?, maxDistanceTests? }`
+/// (every field optional; `targetLength` and `targetRatio` not both), strictly (see
+/// [`crate::fields`]): the run's config and the distance report's test cap, if given.
+fn config(options_in: &JsValue) -> Result<(RemeshConfig, Option<u32>), JsValue> {
     let mut config = RemeshConfig::default();
     let o = options(options_in, "options", REMESH_KEYS)?;
     let o = o.as_ref();
@@ -53,7 +61,9 @@ fn config(options_in: &JsValue) -> Result<RemeshConfig, JsValue> {
     config.feature_angle =
         optional_number(&field(o, "featureAngle")?, "options.featureAngle")?.map(|a| a as f32);
     config.validate().map_err(|e| range_error(&e.to_string()))?;
-    Ok(config)
+    let max_distance_tests =
+        optional_u32(&field(o, "maxDistanceTests")?, "options.maxDistanceTests")?;
+    Ok((config, max_distance_tests))
 }
 
 /// Interior vertices by valence: entry `k` counts those with `k` neighbours (the last entry
@@ -104,18 +114,23 @@ fn figures(q: &MeshQuality, triangles: &[[u32; 3]]) -> Result<Object, JsError> {
 /// triangle; `null` for non-indexed geometry) toward uniform, near-equilateral triangles on
 /// its surface, exactly as the native `meshq remesh` does (the same output, bit for bit).
 ///
-/// `options`: `{ targetLength?, targetRatio?, iterations?, featureAngle? }` — the target edge
-/// length in the mesh's units, or as a multiple of the mean edge length (default 1), the
-/// iteration count (default 10) and the crease angle in degrees to keep (default none).
+/// `options`: `{ targetLength?, targetRatio?, iterations?, featureAngle?, maxDistanceTests? }`
+/// — the target edge length in the mesh's units, or as a multiple of the mean edge length
+/// (default 1), the iteration count (default 10), the crease angle in degrees to keep (default
+/// none) and the most point–triangle tests the distance report may make (a whole number;
+/// default 2²⁰ + 256 per triangle of the input and the result).
 ///
 /// Returns `{ positions: Float32Array, indices: Uint32Array, iterations, splits, collapses,
-/// flips, relaxed, creases, peakVertices, peakTriangles, distance, before, after }` (the peaks: the
+/// flips, relaxed, creases, peakVertices, peakTriangles, distance, distanceSamples,
+/// distanceSamplesMeasured, before, after }` (the peaks: the
 /// most vertices and triangles held at once), where `before` and `after` hold `triangles`,
 /// `vertices`, `valence6Percent`, `minAngleOffBoundary` (degrees), `under30Percent`,
 /// `meanEdge`, `edgeCv` and `valences` (interior vertices by valence, the last entry 12 and
 /// more), and `distance` is the two-sided distance to the input (sampled at vertices and
-/// centroids) over the input's bounding-box diagonal. Throws on a mesh that is not manifold
-/// or consistently oriented, naming the edge or vertex.
+/// centroids) over the input's bounding-box diagonal: the largest over the
+/// `distanceSamplesMeasured` of the `distanceSamples` samples the test cap let it measure
+/// (fewer only where no box separates triangles). Throws on a mesh that is not manifold or
+/// consistently oriented, naming the edge or vertex.
 #[wasm_bindgen(unchecked_return_type = "RemeshResult")]
 pub fn remesh(
     #[wasm_bindgen(unchecked_param_type = "Float32Array | ArrayLike<number>")] positions: &JsValue,
@@ -136,10 +151,16 @@ pub fn remesh(
     let mesh = MeshRef::from_flat(&positions, &indices)
         .and_then(MeshRef::validate)
         .map_err(|e| JsError::new(&e.to_string()))?;
-    let config = config(&options)?;
+    let (config, max_distance_tests) = config(&options)?;
     let out = Remeshed::of(&mesh, &config).map_err(|e| JsError::new(&e.to_string()))?;
+    let budget = max_distance_tests.map_or_else(
+        || PairBudget::for_triangles(mesh.triangle_count(), out.triangles.len()),
+        |max_tests| PairBudget {
+            max_tests: max_tests as usize,
+        },
+    );
     let distance = out
-        .distance_to(&mesh)
+        .distance_to(&mesh, budget)
         .map_err(|e| JsError::new(&e.to_string()))?;
     let result = Object::new();
     let flat_positions: Vec<f32> = out.positions.iter().flatten().copied().collect();
@@ -163,7 +184,9 @@ pub fn remesh(
     set(&result, "creases", r.creases as f64)?;
     set(&result, "peakVertices", r.peak_vertices as f64)?;
     set(&result, "peakTriangles", r.peak_triangles as f64)?;
-    set(&result, "distance", distance)?;
+    set(&result, "distance", distance.relative)?;
+    set(&result, "distanceSamples", distance.samples as f64)?;
+    set(&result, "distanceSamplesMeasured", distance.measured as f64)?;
     set(&result, "before", figures(&out.before, mesh.triangles())?)?;
     set(&result, "after", figures(&out.after, &out.triangles)?)?;
     Ok(result)

@@ -101,6 +101,9 @@ export interface RemeshOptions {
   iterations?: number | null;
   /** Keep creases sharper than this many degrees (default: none kept). */
   featureAngle?: number | null;
+  /** The most point–triangle tests the distance report may make (default 2^20 + 256 per
+   *  triangle of the input and the result). */
+  maxDistanceTests?: number | null;
 }
 
 /** Mesh quality figures, before or after remeshing. */
@@ -129,8 +132,14 @@ export interface RemeshResult {
   creases: number;
   peakVertices: number;
   peakTriangles: number;
-  /** Two-sided distance to the input over its bounding-box diagonal. */
+  /** Two-sided distance to the input over its bounding-box diagonal: the largest over the
+   *  samples measured. */
   distance: number;
+  /** Samples of both meshes (four per triangle). */
+  distanceSamples: number;
+  /** Samples measured within `maxDistanceTests`: all of them unless no box separates the
+   *  triangles. */
+  distanceSamplesMeasured: number;
   before: MeshQualityFigures;
   after: MeshQualityFigures;
 }

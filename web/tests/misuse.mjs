@@ -249,6 +249,8 @@ const cases = [
   [() => remesh(positions, indices, { featureAngle: 'sharp' }), TypeError, /options.featureAngle must be a number/],
   [() => remesh(positions, indices, { steps: 3 }), RangeError, /unknown option "steps"/],
   [() => remesh(positions, indices, 10), TypeError, /options must be an object/],
+  [() => remesh(positions, indices, { maxDistanceTests: -1 }), RangeError, /options.maxDistanceTests must be a whole number/],
+  [() => remesh(positions, indices, { maxDistanceTests: '5' }), TypeError, /options.maxDistanceTests must be a number/],
   [() => MeshBvh.build(positions, indices, { structure: 'kdtree' }).compactNodes(), TypeError, /compactNodes applies to a BVH/],
   [() => MeshBvh.build(positions, indices, { structure: 'grid' }).eightWideNodes(), TypeError, /eightWideNodes applies to a BVH/],
   [() => MeshBvh.build(positions, indices, { structure: 'octree' }).fourWideNodes(), TypeError, /fourWideNodes applies to a BVH/],
@@ -346,6 +348,28 @@ for (const [i, [f, type, words]] of cases.entries()) throws(f, type, words, `cas
   throws(() => point.intersectsMesh(point), RangeError, /budget .* is spent/, 'points: yes/no');
   throws(() => point.selfIntersections(null, 1e6), RangeError, /budget of 1000000 pairs/, 'points: given budget');
   for (const m of [copies, fewer, point]) m.free();
+}
+
+// The remesh distance report within its point–triangle test budget: 4,000 triangles that all
+// span one box are remeshed in bounded time, the distance from the samples the budget paid
+// for; with room for them all (or on an ordinary mesh) every sample is measured.
+{
+  const n = 4_000;
+  const spans = new Float32Array(9 * n);
+  for (let i = 0; i < n; i++) {
+    const t = i / n;
+    spans.set([-1, -1 + 2 * t, -1, 1, 1 - 2 * t, -1, 2 * t - 1, 0, 1], 9 * i);
+  }
+  const bounded = remesh(spans, null, { iterations: 1 });
+  assert.equal(bounded.distanceSamples, 4 * (n + bounded.after.triangles));
+  assert.ok(bounded.distanceSamplesMeasured > 0 && bounded.distanceSamplesMeasured < bounded.distanceSamples,
+    `measured ${bounded.distanceSamplesMeasured} of ${bounded.distanceSamples}`);
+  const none = remesh(spans, null, { iterations: 1, maxDistanceTests: 0 });
+  assert.equal(none.distanceSamplesMeasured, 0);
+  assert.equal(none.distance, 0);
+  const plain = remesh(positions, indices, { iterations: 2 });
+  assert.equal(plain.distanceSamplesMeasured, plain.distanceSamples, 'an ordinary mesh: every sample');
+  assert.ok(plain.distance > 0 && plain.distance < 0.1);
 }
 
 // A mesh too large for WebAssembly's 4 GiB is refused with an Error naming the limit, before

@@ -5,7 +5,9 @@ use super::Found;
 use crate::error::PairBudgetSpent;
 
 /// The most triangle pairs a mesh–mesh or self-intersection query may consider before it
-/// stops with [`PairBudgetSpent`].
+/// stops with [`PairBudgetSpent`]. (The sampled distance of a remeshed mesh,
+/// `owned::Remeshed::distance_to` with the `alloc` feature, takes one too: there a pair is a
+/// sample point and a triangle its closest-point query loads.)
 ///
 /// On ordinary meshes the boxes rule out all but a few pairs per triangle, so a walk
 /// considers a small multiple of the triangle count. When many triangles share one place —

@@ -25,6 +25,7 @@ mod mesh_grid;
 mod mesh_index;
 mod mesh_index_queries;
 mod remeshed;
+mod sampled_distance;
 
 pub use crate::structure_kind::{StructureKind, UnknownStructure};
 pub use mesh_bvh::MeshBvh;
@@ -33,3 +34,4 @@ pub use mesh_cells::{
 };
 pub use mesh_index::MeshIndex;
 pub use remeshed::Remeshed;
+pub use sampled_distance::SampledDistance;

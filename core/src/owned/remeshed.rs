@@ -3,10 +3,11 @@
 use alloc::vec::Vec;
 
 use super::MeshBvh;
+use super::sampled_distance::{SampledDistance, sampled_distance};
 use crate::bvh::BuildConfig;
+use crate::collide::PairBudget;
 use crate::error::{RemeshBuffer, RemeshError};
 use crate::mesh::ValidMesh;
-use crate::query::MeshQuery;
 use crate::remesh::{
     HalfEdgeMesh, MeshQuality, RemeshCapacity, RemeshConfig, RemeshReport, RemeshStorage,
     remesh_with_progress,
@@ -110,39 +111,27 @@ impl Remeshed {
 impl Remeshed {
     /// The two-sided distance between this mesh and `input`, sampled at every vertex and
     /// triangle centroid of each against the other's surface, relative to the diagonal of
-    /// `input`'s bounds: the largest of those closest-point distances. An estimate of the
-    /// Hausdorff distance from below (points between samples may lie farther).
+    /// `input`'s bounds (see [`SampledDistance`]): an estimate of the Hausdorff distance from
+    /// below.
+    ///
+    /// `budget` caps the point–triangle tests: on ordinary meshes each sample takes a few
+    /// dozen, but where no box separates triangles (many triangles across one spot) each takes
+    /// as many as the mesh has, and the run stops when the budget is spent, with the samples
+    /// measured so far. [`PairBudget::for_triangles`] of the two triangle counts is the usual
+    /// choice; [`PairBudget::UNLIMITED`] measures every sample however long it takes.
     ///
     /// # Errors
     /// [`RemeshError::ReferenceBvh`] when a BVH of either mesh cannot be built.
-    pub fn distance_to(&self, input: &ValidMesh<'_>) -> Result<f32, RemeshError> {
+    pub fn distance_to(
+        &self,
+        input: &ValidMesh<'_>,
+        budget: PairBudget,
+    ) -> Result<SampledDistance, RemeshError> {
         let output = crate::mesh::MeshRef::new(&self.positions, &self.triangles)
             .validate()
             .map_err(|_| RemeshError::InvalidConfig {
                 field: "output mesh",
             })?;
-        let bvh = |m: &ValidMesh<'_>| {
-            MeshBvh::build(m, &BuildConfig::default())
-                .map_err(|error| RemeshError::ReferenceBvh { error })
-        };
-        let (to_input, to_output) = (bvh(input)?, bvh(&output)?);
-        let bounds = input.bounds();
-        let diagonal = (bounds.max - bounds.min).length();
-        let farthest = |from: &ValidMesh<'_>, to: &MeshBvh| {
-            let mut far = 0.0f32;
-            for t in 0..from.triangle_count() as u32 {
-                let Some(tri) = from.triangle(t) else {
-                    continue;
-                };
-                for p in [tri.a, tri.b, tri.c, (tri.a + tri.b + tri.c) / 3.0] {
-                    if let Some(c) = to.closest_point(p, f32::INFINITY) {
-                        far = far.max(c.distance_squared);
-                    }
-                }
-            }
-            libm::sqrtf(far)
-        };
-        let far = farthest(&output, &to_input).max(farthest(input, &to_output));
-        Ok(if diagonal > 0.0 { far / diagonal } else { 0.0 })
+        sampled_distance(input, &output, budget)
     }
 }

@@ -71,6 +71,8 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const structure: 'bvh' | 'kdtree' | 'octree' | 'grid' = grid.structure;
   const remeshed: RemeshResult = remesh(bvh.vertexPositions(), bvh.indices(), { targetRatio: 1, iterations: 3, featureAngle: 45 });
   remesh(positions);
+  remesh(positions, null, { maxDistanceTests: 1 << 20 });
+  const measured: number = remeshed.distanceSamplesMeasured + remeshed.distanceSamples;
   const tree = bvh.treeArrays();
   soup.free();
 
@@ -99,7 +101,7 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   // @ts-expect-error batches write into typed arrays
   bvh.raycastBatch(rays, 0, 1, [], triangles);
 
-  return (t ?? 0) + (distance ?? 0) + Number(any) + all.length + hits + misses + bytes.length
+  return measured + (t ?? 0) + (distance ?? 0) + Number(any) + all.length + hits + misses + bytes.length
     + pairs.total + boxes.length + structure.length + remeshed.after.valence6Percent + tree.first.length
     + pooled.hits + flags.length + nearest.length + nodeBytes;
 }
