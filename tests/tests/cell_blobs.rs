@@ -383,10 +383,18 @@ fn stored_mesh(view: &BlobView<'_>) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
 }
 
 /// How many of the probes `view` answers otherwise than a scan of its own stored mesh (what
-/// a fresh build of that mesh answers: every structure answers as the scan does).
-fn answers_unlike_its_own_mesh(view: &BlobView<'_>, bounds: &Aabb) -> usize {
+/// a fresh build of that mesh answers: every structure answers as the scan does). A packed
+/// blob's mesh is the one its slots' corners make, as the owned loader decodes it.
+fn answers_unlike_its_own_mesh(view: &BlobView<'_>, bytes: &[u8], bounds: &Aabb) -> usize {
     use meshq::MeshQuery;
-    let (positions, triangles) = stored_mesh(view);
+    let loaded;
+    let (positions, triangles) = if view.header().mesh == MeshLayout::Packed {
+        loaded = MeshIndex::from_blob(bytes).unwrap();
+        let m = loaded.mesh();
+        (m.positions().to_vec(), m.triangles().to_vec())
+    } else {
+        stored_mesh(view)
+    };
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     let brute = BruteForce::new(&mesh);
     probes(bounds, 300)
@@ -405,13 +413,24 @@ fn answers_unlike_its_own_mesh(view: &BlobView<'_>, bounds: &Aabb) -> usize {
 /// mutant is refused, or answers exactly as a fresh build of the mesh it stores.
 #[test]
 fn resealed_cell_blobs_are_refused_or_answer_as_a_fresh_build() {
+    resealed_mutants_are_refused_or_right(MeshLayout::Indexed);
+}
+
+/// The same for packed cell blobs, whose corners are stored per reference slot: a slot's
+/// corners changed, a slot naming another triangle, a triangle left with no slot.
+#[test]
+fn resealed_packed_cell_blobs_are_refused_or_answer_as_a_fresh_build() {
+    resealed_mutants_are_refused_or_right(MeshLayout::Packed);
+}
+
+fn resealed_mutants_are_refused_or_right(layout: MeshLayout) {
     let (positions, triangles) = spot_patch();
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     let bounds = mesh.bounds();
     for kind in CELL_KINDS {
         let bytes = MeshIndex::build(&mesh, kind)
             .unwrap()
-            .to_blob(MeshLayout::Indexed)
+            .to_blob(layout)
             .unwrap();
         let mut mutants: Vec<(String, Vec<u8>)> = Vec::new();
         for i in 0..bytes.len() {
@@ -436,17 +455,38 @@ fn resealed_cell_blobs_are_refused_or_answer_as_a_fresh_build() {
         );
         doubled[min_x..min_x + 4].copy_from_slice(&(2.0 * x).to_le_bytes());
         mutants.push(("bounds_min.x doubled".into(), doubled));
-        // Vertices 0 and 1 swapped where they are stored.
         let encode = |p: [f32; 3]| -> Vec<u8> { p.iter().flat_map(|c| c.to_le_bytes()).collect() };
-        let (v0, v1) = (encode(positions[0]), encode(positions[1]));
-        let at = bytes
-            .windows(24)
-            .position(|w| w[..12] == v0[..] && w[12..] == v1[..]);
-        let at = at.expect("vertices 0 and 1 stored side by side");
-        let mut swapped = bytes.clone();
-        swapped[at..at + 12].copy_from_slice(&v1);
-        swapped[at + 12..at + 24].copy_from_slice(&v0);
-        mutants.push(("vertices 0 and 1 swapped".into(), swapped));
+        if layout == MeshLayout::Indexed {
+            // Vertices 0 and 1 swapped where they are stored.
+            let (v0, v1) = (encode(positions[0]), encode(positions[1]));
+            let at = bytes
+                .windows(24)
+                .position(|w| w[..12] == v0[..] && w[12..] == v1[..]);
+            let at = at.expect("vertices 0 and 1 stored side by side");
+            let mut swapped = bytes.clone();
+            swapped[at..at + 12].copy_from_slice(&v1);
+            swapped[at + 12..at + 24].copy_from_slice(&v0);
+            mutants.push(("vertices 0 and 1 swapped".into(), swapped));
+        } else {
+            // The corners of a slot moved by a whole shift in one place, and two slots' corners
+            // exchanged: damage of whole values, not bits.
+            let first = encode(positions[triangles[0][0] as usize]);
+            let at = bytes
+                .windows(12)
+                .position(|w| w == &first[..])
+                .expect("a corner of triangle 0 stored");
+            let mut moved = bytes.clone();
+            let shifted = positions[triangles[0][0] as usize].map(|c| c + 0.5 * bounds.extent().x);
+            moved[at..at + 12].copy_from_slice(&encode(shifted));
+            mutants.push(("a slot's corner moved".into(), moved));
+            let corners_start = bytes.len() - 8 - 36 * count_slots(&bytes, kind);
+            let mut exchanged = bytes.clone();
+            let (a, b) = (corners_start, corners_start + 36 * 7);
+            let tmp: Vec<u8> = exchanged[a..a + 36].to_vec();
+            exchanged.copy_within(b..b + 36, a);
+            exchanged[b..b + 36].copy_from_slice(&tmp);
+            mutants.push(("two slots' corners exchanged".into(), exchanged));
+        }
 
         let (mut refused, mut accepted) = (0, 0);
         for (what, mut damaged) in mutants {
@@ -458,7 +498,7 @@ fn resealed_cell_blobs_are_refused_or_answer_as_a_fresh_build() {
                 continue;
             };
             accepted += 1;
-            let wrong = answers_unlike_its_own_mesh(&view, &bounds);
+            let wrong = answers_unlike_its_own_mesh(&view, &damaged, &bounds);
             assert_eq!(
                 wrong, 0,
                 "{kind} {what}: accepted, and {wrong} answers differ"
@@ -467,8 +507,16 @@ fn resealed_cell_blobs_are_refused_or_answer_as_a_fresh_build() {
             assert!(MeshIndex::from_blob(&damaged).is_ok(), "{kind} {what}");
         }
         println!(
-            "{kind}: resealed mutants {refused} refused, {accepted} accepted and answering right"
+            "{kind} {layout:?}: resealed mutants {refused} refused, {accepted} accepted and answering right"
         );
         assert!(refused > 0 && accepted > 0, "{kind}: {refused} {accepted}");
     }
+}
+
+/// The reference slots of a cell blob (its header's reference count): a packed blob stores
+/// 36 bytes of corners per slot just before its 8-byte seal.
+fn count_slots(bytes: &[u8], kind: StructureKind) -> usize {
+    let (header, structure) = BlobStructure::parse(bytes).unwrap();
+    assert_eq!(structure.kind(), kind);
+    header.reference_count as usize
 }

@@ -20,6 +20,32 @@ const fn mix(x: u32, seed: u32) -> u32 {
 /// Two seeds: two independent 32-bit hashes, a 64-bit fingerprint.
 const SEEDS: [u32; 2] = [0x9E37_79B9, 0x7F4A_7C15];
 
+/// The 64-bit fingerprint of a multiset of triangle indices, less another: zero exactly when
+/// the two agree (but for damage crafted against the hashes, a chance of about 2⁻⁶⁴).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct MultisetFingerprint([u32; 2]);
+
+impl MultisetFingerprint {
+    /// Adds `tri` `times` times (`u32::MAX` times takes it away once: the sums wrap).
+    pub(super) fn add(&mut self, tri: u32, times: u32) {
+        for (sum, seed) in self.0.iter_mut().zip(SEEDS) {
+            *sum = sum.wrapping_add(mix(tri, seed).wrapping_mul(times));
+        }
+    }
+
+    /// Takes away each of `0..n` once.
+    pub(super) fn less_each_below(&mut self, n: usize) {
+        for i in (0u32..).take(n) {
+            self.add(i, u32::MAX);
+        }
+    }
+
+    /// Whether the multisets added and taken away agree.
+    pub(super) const fn is_balanced(&self) -> bool {
+        self.0[0] == 0 && self.0[1] == 0
+    }
+}
+
 /// Refuses an order (entries each below `n`) that does not name every triangle of `0..n` once
 /// plus, for each group of `k` split references of one triangle (`split_tris`: the triangle
 /// of every entry of a split reference table, grouped), that triangle `k − 1` times more: the
@@ -30,28 +56,20 @@ pub(super) fn check_order_covers(
     n: usize,
     split_tris: impl Iterator<Item = u32>,
 ) -> Result<(), BlobError> {
-    // The sums wrap; they cancel exactly when the multisets agree.
-    let [mut a, mut b] = [0u32; 2];
-    let [sa, sb] = SEEDS;
-    let mut add = |tri: u32, times: u32| {
-        a = a.wrapping_add(mix(tri, sa).wrapping_mul(times));
-        b = b.wrapping_add(mix(tri, sb).wrapping_mul(times));
-    };
+    let mut fingerprint = MultisetFingerprint::default();
     for tri in order {
-        add(tri, 1);
+        fingerprint.add(tri, 1);
     }
-    for i in (0u32..).take(n) {
-        add(i, u32::MAX); // minus once
-    }
+    fingerprint.less_each_below(n);
     // Every entry after the first of its group stands for one more copy of its triangle.
     let mut group: Option<u32> = None;
     for tri in split_tris {
         if group == Some(tri) {
-            add(tri, u32::MAX);
+            fingerprint.add(tri, u32::MAX);
         }
         group = Some(tri);
     }
-    if a == 0 && b == 0 {
+    if fingerprint.is_balanced() {
         Ok(())
     } else {
         Err(BlobError::OrderNotPermutation)

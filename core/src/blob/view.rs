@@ -9,6 +9,8 @@ use super::format::{
     SPATIAL_VERSION, TRIANGLE_BYTES,
 };
 use super::mesh::{check_indexed, check_packed};
+#[cfg(feature = "blob-cells")]
+use super::order_check::MultisetFingerprint;
 use super::reader::Reader;
 use super::split_check::{check_repeated_corners, check_slots};
 #[cfg(feature = "blob-cells")]
@@ -20,7 +22,7 @@ use crate::bvh::check::{Extent, Shape, check_boxes_last};
 use crate::bvh::split_coverage::check_split_coverage;
 use crate::cells::LeWords;
 #[cfg(feature = "blob-cells")]
-use crate::cells::ReferencePad;
+use crate::cells::{Coverage, CoverageMesh, ReferencePad};
 use crate::error::StructureError;
 use crate::error::{BlobError, BlobSection};
 #[cfg(feature = "blob-cells")]
@@ -430,38 +432,81 @@ fn check_cells<'a>(
 #[cfg(feature = "blob-cells")]
 /// Proves a cell structure answers as a fresh build of `mesh` would: every triangle inside the
 /// header's bounds (the root cell), and listed by every cell it touches as the builds decide
-/// touching. A packed mesh stores corners per reference, not per triangle, and is checked by
-/// its references' ranges only.
+/// touching. A packed mesh stores corners per reference slot: each slot is walked with its
+/// corners, every cell on the way must list its triangle with the same corners, and every
+/// triangle must be named (exactly one slot is the first of its walk per triangle), so the
+/// slots describe one mesh, which the structure covers.
 #[inline(never)]
 fn check_cell_coverage(
     structure: &BlobStructure<'_>,
     header: &BlobHeader,
     mesh: &BlobMesh<'_>,
 ) -> Result<(), BlobError> {
-    if matches!(mesh, BlobMesh::Packed { .. }) {
-        return Ok(());
-    }
     let n = header.triangle_count as usize;
     let triangle = |tri: u32| mesh.triangle(tri);
-    for tri in 0..header.triangle_count {
-        let inside = triangle(tri).is_some_and(|t| header.bounds.contains_aabb(&t.bounds()));
+    let items = match structure {
+        BlobStructure::KdTree(t) => t.items(),
+        BlobStructure::Octree(t) => t.items(),
+        BlobStructure::Grid(t) => t.items(),
+        BlobStructure::Bvh(_) => return Ok(()),
+    };
+    let (coverage_mesh, mesh_bounds) = match mesh {
+        BlobMesh::Packed { corners } => {
+            // The mesh a packed blob decodes to has the vertices its slots hold.
+            let bounds = (0..corners.len())
+                .filter_map(|slot| mesh.corners(slot, 0))
+                .fold(Aabb::EMPTY, |b, t| b.union(t.bounds()));
+            (CoverageMesh::Packed(corners), bounds)
+        }
+        _ => {
+            // The builds pad cells by the mesh's bounds (every vertex, used or not), which for
+            // an octree are not the header's (its root cube).
+            let bounds = (0..header.vertex_count)
+                .filter_map(|v| mesh.position(v))
+                .fold(Aabb::EMPTY, |b, p| b.grown(Vec3::from_array(p)));
+            (CoverageMesh::Triangles(&triangle), bounds)
+        }
+    };
+    let mut fingerprint = MultisetFingerprint::default();
+    let mut add = |tri: u32| fingerprint.add(tri, 1);
+    let mut coverage = Coverage::new(items, coverage_mesh, &mut add);
+    for i in 0..u32::try_from(coverage.subjects(n)).unwrap_or(u32::MAX) {
+        let inside = coverage
+            .subject(i)
+            .is_some_and(|(_, t)| header.bounds.contains_aabb(&t.bounds()));
         if !inside {
             return Err(BlobError::HeaderMismatch { field: "bounds" });
         }
     }
-    // The builds pad cells by the mesh's bounds (every vertex, used or not), which for an
-    // octree are not the header's (its root cube).
-    let mesh_bounds = (0..header.vertex_count)
-        .filter_map(|v| mesh.position(v))
-        .fold(Aabb::EMPTY, |b, p| b.grown(Vec3::from_array(p)));
     let pad = ReferencePad::of(&mesh_bounds);
-    let unlisted = match structure {
-        BlobStructure::KdTree(t) => t.first_unlisted(pad, n, triangle),
-        BlobStructure::Octree(t) => t.first_unlisted(pad, n, triangle),
-        BlobStructure::Grid(t) => t.first_unlisted(pad, n, triangle),
+    let uncovered = match structure {
+        BlobStructure::KdTree(t) => t.first_uncovered(pad, &mut coverage, n),
+        BlobStructure::Octree(t) => t.first_uncovered(pad, &mut coverage, n),
+        BlobStructure::Grid(t) => t.first_uncovered(pad, &mut coverage, n),
         BlobStructure::Bvh(_) => None,
     };
-    unlisted.map_or(Ok(()), |tri| Err(BlobError::UnlistedTriangle { tri }))
+    if let Some(i) = uncovered {
+        let tri = coverage.subject(i).map_or(i, |(tri, _)| tri);
+        return Err(BlobError::UnlistedTriangle { tri });
+    }
+    let named = coverage.named(n);
+    if named != n {
+        // Packed: some triangle has no slot, so no corners (the decoded mesh would make one up).
+        return Err(BlobError::CountMismatch {
+            section: BlobSection::References,
+            expected: n as u64,
+            found: named as u64,
+        });
+    }
+    if matches!(mesh, BlobMesh::Packed { .. }) {
+        // As many as the triangles, yet one named twice (two sets of corners) and another
+        // not at all: the fingerprint of the named triangles against `0..n` tells.
+        fingerprint.less_each_below(n);
+        if !fingerprint.is_balanced() {
+            return Err(BlobError::OrderNotPermutation);
+        }
+    }
+    Ok(())
 }
 
 /// Refuses collapse roles (version 5) that do not describe an eight-wide collapse of the tree,

@@ -9,7 +9,7 @@
 //! time, never an answer, and are not refused.
 
 use super::{CellNode, CellTree, ReferencePad, Words};
-use crate::math::Triangle;
+use crate::math::{Triangle, Vec3};
 
 /// Whether references `first..end` of `items`, in ascending order as builds write them, hold
 /// `tri` (a binary search: a range out of order may be judged not to).
@@ -27,26 +27,42 @@ pub(crate) fn lists<W: Words>(items: W, first: usize, end: usize, tri: u32) -> b
     false
 }
 
-/// The first triangle of `0..triangles` that reaches a leaf of `tree` not listing it, walked
-/// down from the root into the children whose cells it touches (padded by `pad`);
-/// `triangle(i)` gives triangle `i`'s corners (`None` is treated as missing: reported).
-/// `STACK` bounds the deferred children as in [`for_each_cell`](super::for_each_cell).
-pub(crate) fn first_unlisted_in_tree<T, W, const STACK: usize>(
+/// Where references `first..end` of `items`, in ascending order as builds write them, hold
+/// `tri` (a binary search, as [`lists`]).
+pub(crate) fn find<W: Words>(items: W, first: usize, end: usize, tri: u32) -> Option<usize> {
+    let (mut lo, mut hi) = (first, end);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        match items.word(mid) {
+            Some(w) if w == tri => return Some(mid),
+            Some(w) if w < tri => lo = mid + 1,
+            Some(_) => hi = mid,
+            None => return None,
+        }
+    }
+    None
+}
+
+/// The first subject of `coverage` (for `triangles` triangles) that reaches a leaf of `tree`
+/// not holding it, walked down from the root into the children whose cells its corners touch
+/// (padded by `pad`), as the builds hand a triangle down. `STACK` bounds the deferred children
+/// as in [`for_each_cell`](super::for_each_cell).
+pub(crate) fn first_uncovered_in_tree<T, W, const STACK: usize>(
     tree: &T,
-    items: W,
     pad: ReferencePad,
+    coverage: &mut Coverage<'_, W>,
     triangles: usize,
-    triangle: impl Fn(u32) -> Option<Triangle>,
 ) -> Option<u32>
 where
     T: CellTree + ?Sized,
     W: Words,
 {
-    // One stack for every triangle's walk: filling a fresh one per triangle cost more than
-    // the walk on small trees.
+    // One stack for every walk: filling a fresh one per triangle cost more than the walk on
+    // small trees.
     let mut stack = [(0u32, tree.root_cell(), 0u32); STACK];
-    (0..u32::try_from(triangles).unwrap_or(u32::MAX)).find(|&tri| {
-        let Some(t) = triangle(tri) else {
+    let subjects = coverage.subjects(triangles);
+    (0..u32::try_from(subjects).unwrap_or(u32::MAX)).find(|&i| {
+        let Some((tri, t)) = coverage.subject(i) else {
             return true;
         };
         let bounds = t.bounds();
@@ -61,7 +77,7 @@ where
             match tree.cell_node(node) {
                 Some(CellNode::Leaf { first, count }) => {
                     let (first, end) = (first as usize, first as usize + count as usize);
-                    if !lists(items, first, end, tri) {
+                    if !coverage.holds(i, tri, first, end) {
                         return true;
                     }
                 }
@@ -81,4 +97,116 @@ where
         }
         false
     })
+}
+
+/// The subjects and the leaf test that prove a cell structure's coverage: what
+/// [`first_uncovered_in_tree`] (or a grid's walk over its cells) needs, for a blob's indexed
+/// mesh or for its packed corners.
+pub(crate) struct Coverage<'m, W: Words> {
+    items: W,
+    mesh: CoverageMesh<'m>,
+    /// Packed corners: the walk so far (subject, its triangle, the smallest slot listing it).
+    current: (u32, u32, usize),
+    /// Packed corners: how many slots were the smallest listing their triangle on their own
+    /// walk, and each one's triangle handed to `named` (every triangle once, in a sound blob).
+    firsts: usize,
+    named: &'m mut dyn FnMut(u32),
+}
+
+/// Where the corners a coverage walk starts from come from.
+pub(crate) enum CoverageMesh<'m> {
+    /// Triangle `i` is subject `i`.
+    Triangles(&'m dyn Fn(u32) -> Option<Triangle>),
+    /// Slot `i` (naming `items[i]`) is subject `i`, walked with that slot's 36 bytes of
+    /// corners, which every slot listing the same triangle on the way must repeat.
+    Packed(&'m [[u8; 36]]),
+}
+
+impl<'m, W: Words> Coverage<'m, W> {
+    /// The coverage proof of `items` over `mesh`; with packed corners, `named` is handed the
+    /// triangle of every slot that stands for its triangle (see [`Coverage::named`]).
+    pub(crate) fn new(items: W, mesh: CoverageMesh<'m>, named: &'m mut dyn FnMut(u32)) -> Self {
+        Self {
+            items,
+            mesh,
+            current: (u32::MAX, u32::MAX, usize::MAX),
+            firsts: 0,
+            named,
+        }
+    }
+
+    /// How many subjects there are, for `triangles` triangles.
+    pub(crate) fn subjects(&self, triangles: usize) -> usize {
+        match self.mesh {
+            CoverageMesh::Triangles(_) => triangles,
+            CoverageMesh::Packed(corners) => corners.len(),
+        }
+    }
+
+    /// Subject `i`: its triangle and corners.
+    pub(crate) fn subject(&self, i: u32) -> Option<(u32, Triangle)> {
+        match self.mesh {
+            CoverageMesh::Triangles(triangle) => Some((i, triangle(i)?)),
+            CoverageMesh::Packed(corners) => {
+                let tri = self.items.word(i as usize)?;
+                Some((tri, packed_triangle(corners.get(i as usize)?)))
+            }
+        }
+    }
+
+    /// Whether references `first..end` hold subject `i`, triangle `tri`: list it, and (packed)
+    /// with the same corners.
+    pub(crate) fn holds(&mut self, i: u32, tri: u32, first: usize, end: usize) -> bool {
+        match self.mesh {
+            CoverageMesh::Triangles(_) => lists(self.items, first, end, tri),
+            CoverageMesh::Packed(corners) => {
+                let Some(slot) = find(self.items, first, end, tri) else {
+                    return false;
+                };
+                if i != self.current.0 {
+                    self.finish_walk();
+                    self.current = (i, tri, slot);
+                }
+                self.current.2 = self.current.2.min(slot);
+                corners.get(slot).is_some() && corners.get(slot) == corners.get(i as usize)
+            }
+        }
+    }
+
+    /// After a walk over every subject that found no uncovered one: how many of `triangles`
+    /// triangles the subjects named (indexed: all; packed: the slots that were the smallest
+    /// slot listing their triangle on their own walk, one per triangle whose slots agree; a
+    /// triangle given two sets of corners in cells apart counts twice, which the triangles
+    /// handed to `named`, compared with `0..triangles`, tell).
+    pub(crate) fn named(mut self, triangles: usize) -> usize {
+        match self.mesh {
+            CoverageMesh::Triangles(_) => triangles,
+            CoverageMesh::Packed(_) => {
+                self.finish_walk();
+                self.firsts
+            }
+        }
+    }
+
+    fn finish_walk(&mut self) {
+        let (subject, tri, first) = self.current;
+        if subject as usize == first {
+            self.firsts += 1;
+            (self.named)(tri);
+        }
+    }
+}
+
+/// The triangle of 36 bytes of packed corners (three little-endian `f32` points).
+fn packed_triangle(bytes: &[u8; 36]) -> Triangle {
+    let mut w = [0.0f32; 9];
+    for (x, word) in w.iter_mut().zip(bytes.chunks_exact(4)) {
+        *x = f32::from_le_bytes(word.try_into().unwrap_or([0; 4]));
+    }
+    let [ax, ay, az, bx, by, bz, cx, cy, cz] = w;
+    Triangle::new(
+        Vec3::new(ax, ay, az),
+        Vec3::new(bx, by, bz),
+        Vec3::new(cx, cy, cz),
+    )
 }

@@ -134,7 +134,9 @@ pub enum BlobError {
     /// named twice and another never), found without memory by comparing a fingerprint of the
     /// order with that of `0..n`; the blob's checksum was recomputed over the damage. For a
     /// tree with spatial splits: the order does not name every triangle once plus each split
-    /// triangle as often again as its split references say.
+    /// triangle as often again as its split references say. For a packed k-d tree, octree or
+    /// grid blob: its reference slots do not give every triangle one set of corners (one
+    /// triangle has two, in cells apart, and another none).
     OrderNotPermutation,
     /// An entry of a BVH's split references (version 4) is out of order, out of range, names
     /// another triangle than its slot holds, or has another box than its leaf; or the table
@@ -149,9 +151,12 @@ pub enum BlobError {
     /// that. Fix: bake again.
     BadCollapsePlan,
     /// A k-d tree, octree or grid cell that triangle `tri` touches does not list it, so
-    /// queries would miss it there (or a triangle lies outside the header's bounds: then
-    /// [`BlobError::HeaderMismatch`] with field `bounds`). No encoder writes that: builds list a
-    /// triangle in every cell it touches, in ascending order. Fix: bake again.
+    /// queries would miss it there, or (a packed blob, which stores corners per reference)
+    /// lists it with other corners (a triangle outside the header's bounds is
+    /// [`BlobError::HeaderMismatch`] with field `bounds`; a packed blob naming fewer triangles
+    /// than its header counts, [`BlobError::CountMismatch`] of its references). No encoder
+    /// writes that: builds list a triangle in every cell it touches, in ascending order. Fix:
+    /// bake again.
     UnlistedTriangle {
         /// The triangle index.
         tri: u32,

@@ -3,10 +3,8 @@
 use super::GridLayout;
 use crate::cells::{CellStats, Words};
 #[cfg(feature = "blob-cells")]
-use crate::cells::{ReferencePad, lists};
+use crate::cells::{Coverage, ReferencePad};
 use crate::error::StructureError;
-#[cfg(feature = "blob-cells")]
-use crate::math::Triangle;
 
 /// A uniform grid: its [`GridLayout`] cut into cells, each listing the triangles it touches.
 ///
@@ -86,26 +84,26 @@ impl<W: Words> Grid<W> {
     }
 
     #[cfg(feature = "blob-cells")]
-    /// The first triangle of `0..triangles` (corners from `triangle`, cells padded by `pad`, the
-    /// build's pad: [`ReferencePad::of`] the mesh bounds) that touches a cell
-    /// not listing it, as the build decides touching; `None` when every cell lists every
-    /// triangle it touches.
-    pub(crate) fn first_unlisted(
+    /// The first subject of `coverage` (over `triangles` triangles, cells padded by `pad`, the
+    /// build's pad) that touches a cell not holding it; `None` when every cell holds every
+    /// subject that touches it.
+    pub(crate) fn first_uncovered<C: Words>(
         &self,
         pad: ReferencePad,
+        coverage: &mut Coverage<'_, C>,
         triangles: usize,
-        triangle: impl Fn(u32) -> Option<Triangle>,
     ) -> Option<u32> {
-        (0..u32::try_from(triangles).unwrap_or(u32::MAX)).find(|&tri| {
-            let Some(t) = triangle(tri) else {
+        let subjects = coverage.subjects(triangles);
+        (0..u32::try_from(subjects).unwrap_or(u32::MAX)).find(|&i| {
+            let Some((tri, t)) = coverage.subject(i) else {
                 return true;
             };
             let mut missing = false;
             self.layout.for_each_cell_touched(pad, &t, |c| {
-                let listed = self
-                    .cell_range(c)
-                    .is_some_and(|(first, n)| lists(self.items, first, first + n, tri));
-                missing |= !listed;
+                missing = missing
+                    || !self
+                        .cell_range(c)
+                        .is_some_and(|(first, n)| coverage.holds(i, tri, first, first + n));
             });
             missing
         })

@@ -147,17 +147,17 @@ impl<N: Words, W: Words> Octree<N, W> {
     }
 
     #[cfg(feature = "blob-cells")]
-    /// The first triangle of `0..triangles` (corners from `triangle`, cells padded by `pad`, the
-    /// build's pad: [`ReferencePad::of`] the mesh bounds) that reaches a leaf not
-    /// listing it, handed down as the build hands references to the children it touches;
-    /// `None` when every leaf lists every triangle that reaches it.
-    pub(crate) fn first_unlisted(
+    /// The first subject of `coverage` (over `triangles` triangles, cells padded by `pad`, the
+    /// build's pad: [`ReferencePad::of`] the mesh bounds) that reaches a leaf not holding it,
+    /// handed down as the build hands references to the children it touches; `None` when
+    /// every leaf holds every subject that reaches it.
+    pub(crate) fn first_uncovered<C: Words>(
         &self,
         pad: ReferencePad,
+        coverage: &mut cells::Coverage<'_, C>,
         triangles: usize,
-        triangle: impl Fn(u32) -> Option<crate::math::Triangle>,
     ) -> Option<u32> {
-        cells::first_unlisted_in_tree::<_, _, STACK>(self, self.items, pad, triangles, triangle)
+        cells::first_uncovered_in_tree::<_, _, STACK>(self, pad, coverage, triangles)
     }
 
     /// Nodes, leaf cells, empty cells, references, depth.

@@ -166,6 +166,7 @@ fn scene_of(view: &BlobView<'_>, items: &[u32]) -> Result<CellScene, BlobError> 
                     .map_or(PackedTriangle::EMPTY, |t| PackedTriangle::new(&t))
             })
             .collect();
+        check_one_corner_set(n, items, &packed)?;
         unshared_mesh(n, items, &packed)
     } else {
         let mut positions = vec![[0.0f32; 3]; v];
@@ -205,4 +206,38 @@ fn encode(
     let n = encode_structure_into(source, mesh, layout, &mut out)?;
     out.truncate(n);
     Ok(out)
+}
+
+/// Refuses packed references that do not give each of `triangles` triangles exactly one set
+/// of corners: exactly, with a mark per triangle, what the view checked by fingerprint.
+fn check_one_corner_set(
+    triangles: usize,
+    items: &[u32],
+    packed: &[PackedTriangle],
+) -> Result<(), BlobError> {
+    let mut first: Vec<Option<usize>> = vec![None; triangles];
+    for (slot, &tri) in items.iter().enumerate() {
+        match first.get_mut(tri as usize) {
+            Some(Some(at)) => {
+                let same = |p: Option<&PackedTriangle>| {
+                    p.map(|t| [t.a, t.b, t.c].map(|v| v.map(f32::to_bits)))
+                };
+                if same(packed.get(*at)) != same(packed.get(slot)) {
+                    return Err(BlobError::OrderNotPermutation);
+                }
+            }
+            Some(unseen) => *unseen = Some(slot),
+            None => return Err(BlobError::OrderNotPermutation),
+        }
+    }
+    let named = first.iter().filter(|f| f.is_some()).count();
+    if named == triangles {
+        Ok(())
+    } else {
+        Err(BlobError::CountMismatch {
+            section: crate::error::BlobSection::References,
+            expected: triangles as u64,
+            found: named as u64,
+        })
+    }
 }
