@@ -7,9 +7,9 @@ use core::ops::ControlFlow;
 
 use libfuzzer_sys::fuzz_target;
 use meshq::advanced::BlobHeader;
-use meshq::blob::BlobView;
 use meshq::advanced::BvhNode;
 use meshq::advanced::PackedTriangle;
+use meshq::blob::BlobView;
 use meshq::math::{Aabb, Ray, Vec3};
 use meshq::{MeshBvh, MeshQuery, Traverse};
 

@@ -24,12 +24,20 @@ fuzz_target!(|data: &[u8]| {
         match format {
             MeshFormat::Stl => {
                 if let Some(count) = binary_stl_count(file) {
-                    assert_eq!(mesh.triangles.len() as u64, count, "a binary STL read whole");
+                    assert_eq!(
+                        mesh.triangles.len() as u64,
+                        count,
+                        "a binary STL read whole"
+                    );
                 }
             }
             MeshFormat::Ply => {
                 if let Some(vertices) = declared_ply_vertices(file) {
-                    assert_eq!(mesh.positions.len() as u64, vertices, "every PLY vertex read");
+                    assert_eq!(
+                        mesh.positions.len() as u64,
+                        vertices,
+                        "every PLY vertex read"
+                    );
                 }
             }
             MeshFormat::Obj => {}
