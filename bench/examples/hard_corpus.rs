@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use meshq_tests::hard_inputs::{Mesh, capsule, cuboid, slivers, sphere, tube};
+use meshq_tests::hard_inputs::{Mesh, capsule, cuboid, range_scan, slivers, sphere, tube};
 
 fn obj((positions, triangles): &Mesh) -> String {
     let mut text = String::new();
@@ -37,6 +37,8 @@ fn main() -> std::io::Result<()> {
         ("slivers-12", slivers(12)),
         ("sphere-stretched-6", sphere(2, [6.0, 1.0, 1.0])),
         ("sphere-stretched-10", sphere(3, [10.0, 1.0, 0.5])),
+        // The 100k-triangle open scan the issue times (99,458 triangles).
+        ("scan-224", range_scan(224)),
     ];
     for (name, mesh) in &corpus {
         let path = dir.join(format!("{name}.obj"));

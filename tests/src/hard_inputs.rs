@@ -1,6 +1,6 @@
 //! Meshes remeshing finds hard, made here: capsules with long thin side strips and
-//! high-valence poles, an open tube of strips, boxes, stretched spheres and a patch of
-//! slivers.
+//! high-valence poles, an open tube of strips, boxes, stretched spheres, a patch of slivers
+//! and a range scan.
 
 use meshq::Vec3;
 
@@ -151,6 +151,42 @@ pub fn slivers(side: u32) -> Mesh {
             let v = j * row + i;
             triangles.push([v, v + 1, v + row + 1]);
             triangles.push([v, v + row + 1, v + row]);
+        }
+    }
+    (positions, triangles)
+}
+
+/// An open range scan of `side × side` samples, as a scanner sees a surface from above: a
+/// height field over a grid of jittered samples (each moved up to 0.2 of the spacing, which
+/// never folds a triangle over), cut into triangles along the grid. Hills give gentle and
+/// steep slopes, and a step of 0.3 along a slanted line, a jump edge, is spanned by slivers
+/// under a degree standing nearly upright, as scans of an object's silhouette have.
+/// `2 · (side − 1)²` triangles, one boundary loop, every triangle facing up.
+pub fn range_scan(side: u32) -> Mesh {
+    let mut state = 0x2545_F491_u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32 - 0.5
+    };
+    let step = 1.0 / side as f32;
+    let mut positions = Vec::with_capacity((side * side) as usize);
+    for j in 0..side {
+        for i in 0..side {
+            let x = (i as f32 + 0.4 * next()) * step;
+            let y = (j as f32 + 0.4 * next()) * step;
+            let hills = 0.15 * (6.0 * x).sin() * (4.0 * y).cos();
+            let jump = if x + 0.3 * y > 0.7 { 0.3 } else { 0.0 };
+            positions.push([x, y, hills + jump]);
+        }
+    }
+    let mut triangles = Vec::with_capacity(2 * (side as usize - 1).pow(2));
+    for j in 0..side - 1 {
+        for i in 0..side - 1 {
+            let v = j * side + i;
+            triangles.push([v, v + 1, v + side + 1]);
+            triangles.push([v, v + side + 1, v + side]);
         }
     }
     (positions, triangles)
