@@ -7,7 +7,7 @@ use meshq::collide::PairBudget;
 use meshq::mesh::MeshRef;
 use meshq::owned::Remeshed;
 use meshq::remesh::{EdgeTarget, RemeshConfig};
-use meshq_tests::hard_inputs::{Mesh, capsule, overlap};
+use meshq_tests::hard_inputs::{Mesh, capsule, crossing, overlap};
 use meshq_tests::load_mesh;
 
 type P = [f64; 3];
@@ -205,5 +205,36 @@ fn the_report_scales_with_the_mesh() {
             (r - relative[1]).abs() <= 1e-6 * relative[1],
             "{relative:?}"
         );
+    }
+}
+
+#[test]
+fn the_report_stays_within_a_budget_linear_in_the_meshes_at_every_size() {
+    // The two families of separate triangles no box separates, at 1k, 10k and 50k: the tests
+    // made are counted against the default budget, which grows with the triangles, not their
+    // square (a full report would take a test per triangle per sample).
+    for (family, make) in [
+        ("overlap", overlap as fn(u32) -> Mesh),
+        ("crossing", crossing as fn(u32) -> Mesh),
+    ] {
+        for n in [1_000, 10_000, 50_000] {
+            let input = make(n);
+            let out = remeshed(&input, &RemeshConfig::default());
+            let mesh = MeshRef::new(&input.0, &input.1).validate().unwrap();
+            let budget = PairBudget::for_triangles(mesh.triangle_count(), out.triangles.len());
+            let report = out.distance_to(&mesh, budget).unwrap();
+            let what = format!("{family} {n}: {report:?}");
+            assert!(report.tested as usize <= budget.max_tests, "{what}");
+            assert!(
+                budget.max_tests <= (1 << 20) + 256 * (input.1.len() + out.triangles.len()),
+                "{what}"
+            );
+            assert!(report.measured > 0, "{what}");
+            assert_eq!(
+                report.samples,
+                4 * (input.1.len() + out.triangles.len()) as u64,
+                "{what}"
+            );
+        }
     }
 }
