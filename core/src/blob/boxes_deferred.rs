@@ -9,6 +9,10 @@
 
 use super::view::{RawStructure, check_before_boxes, check_mesh, sections};
 use super::{BlobMesh, BlobStructure, BlobTree, BlobView};
+use alloc::vec;
+
+use super::split_check::check_slots;
+use crate::bvh::TreeArrays;
 use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::error::BlobError;
 
@@ -49,7 +53,16 @@ impl<'a> BoxesUnchecked<'a> {
             )
             .map(|shape| (shape, None))
         };
-        check_before_boxes(&header, &mut tree, Some(&mesh), topology, roles_later)?;
+        let n = header.triangle_count as usize;
+        let slots = |t: &BlobTree<'_>| counted_or_fingerprinted(t, n);
+        check_before_boxes(
+            &header,
+            &mut tree,
+            Some(&mesh),
+            topology,
+            slots,
+            roles_later,
+        )?;
         Ok(Self(BlobView {
             header,
             structure: BlobStructure::Bvh(tree),
@@ -62,4 +75,28 @@ impl<'a> BoxesUnchecked<'a> {
     pub(crate) const fn view(&self) -> &BlobView<'a> {
         &self.0
     }
+}
+
+/// The order check of [`BlobView::parse`] for a loader, which has memory to spare: a tree
+/// without split references must name every triangle once, so count that exactly, which is
+/// cheaper than the fingerprint and passes only where it passes; when the count fails, the
+/// fingerprint gives `parse`'s verdict (it may pass a crafted order, which the loader's exact
+/// count after decoding then refuses, as before).
+fn counted_or_fingerprinted(tree: &BlobTree<'_>, n: usize) -> Result<(), BlobError> {
+    if tree.split_refs().is_empty() && tree.order.len() == n {
+        let mut seen = vec![false; n];
+        let once = tree
+            .order_entries()
+            .all(|tri| match seen.get_mut(tri as usize) {
+                Some(s) if !*s => {
+                    *s = true;
+                    true
+                }
+                _ => false,
+            });
+        if once {
+            return Ok(());
+        }
+    }
+    check_slots(tree, tree.order_entries(), n)
 }

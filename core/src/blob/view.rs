@@ -360,6 +360,7 @@ fn check_structure<'a>(
                 &mut tree,
                 mesh,
                 |t| check_boxes_last(t, mesh, Extent::Exact),
+                |t| check_slots(t, t.order_entries(), header.triangle_count as usize),
                 false,
             )? {
                 return Err(problem.into());
@@ -526,8 +527,9 @@ pub(super) fn check_roles(tree: &BlobTree<'_>) -> Result<(), BlobError> {
 /// the two report the same first problem of a blob: the config, every order entry below the
 /// triangle count, the topology and leaf ranges (`walk`, which returns the tree's shape and,
 /// when it checks the boxes too, their first problem, held for the caller to report next),
-/// the order's fingerprint against the split references, the corners of split triangles, the
-/// collapse roles (unless `roles_later`: a loader whose collapse walks them next, failing as
+/// the order against the split references (`slots`: their fingerprint, or an exact count that
+/// falls back to it when it fails, so the error is the same), the corners of split triangles,
+/// the collapse roles (unless `roles_later`: a loader whose collapse walks them next, failing as
 /// [`check_roles`] does).
 ///
 /// The walk is the caller's, not a flag: each caller's walk is then the only one in its code,
@@ -537,6 +539,7 @@ pub(super) fn check_before_boxes(
     tree: &mut BlobTree<'_>,
     mesh: Option<&BlobMesh<'_>>,
     walk: impl FnOnce(&BlobTree<'_>) -> Result<(Shape, Option<StructureError>), StructureError>,
+    slots: impl FnOnce(&BlobTree<'_>) -> Result<(), BlobError>,
     roles_later: bool,
 ) -> Result<Option<StructureError>, BlobError> {
     if header.config.bvh().is_none_or(|c| c.check().is_err()) {
@@ -550,7 +553,7 @@ pub(super) fn check_before_boxes(
     }
     let (shape, held) = walk(tree)?;
     tree.depth = shape.depth;
-    check_slots(&*tree, tree.order_entries(), header.triangle_count as usize)?;
+    slots(tree)?;
     check_repeated_corners(&*tree, mesh)?;
     if !roles_later {
         check_roles(tree)?;
