@@ -105,8 +105,9 @@ where
 pub(crate) struct Coverage<'m, W: Words> {
     items: W,
     mesh: CoverageMesh<'m>,
-    /// Packed corners: the walk so far (subject, its triangle, the smallest slot listing it).
-    current: (u32, u32, usize),
+    /// Packed corners: the walk so far (subject, its triangle, the smallest slot listing it),
+    /// once a walk has begun.
+    current: Option<(u32, u32, usize)>,
     /// Packed corners: how many slots were the smallest listing their triangle on their own
     /// walk, and each one's triangle handed to `named` (every triangle once, in a sound blob).
     firsts: usize,
@@ -129,7 +130,7 @@ impl<'m, W: Words> Coverage<'m, W> {
         Self {
             items,
             mesh,
-            current: (u32::MAX, u32::MAX, usize::MAX),
+            current: None,
             firsts: 0,
             named,
         }
@@ -163,11 +164,13 @@ impl<'m, W: Words> Coverage<'m, W> {
                 let Some(slot) = find(self.items, first, end, tri) else {
                     return false;
                 };
-                if i != self.current.0 {
-                    self.finish_walk();
-                    self.current = (i, tri, slot);
+                match &mut self.current {
+                    Some((subject, _, first)) if *subject == i => *first = (*first).min(slot),
+                    _ => {
+                        self.finish_walk();
+                        self.current = Some((i, tri, slot));
+                    }
                 }
-                self.current.2 = self.current.2.min(slot);
                 corners.get(slot).is_some() && corners.get(slot) == corners.get(i as usize)
             }
         }
@@ -189,7 +192,10 @@ impl<'m, W: Words> Coverage<'m, W> {
     }
 
     fn finish_walk(&mut self) {
-        let (subject, tri, first) = self.current;
+        // No sentinel values: on 32-bit targets `u32::MAX as usize` is `usize::MAX`.
+        let Some((subject, tri, first)) = self.current else {
+            return;
+        };
         if subject as usize == first {
             self.firsts += 1;
             (self.named)(tri);
