@@ -170,9 +170,13 @@ fn walk<A: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
                     if inside & (1 << (lane % 4)) != 0 {
                         continue;
                     }
-                    let t = mesh
-                        .corners(slot, tri)
-                        .ok_or(StructureError::TriangleOutOfRange { node: index, tri })?;
+                    // A triangle the source does not have is a problem of the mesh, not of
+                    // the tree's shape: held with the box problems, so a blob's order problems
+                    // (which a packed mesh's missing corners follow from) come first.
+                    let Some(t) = mesh.corners(slot, tri) else {
+                        boxes.report(StructureError::TriangleOutOfRange { node: index, tri })?;
+                        continue;
+                    };
                     // A reference of a split triangle holds only its part of it: its leaf
                     // box need only meet the triangle's.
                     if level == CheckLevel::Full
