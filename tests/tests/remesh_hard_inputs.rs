@@ -192,8 +192,6 @@ fn an_open_range_scan_of_slivers_remeshes_clean_with_creases_kept() {
 /// The same scan without creases kept (the jump edge, ten target edges high, remeshed as
 /// smooth surface), and with them at twice the mean edge.
 #[test]
-#[ignore = "known defect (issue 65): a triangle beside the jump edge ends facing against the \
-            input (the fold family of the capsule and the stretched sphere)"]
 fn an_open_range_scan_of_slivers_remeshes_clean() {
     range_scan_remeshes_clean(None, 1.0);
     range_scan_remeshes_clean(None, 2.0);
@@ -250,7 +248,6 @@ fn refining_the_hard_corpus_stays_clean_and_in_proportion() {
 /// A sphere stretched ten to one at the mean edge length, whose tips curve more sharply than
 /// one target edge spans.
 #[test]
-#[ignore = "known defect (issue 65): a triangle near a tip ends facing against the input"]
 fn a_stretched_sphere_remeshes_clean_at_the_mean_edge_length() {
     let input = sphere(3, [10.0, 1.0, 0.5]);
     let out = remesh(&input, &RemeshConfig::default()).unwrap();
@@ -260,8 +257,6 @@ fn a_stretched_sphere_remeshes_clean_at_the_mean_edge_length() {
 
 /// The capsule of 64 sections (8,192 triangles, side strips 200 times longer than wide).
 #[test]
-#[ignore = "known defect (issue 65): flips between vertices of one cross-section ring leave \
-            flaps lying across the tube"]
 fn the_capsule_of_64_sections_remeshes_clean() {
     let input = capsule(64, 0.05, 1.0);
     let out = remesh(&input, &RemeshConfig::default()).unwrap();
@@ -272,7 +267,6 @@ fn the_capsule_of_64_sections_remeshes_clean() {
 /// Random small meshes (stretched, jittered spheres) at random targets from a third to three
 /// times the mean edge: every result is clean.
 #[test]
-#[ignore = "known defect (issue 65): coarsening case 0 leaves a triangle facing against the input"]
 fn random_small_meshes_at_random_targets_stay_clean() {
     let mut state = 0x9E37_79B9_u32;
     let mut next = || {

@@ -21,6 +21,8 @@ mod relax;
 mod remesher;
 mod report;
 mod shape;
+mod smooth;
+mod surface;
 
 pub use capacity::RemeshCapacity;
 #[cfg(feature = "alloc")]

@@ -9,9 +9,10 @@
 use glam::Vec3;
 
 use super::half_edges::HalfEdgeMesh;
-use super::moves::{closest_on, is_free, moves_safely};
+use super::moves::{is_free, moves_safely};
 use super::report::{RemeshObserver, RemeshStep};
 use super::shape::smallest_angle_sine;
+use super::surface::closest_on;
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
 
@@ -133,8 +134,10 @@ fn better_place<Q: MeshQuery + ?Sized>(
         }
     }
     let (goal, _) = best?;
-    let to = closest_on(reference, goal, p)?;
-    (ring_smallest_sine(mesh, v, to) > now && moves_safely(mesh, v, to)).then_some(to)
+    let mut hint = None;
+    let to = closest_on(reference, goal, p, &mut hint)?;
+    (ring_smallest_sine(mesh, v, to) > now && moves_safely(mesh, reference, v, to, hint))
+        .then_some(to)
 }
 
 /// How far a directional try goes, as a fraction of the mean distance to the neighbours.

@@ -5,10 +5,11 @@ use glam::Vec3;
 
 use super::config::RemeshConfig;
 use super::half_edges::HalfEdgeMesh;
-use super::moves::{closest_on, is_free, moves_safely};
 use super::relax::relax_small_angles;
 use super::report::{Progress, RemeshObserver, RemeshReport, RemeshStep};
-use super::shape::{FLATTEST, flat_enough, flatness, smallest_angle_sine};
+use super::shape::{FLATTEST, flat_enough, flatness, normal_of, smallest_angle_sine};
+use super::smooth::smooth;
+use super::surface::{Hint, closest_on, faces_input};
 use crate::error::{RemeshBuffer, RemeshError};
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
@@ -24,24 +25,34 @@ pub(crate) fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 /// `reference` answers closest points for (build a BVH over the input mesh before editing and
 /// pass it with the input: `bvh.with(&input)`).
 ///
-/// Each iteration splits edges longer than `4/3·L` at their midpoints, always across the
-/// longest side of both their triangles (longest-edge bisection), collapses edges
-/// shorter than `4/5·L` unless that would make an edge longer than `4/3·L`, turn a triangle
-/// over, or change the topology, flips edges that bring the four vertices' valences nearer
-/// 6 (4 on the boundary), moves every free vertex toward the area-weighted centroid of its
-/// one-ring within its tangent plane, and projects the moved vertices onto `reference`.
-/// After the iterations, edges are flipped where that widens the pair's smallest angle
-/// without worsening valences, and the vertices of triangles with an angle under about 40°
-/// are moved, one at a time, where the angles around them are wider (see
+/// Each iteration splits edges longer than `4/3·L`, always across the longest side of both
+/// their triangles (longest-edge bisection), at the input's point nearest the midpoint
+/// (the midpoint itself on boundaries and creases), collapses edges shorter than `4/5·L`
+/// (to the input's point nearest their midpoint) unless that would make an edge longer
+/// than `4/3·L`, turn a triangle over, or change the topology, flips edges that bring the
+/// four vertices' valences nearer 6 (4 on the boundary), and moves every free vertex, one
+/// after the other, to the input's point nearest the area-weighted centroid of its
+/// one-ring (taken within its tangent plane, every centroid from the positions before the
+/// pass) where the move is safe (see below). After the iterations, edges are flipped where that widens the pair's smallest
+/// angle without worsening valences, and the vertices of triangles with an angle under
+/// about 40° are moved, one at a time, where the angles around them are wider (see
 /// [`RemeshReport::relaxed`]).
+///
+/// Every edit keeps two rules, and is refused (the edge stays, the vertex stays) where it
+/// would break one: no triangle turns over against the triangles it replaces or flattens
+/// below about 3° unless it was flatter already, and every triangle faces the way the input
+/// triangle nearest its centroid does (their normals less than 90° apart). The input obeys
+/// the second rule, so the result does too, even where the target is as long as the part
+/// is thick. A vertex lies on the input, except the midpoint of a split whose point on the
+/// input was refused, until a smoothing move puts it there.
 ///
 /// Boundary vertices never move and are never removed, so boundaries keep their shape
 /// (their edges are still split). Crease edges are never flipped; a vertex inside a nearly
 /// straight crease line (turning by at most about 20°) may only be collapsed into its
 /// crease neighbour or, in the final pass, slide along the line; corners where creases meet
 /// and sharp bends stay. So creases keep their shape too. Vertices no triangle uses are
-/// dropped first. `positions_scratch` holds the smoothed positions: at least one entry
-/// per vertex the buffers can hold.
+/// dropped first. `positions_scratch` holds the smoothing goals: at least one entry per
+/// vertex the buffers can hold.
 ///
 /// The result depends only on the inputs: every operation runs in a fixed order with plain
 /// `f32` arithmetic, so it is the same on every target.
@@ -121,21 +132,18 @@ pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     };
     let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
     for _ in 0..config.iterations {
-        report.splits += split_long_edges(mesh, high, observer)?;
+        report.splits += split_long_edges(mesh, reference, high, observer)?;
         // Only splits add: the counts peak here.
         report.peak_vertices = report.peak_vertices.max(mesh.vertex_count());
         report.peak_triangles = report.peak_triangles.max(mesh.triangle_count());
-        report.collapses += collapse_short_edges(mesh, low, high, observer);
-        report.flips += equalize_valences(mesh, observer);
-        smooth_tangentially(mesh, positions_scratch);
-        observer.edited(RemeshStep::Smooth, mesh);
-        project(mesh, reference, positions_scratch);
-        observer.edited(RemeshStep::Project, mesh);
+        report.collapses += collapse_short_edges(mesh, reference, low, high, observer);
+        report.flips += equalize_valences(mesh, reference, observer);
+        smooth(mesh, reference, positions_scratch, observer);
         report.iterations += 1;
         observer.iterated(&report);
     }
     if config.iterations > 0 {
-        report.flips += improve_angles(mesh, observer);
+        report.flips += improve_angles(mesh, reference, observer);
         report.relaxed = relax_small_angles(mesh, reference, low, observer);
     }
     Ok(report)
@@ -194,8 +202,9 @@ fn terminal_edge(mesh: &HalfEdgeMesh<'_>, he: u32) -> u32 {
 /// strip, a scan's slivers) refines into about as many triangles as its area needs. Splitting
 /// any long edge at its midpoint instead joins the midpoint to the opposite corner, which on
 /// a skinny triangle is another long edge from that same corner, and the count runs away.
-fn split_long_edges<O: RemeshObserver + ?Sized>(
+fn split_long_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
     high: f32,
     observer: &mut O,
 ) -> Result<usize, RemeshError> {
@@ -211,8 +220,11 @@ fn split_long_edges<O: RemeshObserver + ?Sized>(
             continue;
         }
         let edge = terminal_edge(mesh, he);
-        let (a, b) = mesh.ends(edge);
-        let mid = (mesh.position(a) + mesh.position(b)) * 0.5;
+        let Some(mid) = split_point(mesh, reference, edge) else {
+            // Refused: triangle `t` keeps its long edge (it is not visited again in this pass).
+            t += 1;
+            continue;
+        };
         mesh.split_edge(edge, mid)?;
         splits += 1;
         observer.edited(RemeshStep::Split, mesh);
@@ -221,10 +233,59 @@ fn split_long_edges<O: RemeshObserver + ?Sized>(
     Ok(splits)
 }
 
+/// Where to split the edge of `he`, or `None` to leave it whole. An edge inside the surface
+/// is split at the input's point nearest its midpoint, so the new vertex lies on the input
+/// as every other one does, when [`splits_safely`] there; otherwise, and on a boundary or
+/// crease edge (whose midpoint stays on its line), at its midpoint when that is safe (a
+/// later smoothing pass puts such a vertex on the input).
+fn split_point<Q: MeshQuery + ?Sized>(
+    mesh: &HalfEdgeMesh<'_>,
+    reference: &Q,
+    he: u32,
+) -> Option<Vec3> {
+    let (a, b) = mesh.ends(he);
+    let middle = (mesh.position(a) + mesh.position(b)) * 0.5;
+    let on_line = mesh.twin(he).is_none() || mesh.is_crease(he);
+    let mut hint = None;
+    let on_input = if on_line {
+        None
+    } else {
+        closest_on(reference, middle, mesh.position(a), &mut hint).filter(|&p| p != middle)
+    };
+    [on_input, Some(middle)]
+        .into_iter()
+        .flatten()
+        .find(|&at| splits_safely(mesh, reference, he, at, hint))
+}
+
+/// Whether splitting the edge of `he` at `at` makes four (two on the boundary) triangles
+/// that each face the way the triangle they halve does and face the input (see
+/// [`faces_input`]). A half lies in or near the triangle it halves, but its centroid does
+/// not lie over the same input: across a thin part, the input nearest it can be the far
+/// side.
+fn splits_safely<Q: MeshQuery + ?Sized>(
+    mesh: &HalfEdgeMesh<'_>,
+    reference: &Q,
+    he: u32,
+    at: Vec3,
+    mut hint: Hint,
+) -> bool {
+    let (a, b) = mesh.ends(he);
+    [Some(he), mesh.twin(he)].into_iter().flatten().all(|side| {
+        let corners = mesh.triangle(side / 3);
+        let whole = normal_of(corners.map(|x| mesh.position(x)));
+        [a, b].into_iter().all(|end| {
+            let half = corners.map(|x| if x == end { at } else { mesh.position(x) });
+            dot(normal_of(half), whole) > 0.0 && faces_input(reference, half, &mut hint)
+        })
+    })
+}
+
 /// Collapses edges shorter than `low` where [`stays_short`] and [`keeps_orientation`]
 /// allow, each in a direction that removes a vertex [`HalfEdgeMesh::may_remove`] allows.
-fn collapse_short_edges<O: RemeshObserver + ?Sized>(
+fn collapse_short_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
     low: f32,
     high: f32,
     observer: &mut O,
@@ -233,7 +294,7 @@ fn collapse_short_edges<O: RemeshObserver + ?Sized>(
     let mut collapses = 0usize;
     let mut he = 0u32;
     while (he as usize) < mesh.half_edge_count() {
-        if squared_length(mesh, he) < limit && try_collapse(mesh, he, high) {
+        if squared_length(mesh, he) < limit && try_collapse(mesh, reference, he, high) {
             collapses += 1;
             observer.edited(RemeshStep::Collapse, mesh);
             // Slots were refilled from the end: look at this one again.
@@ -245,21 +306,44 @@ fn collapse_short_edges<O: RemeshObserver + ?Sized>(
 }
 
 /// Collapses the edge of `he` one way or the other if allowed; true when it did.
-fn try_collapse(mesh: &mut HalfEdgeMesh<'_>, he: u32, high: f32) -> bool {
+fn try_collapse<Q: MeshQuery + ?Sized>(
+    mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
+    he: u32,
+    high: f32,
+) -> bool {
     for w in [Some(he), mesh.twin(he)].into_iter().flatten() {
         let (a, b) = mesh.ends(w);
-        // The cheap refusals first; `can_collapse` repeats them with the link condition.
-        if !mesh.may_remove(w) {
+        // The refusals that do not depend on where the ends meet first (`can_collapse`
+        // repeats `may_remove` with the link condition): the place costs a query.
+        if !mesh.may_remove(w) || !mesh.can_collapse(w) {
             continue;
         }
-        let target = if mesh.is_boundary_vertex(b) || mesh.touches_crease(b) {
-            mesh.position(b)
+        // A vertex that stays keeps its place; two free ones meet at the input's point
+        // nearest their midpoint, on the input like every vertex. That point is no farther
+        // from the midpoint than `a` is (when `a` lies on the input, as almost every vertex
+        // does), so an edge longer than
+        // `high` plus that from the midpoint is too long from the point too: most refusals
+        // come before the query the point costs.
+        let (pa, pb) = (mesh.position(a), mesh.position(b));
+        let stays = mesh.is_boundary_vertex(b) || mesh.touches_crease(b);
+        let middle = if stays { pb } else { (pa + pb) * 0.5 };
+        let slack = libm::sqrtf(dot(pa - middle, pa - middle)) * 1.001;
+        if !stays_short(mesh, a, b, middle, high + slack) {
+            continue;
+        }
+        let mut hint = None;
+        let target = if stays {
+            pb
         } else {
-            (mesh.position(a) + mesh.position(b)) * 0.5
+            let Some(on_input) = closest_on(reference, middle, pa, &mut hint) else {
+                continue;
+            };
+            on_input
         };
         if stays_short(mesh, a, b, target, high)
-            && mesh.can_collapse(w)
             && keeps_orientation(mesh, a, b, target)
+            && collapse_faces_input(mesh, reference, a, b, target, hint)
         {
             return mesh.collapse_edge(w, target);
         }
@@ -312,6 +396,39 @@ fn keeps_orientation(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3) -> b
     kept
 }
 
+/// Whether every triangle around `a` and `b` moved to `target` (but those on edge `a`–`b`,
+/// which vanish) faces the input (see [`faces_input`]). [`keeps_orientation`] judges by the
+/// neighbourhood's own normals, which can all lean far from the surface together on a thin
+/// part (a collapse across a capsule's tube, a sphere's sharp tip): the input does not
+/// drift.
+fn collapse_faces_input<Q: MeshQuery + ?Sized>(
+    mesh: &HalfEdgeMesh<'_>,
+    reference: &Q,
+    a: u32,
+    b: u32,
+    target: Vec3,
+    mut hint: Hint,
+) -> bool {
+    let mut faces = true;
+    for v in [a, b] {
+        mesh.for_each_outgoing(v, |he| {
+            let t = mesh.triangle(he / 3);
+            if !faces || (t.contains(&a) && t.contains(&b)) {
+                return;
+            }
+            let corners = t.map(|x| {
+                if x == a || x == b {
+                    target
+                } else {
+                    mesh.position(x)
+                }
+            });
+            faces = faces_input(reference, corners, &mut hint);
+        });
+    }
+    faces
+}
+
 /// The valence a vertex aims at: 6 inside, 4 on the boundary.
 fn target_valence(mesh: &HalfEdgeMesh<'_>, v: u32) -> i64 {
     if mesh.is_boundary_vertex(v) { 4 } else { 6 }
@@ -349,8 +466,9 @@ fn flip_candidate(mesh: &HalfEdgeMesh<'_>, he: u32) -> Option<FlipCandidate> {
 /// Flips every interior edge whose flip lowers the four vertices' total distance from their
 /// target valences, unless it would fold the two triangles over or, beside a crease, make
 /// one flatter than [`FLATTEST`] and than the pair was.
-fn equalize_valences<O: RemeshObserver + ?Sized>(
+fn equalize_valences<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
     observer: &mut O,
 ) -> usize {
     let mut flips = 0usize;
@@ -365,7 +483,7 @@ fn equalize_valences<O: RemeshObserver + ?Sized>(
             continue;
         };
         // `flip_edge` checks `can_flip` itself: the cheaper tests go first.
-        if after < before && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
+        if after < before && flip_keeps_orientation(mesh, reference, he, g) && mesh.flip_edge(he) {
             flips += 1;
             observer.edited(RemeshStep::Flip, mesh);
         }
@@ -394,8 +512,9 @@ const ANGLE_SWEEPS: usize = 3;
 /// taking the four vertices farther from their target valences in total (or at any valence
 /// cost when the pair holds a sliver, an angle under about 3°), sweep after sweep
 /// until one flips nothing (at most [`ANGLE_SWEEPS`]). Vertices stay where they are.
-fn improve_angles<O: RemeshObserver + ?Sized>(
+fn improve_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
+    reference: &Q,
     observer: &mut O,
 ) -> usize {
     let mut flips = 0usize;
@@ -418,7 +537,7 @@ fn improve_angles<O: RemeshObserver + ?Sized>(
                 continue;
             }
             let new = smallest_angle_sine([pa, pd, pc]).min(smallest_angle_sine([pd, pb, pc]));
-            if new > old && flip_keeps_orientation(mesh, he, g) && mesh.flip_edge(he) {
+            if new > old && flip_keeps_orientation(mesh, reference, he, g) && mesh.flip_edge(he) {
                 flips += 1;
                 observer.edited(RemeshStep::Flip, mesh);
             }
@@ -431,8 +550,16 @@ fn improve_angles<O: RemeshObserver + ?Sized>(
 }
 
 /// Whether flipping the edge of `he` (twin `g`) gives two triangles facing the way the old
-/// pair does: each new normal has a positive dot product with both old ones.
-fn flip_keeps_orientation(mesh: &HalfEdgeMesh<'_>, he: u32, g: u32) -> bool {
+/// pair does (each new normal has a positive dot product with both old ones) and the way
+/// the input surface does nearest the new edge's midpoint. Without the surface, a flip
+/// between two vertices of one cross-section of a thin tube passes: the old pair, already
+/// leaning, agrees with a new pair lying across the tube.
+fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
+    mesh: &HalfEdgeMesh<'_>,
+    reference: &Q,
+    he: u32,
+    g: u32,
+) -> bool {
     let (a, b) = mesh.ends(he);
     let c = mesh.origin(HalfEdgeMesh::prev(he));
     let d = mesh.origin(HalfEdgeMesh::prev(g));
@@ -449,111 +576,18 @@ fn flip_keeps_orientation(mesh: &HalfEdgeMesh<'_>, he: u32, g: u32) -> bool {
         && [new0, new1]
             .iter()
             .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
-}
-
-/// Moves every free vertex toward the area-weighted centroid of its one-ring's triangles,
-/// within its tangent plane (the area-weighted normal's plane), all from the same old
-/// positions.
-fn smooth_tangentially(mesh: &mut HalfEdgeMesh<'_>, scratch: &mut [[f32; 3]]) {
-    let count = mesh.vertex_count();
-    for (v, slot) in (0u32..).zip(scratch.iter_mut().take(count)) {
-        let p = mesh.position(v);
-        *slot = p.to_array();
-        if !is_free(mesh, v) {
-            continue;
+        && {
+            let mut hint = None;
+            faces_input(reference, [pa, pd, pc], &mut hint)
+                && faces_input(reference, [pd, pb, pc], &mut hint)
         }
-        let (mut weighted, mut area, mut normal) = (Vec3::ZERO, 0.0f32, Vec3::ZERO);
-        mesh.for_each_outgoing(v, |he| {
-            let [a, b, c] = mesh.triangle(he / 3).map(|x| mesh.position(x));
-            let n = cross(b - a, c - a);
-            let double_area = libm::sqrtf(dot(n, n));
-            weighted += (a + b + c) * (double_area / 3.0);
-            area += double_area;
-            normal += n;
-        });
-        let normal_len = dot(normal, normal);
-        if !(area > 0.0 && normal_len > 0.0) {
-            continue;
-        }
-        let centroid = weighted / area;
-        let step = centroid - p;
-        // Remove the step's part along the normal: the move stays on the tangent plane.
-        let tangential = step - normal * (dot(step, normal) / normal_len);
-        *slot = (p + tangential).to_array();
-    }
-    // Swap: the mesh takes the new positions, the scratch keeps the old ones for `project`.
-    for (v, slot) in (0u32..).zip(scratch.iter_mut().take(count)) {
-        let old = mesh.position(v);
-        mesh.set_position(v, Vec3::from_array(*slot));
-        *slot = old.to_array();
-    }
-    undo_folds(mesh, scratch);
-}
-
-/// Most rounds of [`undo_folds`] before it puts every vertex back.
-const UNDO_ROUNDS: usize = 16;
-
-/// Puts back the vertices of every triangle the smoothing moves turned over or flattened to
-/// nothing (its normal no longer has a positive dot product with its normal before, from
-/// `old`), round after round, since a vertex put back can turn a neighbour over in turn. All
-/// moves are computed from the old positions at once, so two neighbours moving toward each
-/// other can fold a triangle that each move alone keeps (a capsule's side strip does). Each
-/// vertex goes back at most once; after [`UNDO_ROUNDS`] rounds with folds left, every vertex
-/// goes back (the old mesh faced right).
-fn undo_folds(mesh: &mut HalfEdgeMesh<'_>, old: &[[f32; 3]]) {
-    let was = |v: u32| {
-        old.get(v as usize)
-            .map_or(Vec3::ZERO, |p| Vec3::from_array(*p))
-    };
-    for _ in 0..UNDO_ROUNDS {
-        let mut undone = false;
-        for t in 0..mesh.triangle_count() as u32 {
-            let corners = mesh.triangle(t);
-            let [a, b, c] = corners.map(|v| mesh.position(v));
-            let [p, q, r] = corners.map(was);
-            if dot(cross(b - a, c - a), cross(q - p, r - p)) > 0.0 {
-                continue;
-            }
-            for v in corners {
-                if mesh.position(v) != was(v) {
-                    mesh.set_position(v, was(v));
-                    undone = true;
-                }
-            }
-        }
-        if !undone {
-            return;
-        }
-    }
-    for v in 0..mesh.vertex_count() as u32 {
-        mesh.set_position(v, was(v));
-    }
-}
-
-/// Puts every free vertex on the closest point of `reference`, unless that would turn one
-/// of its triangles over or flatten it (a vertex beside a hole projects onto the
-/// hole's rim, in line with the rim's vertices): it then stays where smoothing put it.
-///
-/// `before` holds each vertex's position before smoothing, where it was on the surface (see
-/// [`closest_on`]).
-fn project<Q: MeshQuery + ?Sized>(mesh: &mut HalfEdgeMesh<'_>, reference: &Q, before: &[[f32; 3]]) {
-    for (v, old) in (0..mesh.vertex_count() as u32).zip(before) {
-        if !is_free(mesh, v) {
-            continue;
-        }
-        let p = mesh.position(v);
-        if let Some(to) = closest_on(reference, p, Vec3::from_array(*old))
-            && moves_safely(mesh, v, to)
-        {
-            mesh.set_position(v, to);
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mesh::MeshRef;
+    use crate::query::traverse::Traverse;
     use crate::remesh::HalfEdgeBuffers;
 
     /// The longest edge of `mesh`.
@@ -606,8 +640,17 @@ mod tests {
             let mut mesh = HalfEdgeMesh::from_mesh(&input, buffers, &mut scratch).unwrap();
             assert!(longest(&mesh) <= high);
             if guard {
-                let collapses =
-                    collapse_short_edges(&mut mesh, low, high, &mut Progress(|_: &_| {}));
+                let mut tree = crate::bvh::BvhBuffers::<8>::new();
+                let bvh = tree
+                    .build(&input, &crate::bvh::BuildConfig::default())
+                    .unwrap();
+                let collapses = collapse_short_edges(
+                    &mut mesh,
+                    &bvh.with(&input),
+                    low,
+                    high,
+                    &mut Progress(|_: &_| {}),
+                );
                 assert_eq!(collapses, 0);
                 assert!(longest(&mesh) <= high);
             } else {

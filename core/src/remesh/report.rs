@@ -36,10 +36,9 @@ pub enum RemeshStep {
     Collapse,
     /// An edge was flipped.
     Flip,
-    /// Every free vertex moved toward its one-ring centroid.
+    /// The smoothing pass moved one free vertex toward its one-ring centroid and onto the
+    /// reference surface.
     Smooth,
-    /// The smoothed vertices were put on the reference surface.
-    Project,
     /// After the iterations, one vertex of a narrow triangle moved (on the reference
     /// surface) to widen the smallest angle around it.
     Relax,
@@ -50,7 +49,7 @@ pub enum RemeshStep {
 /// invariants after every edit ([`HalfEdgeMesh::check`] and the topology) is what the
 /// tests use it for; drawing the steps is another use.
 pub trait RemeshObserver {
-    /// After each split, collapse and flip, and after each smoothing and projection pass.
+    /// After each split, collapse, flip and vertex move.
     fn edited(&mut self, step: RemeshStep, mesh: &HalfEdgeMesh<'_>) {
         let _ = (step, mesh);
     }
