@@ -177,31 +177,17 @@ pub(crate) fn closest_point<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     closest_point_by::<A, S, LANES_PAY>(tree, source, point, max_distance)
 }
 
-/// The index and corners of the triangle [`closest_point`] finds (without working out the
-/// point), with `seed` offered first as a candidate (see [`search`]).
-pub(crate) fn nearest_triangle_seeded<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
+/// The point [`closest_point`] finds and the corners of its triangle, for callers that need
+/// more of the triangle than the point (the remesher judges facing by its normal). The same
+/// answer.
+pub(crate) fn closest_point_and_triangle<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     point: Vec3,
     max_distance: f32,
-    seed: Option<(u32, Triangle)>,
-) -> Option<(u32, Triangle)> {
-    search::<A, S, LANES_PAY>(tree, source, point, max_distance, seed)
-}
-
-/// [`closest_point`] with the index and corners of the triangle found, and `seed` offered
-/// first as a candidate (see [`search`]: the answer is the same with any seed, a near one
-/// only saves work). For callers that need more of the triangle than the point (the
-/// remesher judges facing by its normal) and have a triangle near the point at hand.
-pub(crate) fn closest_point_seeded<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
-    tree: &A,
-    source: &S,
-    point: Vec3,
-    max_distance: f32,
-    seed: Option<(u32, Triangle)>,
-) -> Option<(ClosestPoint, (u32, Triangle))> {
-    search::<A, S, LANES_PAY>(tree, source, point, max_distance, seed)
-        .map(|best| (answer(point, best), best))
+) -> Option<(Vec3, Triangle)> {
+    let best = search::<A, S, LANES_PAY>(tree, source, point, max_distance, None)?;
+    Some((answer(point, best).point, best.1))
 }
 
 /// [`closest_point`] with the leaf test chosen by `LANES`, so tests can run the one the

@@ -110,7 +110,7 @@ pub(crate) mod split_refs;
 pub(crate) mod traverse;
 
 pub(crate) use cell::Cell;
-pub(crate) use closest::{closest_point_seeded, nearest_triangle_seeded};
+pub(crate) use closest::closest_point_and_triangle;
 pub(crate) use leaf::LeafTriangleIds;
 pub use leaf::{LeafTriangles, PackedTriangles};
 pub use mesh_query::MeshQuery;

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use super::half_edges::HalfEdgeMesh;
 use super::shape::{flat_enough, flatness, normal_of};
-use super::surface::{Hint, faces_input};
+use super::surface::faces_input;
 use crate::math::dot;
 use crate::query::MeshQuery;
 
@@ -16,13 +16,12 @@ pub(super) fn is_free(mesh: &HalfEdgeMesh<'_>, v: u32) -> bool {
 /// Whether moving vertex `v` to `to` keeps each of its triangles facing the same way, no
 /// flatter than [`FLATTEST`](super::shape::FLATTEST) (unless it was flatter already and
 /// gets no worse), and facing the way the input `reference` does under its centroid (see
-/// [`faces_input`]; `hint`, an input triangle near `to`, speeds up the searches).
+/// [`faces_input`]).
 pub(super) fn moves_safely<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
     reference: &Q,
     v: u32,
     to: Vec3,
-    mut hint: Hint,
 ) -> bool {
     // The cheap tests on every triangle first; the input is asked only when all pass.
     let mut safe = keeps_shape(mesh, v, to);
@@ -32,7 +31,6 @@ pub(super) fn moves_safely<Q: MeshQuery + ?Sized>(
             safe = faces_input(
                 reference,
                 corners.map(|x| if x == v { to } else { mesh.position(x) }),
-                &mut hint,
             );
         }
     });

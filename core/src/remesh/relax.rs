@@ -134,10 +134,8 @@ fn better_place<Q: MeshQuery + ?Sized>(
         }
     }
     let (goal, _) = best?;
-    let mut hint = None;
-    let to = closest_on(reference, goal, p, &mut hint)?;
-    (ring_smallest_sine(mesh, v, to) > now && moves_safely(mesh, reference, v, to, hint))
-        .then_some(to)
+    let to = closest_on(reference, goal, p)?;
+    (ring_smallest_sine(mesh, v, to) > now && moves_safely(mesh, reference, v, to)).then_some(to)
 }
 
 /// How far a directional try goes, as a fraction of the mean distance to the neighbours.

@@ -9,7 +9,7 @@ use super::relax::relax_small_angles;
 use super::report::{Progress, RemeshObserver, RemeshReport, RemeshStep};
 use super::shape::{FLATTEST, flat_enough, flatness, normal_of, smallest_angle_sine};
 use super::smooth::smooth;
-use super::surface::{Hint, closest_on, faces_input};
+use super::surface::{closest_on, faces_input};
 use crate::error::{RemeshBuffer, RemeshError};
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
@@ -246,16 +246,15 @@ fn split_point<Q: MeshQuery + ?Sized>(
     let (a, b) = mesh.ends(he);
     let middle = (mesh.position(a) + mesh.position(b)) * 0.5;
     let on_line = mesh.twin(he).is_none() || mesh.is_crease(he);
-    let mut hint = None;
     let on_input = if on_line {
         None
     } else {
-        closest_on(reference, middle, mesh.position(a), &mut hint).filter(|&p| p != middle)
+        closest_on(reference, middle, mesh.position(a)).filter(|&p| p != middle)
     };
     [on_input, Some(middle)]
         .into_iter()
         .flatten()
-        .find(|&at| splits_safely(mesh, reference, he, at, hint))
+        .find(|&at| splits_safely(mesh, reference, he, at))
 }
 
 /// Whether splitting the edge of `he` at `at` makes four (two on the boundary) triangles
@@ -268,7 +267,6 @@ fn splits_safely<Q: MeshQuery + ?Sized>(
     reference: &Q,
     he: u32,
     at: Vec3,
-    mut hint: Hint,
 ) -> bool {
     let (a, b) = mesh.ends(he);
     [Some(he), mesh.twin(he)].into_iter().flatten().all(|side| {
@@ -276,7 +274,7 @@ fn splits_safely<Q: MeshQuery + ?Sized>(
         let whole = normal_of(corners.map(|x| mesh.position(x)));
         [a, b].into_iter().all(|end| {
             let half = corners.map(|x| if x == end { at } else { mesh.position(x) });
-            dot(normal_of(half), whole) > 0.0 && faces_input(reference, half, &mut hint)
+            dot(normal_of(half), whole) > 0.0 && faces_input(reference, half)
         })
     })
 }
@@ -332,18 +330,17 @@ fn try_collapse<Q: MeshQuery + ?Sized>(
         if !stays_short(mesh, a, b, middle, high + slack) {
             continue;
         }
-        let mut hint = None;
         let target = if stays {
             pb
         } else {
-            let Some(on_input) = closest_on(reference, middle, pa, &mut hint) else {
+            let Some(on_input) = closest_on(reference, middle, pa) else {
                 continue;
             };
             on_input
         };
         if stays_short(mesh, a, b, target, high)
             && keeps_orientation(mesh, a, b, target)
-            && collapse_faces_input(mesh, reference, a, b, target, hint)
+            && collapse_faces_input(mesh, reference, a, b, target)
         {
             return mesh.collapse_edge(w, target);
         }
@@ -407,7 +404,6 @@ fn collapse_faces_input<Q: MeshQuery + ?Sized>(
     a: u32,
     b: u32,
     target: Vec3,
-    mut hint: Hint,
 ) -> bool {
     let mut faces = true;
     for v in [a, b] {
@@ -423,7 +419,7 @@ fn collapse_faces_input<Q: MeshQuery + ?Sized>(
                     mesh.position(x)
                 }
             });
-            faces = faces_input(reference, corners, &mut hint);
+            faces = faces_input(reference, corners);
         });
     }
     faces
@@ -576,11 +572,8 @@ fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
         && [new0, new1]
             .iter()
             .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
-        && {
-            let mut hint = None;
-            faces_input(reference, [pa, pd, pc], &mut hint)
-                && faces_input(reference, [pd, pb, pc], &mut hint)
-        }
+        && faces_input(reference, [pa, pd, pc])
+        && faces_input(reference, [pd, pb, pc])
 }
 
 #[cfg(test)]

@@ -35,11 +35,10 @@ pub(super) fn smooth<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
         if goal == p {
             continue;
         }
-        let mut hint = None;
-        let safe = |to: Vec3, hint| to != p && moves_safely(mesh, reference, v, to, hint);
-        let to = closest_on(reference, goal, p, &mut hint)
-            .filter(|&to| safe(to, hint))
-            .or_else(|| closest_on(reference, p, goal, &mut hint).filter(|&to| safe(to, hint)));
+        let safe = |to: &Vec3| *to != p && moves_safely(mesh, reference, v, *to);
+        let to = closest_on(reference, goal, p)
+            .filter(safe)
+            .or_else(|| closest_on(reference, p, goal).filter(safe));
         if let Some(to) = to {
             mesh.set_position(v, to);
             observer.edited(RemeshStep::Smooth, mesh);

@@ -12,50 +12,29 @@ use glam::Vec3;
 
 use super::shape::normal_of;
 use crate::math::{Triangle, dot};
-use crate::query::{MeshQuery, closest_point_seeded, nearest_triangle_seeded};
+use crate::query::{MeshQuery, closest_point_and_triangle};
 
-/// An input triangle (index and corners) found near where an edit happens. Offered first to
-/// the next search nearby, it bounds that search from the start; the answer is the same
-/// with any hint or none (see [`closest_point_seeded`]), only the work differs.
-pub(super) type Hint = Option<(u32, Triangle)>;
-
-/// The input's point nearest `p` and the triangle it lies on, searched from `hint` when
-/// there is one (then updated to the triangle found). Without a hint, `p` is taken as moved
-/// from `was` on (or near) the surface: the surface is then at most as far from `p` as the
-/// move, so the query first looks only that far (a much smaller search) and only on finding
-/// nothing looks everywhere. `None` only for an empty reference or a point it cannot
-/// measure.
-pub(super) fn closest_on<Q: MeshQuery + ?Sized>(
-    reference: &Q,
-    p: Vec3,
-    was: Vec3,
-    hint: &mut Hint,
-) -> Option<Vec3> {
+/// The input's point nearest `p`, a point moved there from `was` on (or near) the surface.
+/// The surface is then at most as far from `p` as the move, so the query first looks only
+/// that far (a much smaller search) and only on finding nothing looks everywhere: the
+/// closest point is the same either way. `None` only for an empty reference or a point it
+/// cannot measure.
+pub(super) fn closest_on<Q: MeshQuery + ?Sized>(reference: &Q, p: Vec3, was: Vec3) -> Option<Vec3> {
     let moved = p - was;
-    let near = libm::sqrtf(dot(moved, moved)) * 1.001;
-    let (hit, found) = hinted(near, *hint, |limit, seed| {
-        closest_point_seeded(reference, reference, p, limit, seed)
-    })?;
-    *hint = Some(found);
-    Some(hit.point)
+    nearest(reference, p, libm::sqrtf(dot(moved, moved))).map(|(point, _)| point)
 }
 
 /// Whether the triangle of corners `p` faces the way the input surface does under its
 /// centroid: its normal and the normal of the input triangle nearest the centroid (the
 /// lower index of equally near ones, as every closest-point query answers) make an angle
 /// under 90°. A triangle without a normal (zero area, or corners not finite) faces no way,
-/// and neither does one over an input triangle without a normal. `hint` (see [`Hint`]) is
-/// updated to the input triangle found.
+/// and neither does one over an input triangle without a normal.
 ///
 /// The centroid is `(p0 + p1 + p2) / 3`, so the answer is the one a check of the finished
-/// mesh computes. Without a hint the search first looks as far as the centroid's farthest
-/// corner (the corners lie on or near the surface, so the nearest input point is almost
-/// always that close) and only on finding nothing looks everywhere.
-pub(super) fn faces_input<Q: MeshQuery + ?Sized>(
-    reference: &Q,
-    p: [Vec3; 3],
-    hint: &mut Hint,
-) -> bool {
+/// mesh computes. The search first looks as far as the centroid's farthest corner (the
+/// corners lie on or near the surface, so the nearest input point is almost always that
+/// close).
+pub(super) fn faces_input<Q: MeshQuery + ?Sized>(reference: &Q, p: [Vec3; 3]) -> bool {
     let Some(normal) = direction(p) else {
         return false;
     };
@@ -67,25 +46,18 @@ pub(super) fn faces_input<Q: MeshQuery + ?Sized>(
             dot(d, d)
         })
         .fold(0.0f32, f32::max);
-    let near = libm::sqrtf(reach) * 1.001;
-    let Some(found) = hinted(near, *hint, |limit, seed| {
-        nearest_triangle_seeded(reference, reference, centroid, limit, seed)
-    }) else {
-        return false;
-    };
-    *hint = Some(found);
-    let (_, under) = found;
-    direction([under.a, under.b, under.c]).is_some_and(|n| dot(normal, n) > 0.0)
+    nearest(reference, centroid, libm::sqrtf(reach)).is_some_and(|(_, under)| {
+        direction([under.a, under.b, under.c]).is_some_and(|n| dot(normal, n) > 0.0)
+    })
 }
 
-/// Runs `search` (a search of the input with a distance limit and a seed) as every search
-/// here runs: from `hint` alone when there is one, else first within `near` and then
-/// everywhere. The answer is the same either way; only the work differs.
-fn hinted<T>(near: f32, hint: Hint, search: impl Fn(f32, Hint) -> Option<T>) -> Option<T> {
-    match hint {
-        Some(_) => search(f32::INFINITY, hint),
-        None => search(near, None).or_else(|| search(f32::INFINITY, None)),
-    }
+/// The input's point nearest `p` and the triangle it lies on: first looked for within
+/// `near` (with a little room), then everywhere. The same answer either way; only the work
+/// differs.
+#[cfg_attr(target_os = "none", inline(never))]
+fn nearest<Q: MeshQuery + ?Sized>(reference: &Q, p: Vec3, near: f32) -> Option<(Vec3, Triangle)> {
+    closest_point_and_triangle(reference, reference, p, near * 1.001)
+        .or_else(|| closest_point_and_triangle(reference, reference, p, f32::INFINITY))
 }
 
 /// The direction of the normal of corners `p`, from its two edges at `p0` divided by their
@@ -136,28 +108,24 @@ mod tests {
             Vec3::new(0.2, 0.6, 0.11),
         ];
         let down = [up[0], up[2], up[1]];
-        assert!(faces_input(&reference, up, &mut None));
-        assert!(!faces_input(&reference, down, &mut None));
+        assert!(faces_input(&reference, up));
+        assert!(!faces_input(&reference, down));
         let low = [
             Vec3::new(0.2, 0.2, 0.02),
             Vec3::new(0.2, 0.6, 0.02),
             Vec3::new(0.6, 0.2, 0.02),
         ];
-        assert!(faces_input(&reference, low, &mut None));
+        assert!(faces_input(&reference, low));
         // No normal, no facing: three corners in a line.
         let line = [up[0], up[1], (up[0] + up[1]) * 0.5];
-        assert!(!faces_input(&reference, line, &mut None));
+        assert!(!faces_input(&reference, line));
         // A triangle 1e-30 across just above the bottom square's corner at the origin, whose
         // normal underflows to zero in f32 unless its edges are scaled first, is judged: the
         // bottom (facing down) is nearest.
         let tiny =
             [[1.0f32, 1.0, 1.0], [3.0, 1.0, 1.0], [1.0, 3.0, 1.0]].map(|x| Vec3::from(x) * 1e-30);
         assert_eq!(normal_of(tiny), Vec3::ZERO);
-        assert!(!faces_input(&reference, tiny, &mut None));
-        assert!(faces_input(
-            &reference,
-            [tiny[0], tiny[2], tiny[1]],
-            &mut None
-        ));
+        assert!(!faces_input(&reference, tiny));
+        assert!(faces_input(&reference, [tiny[0], tiny[2], tiny[1]]));
     }
 }
