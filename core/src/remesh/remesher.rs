@@ -546,8 +546,8 @@ fn improve_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
 }
 
 /// Whether flipping the edge of `he` (twin `g`) gives two triangles facing the way the old
-/// pair does (each new normal has a positive dot product with both old ones) and the way
-/// the input surface does nearest the new edge's midpoint. Without the surface, a flip
+/// pair does (each new normal has a positive dot product with both old ones) and face the
+/// input (see [`faces_input`]). Without the input's judgement, a flip
 /// between two vertices of one cross-section of a thin tube passes: the old pair, already
 /// leaning, agrees with a new pair lying across the tube.
 fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
