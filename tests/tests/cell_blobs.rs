@@ -89,6 +89,37 @@ fn cell_blobs_answer_as_brute_force_in_place_and_loaded() {
     check_mesh(&in_stadium(&load_mesh("teapot")));
 }
 
+/// A packed blob copies a triangle into every cell that lists it, and loading proves each
+/// copy's cells: walked copy by copy, a triangle that thousands of cells list costs the square
+/// of that (the bunny's stadium floor: two triangles in 60,000 cells took minutes). A copy whose
+/// first cell shows an earlier, already proved copy with the same corners stops there, so the
+/// proof is linear in the references, and this test loads in a moment; it still refuses what
+/// the damage tests below give it.
+#[test]
+fn a_packed_grid_blob_whose_triangles_fill_every_cell_loads_and_answers() {
+    let loaded = in_stadium(&load_mesh("stanford-bunny"));
+    let mesh = loaded.valid();
+    let built = MeshIndex::build(&mesh, StructureKind::Grid).unwrap();
+    let stats = built.cell_stats().unwrap();
+    // The floor's two triangles are in every cell of the grid's floor layer: tens of
+    // thousands of copies of each (walked one by one, minutes of work).
+    assert!(
+        stats.cells > 100_000 && stats.references > mesh.triangle_count() + 50_000,
+        "{stats:?}"
+    );
+    let bytes = built.to_blob(MeshLayout::Packed).unwrap();
+    let v = view(&bytes, mesh, MeshLayout::Packed);
+    let brute = BruteForce::new(&mesh);
+    check_all(
+        &v,
+        &brute,
+        &loaded,
+        "bunny in a stadium, packed grid, in place",
+    );
+    let loaded_index = MeshIndex::from_blob(&bytes).unwrap();
+    assert_eq!(loaded_index.cell_stats(), Some(stats));
+}
+
 #[derive(Deserialize, Debug)]
 struct CountsMirror {
     kind: u32,

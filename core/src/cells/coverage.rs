@@ -77,8 +77,10 @@ where
             match tree.cell_node(node) {
                 Some(CellNode::Leaf { first, count }) => {
                     let (first, end) = (first as usize, first as usize + count as usize);
-                    if !coverage.holds(i, tri, first, end) {
-                        return true;
+                    match coverage.holds(i, tri, first, end) {
+                        Held::Yes => {}
+                        Held::AsEarlier => return false,
+                        Held::No => return true,
                     }
                 }
                 Some(CellNode::Inner) => tree.children(node, &cell, depth, |child, c| {
@@ -97,6 +99,20 @@ where
         }
         false
     })
+}
+
+/// What a cell's references say of a coverage subject (see [`Coverage::holds`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Held {
+    /// Not listed, or (packed) listed with other corners: the structure misses the subject.
+    No,
+    /// Listed.
+    Yes,
+    /// Packed: listed by an earlier slot with the same corners. That slot's walk, already
+    /// proved, goes through exactly the cells this subject's would, so the subject is
+    /// covered and its walk can stop: walking every slot of a triangle that many cells list
+    /// in full would cost the square of their number.
+    AsEarlier,
 }
 
 /// The subjects and the leaf test that prove a cell structure's coverage: what
@@ -156,13 +172,21 @@ impl<'m, W: Words> Coverage<'m, W> {
     }
 
     /// Whether references `first..end` hold subject `i`, triangle `tri`: list it, and (packed)
-    /// with the same corners.
-    pub(crate) fn holds(&mut self, i: u32, tri: u32, first: usize, end: usize) -> bool {
+    /// with the same corners, by this slot or an earlier one (see [`Held`]). Subjects are
+    /// walked in order, each one's walk stopping at its first answer other than
+    /// [`Held::Yes`].
+    pub(crate) fn holds(&mut self, i: u32, tri: u32, first: usize, end: usize) -> Held {
         match self.mesh {
-            CoverageMesh::Triangles(_) => lists(self.items, first, end, tri),
+            CoverageMesh::Triangles(_) => {
+                if lists(self.items, first, end, tri) {
+                    Held::Yes
+                } else {
+                    Held::No
+                }
+            }
             CoverageMesh::Packed(corners) => {
                 let Some(slot) = find(self.items, first, end, tri) else {
-                    return false;
+                    return Held::No;
                 };
                 match &mut self.current {
                     Some((subject, _, first)) if *subject == i => *first = (*first).min(slot),
@@ -171,7 +195,13 @@ impl<'m, W: Words> Coverage<'m, W> {
                         self.current = Some((i, tri, slot));
                     }
                 }
-                corners.get(slot).is_some() && corners.get(slot) == corners.get(i as usize)
+                let same =
+                    corners.get(slot).is_some() && corners.get(slot) == corners.get(i as usize);
+                match (same, slot < i as usize) {
+                    (false, _) => Held::No,
+                    (true, false) => Held::Yes,
+                    (true, true) => Held::AsEarlier,
+                }
             }
         }
     }

@@ -35,7 +35,7 @@ pub(crate) mod words;
 pub(crate) use cell_walk::{CellNode, CellTree, for_each_cell, stats};
 pub(crate) use check::{Visits, first_bad_reference};
 #[cfg(feature = "blob-cells")]
-pub(crate) use coverage::{Coverage, CoverageMesh, first_uncovered_in_tree};
+pub(crate) use coverage::{Coverage, CoverageMesh, Held, first_uncovered_in_tree};
 pub(crate) use mailbox::Mailbox;
 pub(crate) use offer::Offer;
 pub(crate) use reference::ReferencePad;

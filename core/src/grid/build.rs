@@ -1,5 +1,7 @@
 //! Building a grid: count the references of a resolution, shrink it until they fit, fill.
 
+use core::ops::ControlFlow;
+
 use super::{Grid, GridConfig, GridLayout};
 use crate::cells::{REFERENCES_PER_TRIANGLE, ReferencePad};
 use crate::error::{BufferKind, BuildError};
@@ -23,10 +25,13 @@ pub(crate) fn for_each_cell(
     pad: ReferencePad,
     mesh: &ValidMesh<'_>,
     tri: u32,
-    each: impl FnMut(usize),
+    mut each: impl FnMut(usize),
 ) {
     if let Some(t) = mesh.triangle(tri) {
-        layout.for_each_cell_touched(pad, &t, each);
+        let _ = layout.for_each_cell_touched(pad, &t, |c| {
+            each(c);
+            ControlFlow::Continue(())
+        });
     }
 }
 

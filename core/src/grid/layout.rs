@@ -1,5 +1,7 @@
 //! Where a grid's cells are: its bounds cut into `nx × ny × nz` equal cells.
 
+use core::ops::ControlFlow;
+
 use glam::Vec3;
 
 use crate::cells::ReferencePad;
@@ -20,18 +22,18 @@ pub struct GridLayout {
 
 impl GridLayout {
     /// Calls `each(cell index)` for every cell `t` touches (cells padded by `pad`, as a build
-    /// decides which cells list a triangle), in ascending index order.
+    /// decides which cells list a triangle), in ascending index order, until `each` breaks
+    /// (what it then returns).
     pub(crate) fn for_each_cell_touched(
         &self,
         pad: ReferencePad,
         t: &Triangle,
-        mut each: impl FnMut(usize),
-    ) {
+        mut each: impl FnMut(usize) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
         let (lo, hi) = self.cells_touching(&pad.grow(&t.bounds()));
         if lo == hi {
             // The padded bounds lie in one cell, which the triangle therefore touches.
-            each(self.index(lo));
-            return;
+            return each(self.index(lo));
         }
         // Cell boxes from the boundaries directly: the same values as `self.cell`.
         let [bx, by, bz] = self.boundaries();
@@ -43,11 +45,12 @@ impl GridLayout {
                     let cell =
                         Aabb::new(Vec3::new(bx.at(i), y0, z0), Vec3::new(bx.at(i + 1), y1, z1));
                     if pad.touches(t, &cell) {
-                        each(self.index([i, j, k]));
+                        each(self.index([i, j, k]))?;
                     }
                 }
             }
         }
+        ControlFlow::Continue(())
     }
 
     /// The layout for `triangles` triangles in `bounds` with about `cells_per_triangle` cells

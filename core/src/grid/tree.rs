@@ -3,8 +3,10 @@
 use super::GridLayout;
 use crate::cells::{CellStats, Words};
 #[cfg(feature = "blob-cells")]
-use crate::cells::{Coverage, ReferencePad};
+use crate::cells::{Coverage, Held, ReferencePad};
 use crate::error::StructureError;
+#[cfg(feature = "blob-cells")]
+use core::ops::ControlFlow;
 
 /// A uniform grid: its [`GridLayout`] cut into cells, each listing the triangles it touches.
 ///
@@ -99,11 +101,18 @@ impl<W: Words> Grid<W> {
                 return true;
             };
             let mut missing = false;
-            self.layout.for_each_cell_touched(pad, &t, |c| {
-                missing = missing
-                    || !self
-                        .cell_range(c)
-                        .is_some_and(|(first, n)| coverage.holds(i, tri, first, first + n));
+            let _ = self.layout.for_each_cell_touched(pad, &t, |c| {
+                let held = self
+                    .cell_range(c)
+                    .map(|(first, n)| coverage.holds(i, tri, first, first + n));
+                match held {
+                    Some(Held::Yes) => ControlFlow::Continue(()),
+                    Some(Held::AsEarlier) => ControlFlow::Break(()),
+                    Some(Held::No) | None => {
+                        missing = true;
+                        ControlFlow::Break(())
+                    }
+                }
             });
             missing
         })
