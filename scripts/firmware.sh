@@ -113,13 +113,14 @@ echo "heap: 0 bytes (no allocator linked)"
 # reading the cell structures' blobs is, so the BVH-only code stays within its budget.
 # The BVH keeps the 2 KiB stack budget, with and without spatial splits. The octree's walk keeps up to seven sibling cells per
 # level on its stack: its cost is reported, and held to what it measured, 8 KiB.
-# Remeshing keeps its arrays on the stack: held to what it measured, 44 KiB of code (40 KiB
+# Remeshing keeps its arrays on the stack: held to what it measured, 44.5 KiB of code (40 KiB
 # until the final angle pass, which moves single vertices to widen small angles, added about
-# 2.5 KiB) and 48 KiB of stack in the 64 KiB of RAM.
+# 2.5 KiB; 44 KiB until edits where the input is crowded were refused, which keeps a run on
+# tangled input linear, 232 bytes) and 48 KiB of stack in the 64 KiB of RAM.
 if [ "$code" -gt 24576 ] || [ "$stack" -gt 2048 ] || [ "$spatial_stack" -gt 2048 ] ||
   [ "$octree_stack" -gt 8192 ] ||
-  [ "$remesh_code" -gt 45056 ] || [ "$remesh_stack" -gt 49152 ]; then
+  [ "$remesh_code" -gt 45568 ] || [ "$remesh_stack" -gt 49152 ]; then
   echo "over budget: code must be <= 24 KiB, the BVH's stack <= 2 KiB (spatial splits too), the octree's <= 8 KiB," \
-    "remeshing's code <= 44 KiB and its stack <= 48 KiB" >&2
+    "remeshing's code <= 44.5 KiB and its stack <= 48 KiB" >&2
   exit 1
 fi

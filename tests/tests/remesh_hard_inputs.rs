@@ -17,7 +17,9 @@ use meshq::owned::Remeshed;
 use meshq::remesh::{EdgeTarget, RemeshCapacity, RemeshConfig};
 use meshq_tests::Topology;
 
-use meshq_tests::hard_inputs::{Mesh, capsule, cuboid, range_scan, slivers, sphere, tube};
+use meshq_tests::hard_inputs::{
+    Mesh, capsule, crossing, cuboid, range_scan, slivers, sphere, tube,
+};
 
 fn area(c: [Vec3; 3]) -> f32 {
     0.5 * (c[1] - c[0]).cross(c[2] - c[0]).length()
@@ -307,4 +309,26 @@ fn a_target_too_small_for_memory_is_refused() {
     };
     let err = remesh(&input, &config).unwrap_err();
     assert!(matches!(err, RemeshError::OutOfCapacity { .. }), "{err:?}");
+}
+
+/// Slivers through one point, which no box separates: near the point every exact search
+/// visits every sliver, so a run that searched there would take the square of their number.
+/// Through 5,000 of them the input is crowded (more than 256 triangles in the leaves holding
+/// the point) and every edit that would be judged there is refused: the run makes none and
+/// returns the input. Through 100, the same slivers are split as usual.
+#[test]
+fn edits_where_the_input_is_crowded_are_refused() {
+    let input = crossing(5_000);
+    let out = remesh(&input, &RemeshConfig::default()).unwrap();
+    let r = out.report;
+    assert_eq!(
+        (r.splits, r.collapses, r.flips, r.relaxed),
+        (0, 0, 0, 0),
+        "{r:?}"
+    );
+    assert_eq!((&out.positions, &out.triangles), (&input.0, &input.1));
+
+    let sparse = crossing(100);
+    let out = remesh(&sparse, &RemeshConfig::default()).unwrap();
+    assert!(out.report.splits > 0, "{:?}", out.report);
 }

@@ -28,6 +28,10 @@ struct Closest<'m, S: ?Sized, const LANES: bool> {
     /// The best triangle so far (mesh index and corners), at squared distance `limit`. Its
     /// closest point is worked out once, at the end.
     best: Option<(u32, Triangle)>,
+    /// Triangle references the leaves visited so far offered.
+    offered: usize,
+    /// Most references to be offered before the search gives up (`usize::MAX`: never).
+    budget: usize,
 }
 
 impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LANES> {
@@ -93,6 +97,9 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
         if LANES && self.scale == 1.0 {
             let source = self.source;
             for_each_batch(source, tris, |batch| {
+                self.offered = self
+                    .offered
+                    .saturating_add(batch.used.count_ones() as usize);
                 let d2 = batch.lanes.closest_distance_squared(self.point);
                 let mut near = d2.cmple(Vec4::splat(self.limit)).bitmask() & batch.used;
                 let d2 = d2.to_array();
@@ -104,9 +111,13 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
                     }
                 }
                 ControlFlow::Continue(())
-            })
+            })?;
         } else {
             self.leaf_one_by_one(tris);
+        }
+        if self.offered > self.budget {
+            ControlFlow::Break(())
+        } else {
             ControlFlow::Continue(())
         }
     }
@@ -118,6 +129,7 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Closest<'_, S, LANES> {
     #[inline(always)]
     fn leaf_one_by_one(&mut self, tris: LeafTriangleIds<'_>) {
         for (slot, tri) in tris {
+            self.offered = self.offered.saturating_add(1);
             let Some(t) = self.source.corners(slot, tri) else {
                 continue;
             };
@@ -177,18 +189,26 @@ pub(crate) fn closest_point<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     closest_point_by::<A, S, LANES_PAY>(tree, source, point, max_distance)
 }
 
-/// The point [`closest_point`] finds and the corners of its triangle, for callers that need
-/// more of the triangle than the point (the remesher judges facing by its normal). The same
-/// answer.
+/// The point [`closest_point`] finds, with its triangle's mesh index and corners, for
+/// callers that need more of the triangle than the point (the remesher judges facing by its
+/// normal): the same answer, `Ok`, unless the leaves visited offer more than `budget`
+/// triangle references first, then `Err(Crowded)`. (How many references a search is offered
+/// depends on the order it visits leaves in, so whether a budget is spent can differ between
+/// structures over one mesh; the answer never does.)
 pub(crate) fn closest_point_and_triangle<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     point: Vec3,
     max_distance: f32,
-) -> Option<(Vec3, Triangle)> {
-    let best = search::<A, S, LANES_PAY>(tree, source, point, max_distance, None)?;
-    Some((answer(point, best).point, best.1))
+    budget: usize,
+) -> Result<Option<(Vec3, Triangle)>, Crowded> {
+    let best = search::<A, S, LANES_PAY>(tree, source, point, max_distance, None, budget)?;
+    Ok(best.map(|best| (answer(point, best).point, best.1)))
 }
+
+/// A search that gave up: its leaves offered more triangle references than its budget.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Crowded;
 
 /// [`closest_point`] with the leaf test chosen by `LANES`, so tests can run the one the
 /// target would not.
@@ -198,23 +218,28 @@ fn closest_point_by<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANES
     point: Vec3,
     max_distance: f32,
 ) -> Option<ClosestPoint> {
-    search::<A, S, LANES>(tree, source, point, max_distance, None).map(|best| answer(point, best))
+    search::<A, S, LANES>(tree, source, point, max_distance, None, usize::MAX)
+        .ok()
+        .flatten()
+        .map(|best| answer(point, best))
 }
 
 /// The nearest non-degenerate triangle (index and corners) within `max_distance` of `point`,
 /// with `seed` offered first as a candidate: a triangle near the point (the previous answer of
 /// a batch, say) bounds the search from the start. The answer does not depend on the seed —
 /// it is the minimum under the same total order, and the seed is just one more triangle
-/// considered — only the work done does.
+/// considered — only the work done does. `Err(Crowded)` when the leaves visited offered more
+/// than `budget` references (`usize::MAX`: never).
 pub(super) fn search<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANES: bool>(
     tree: &A,
     source: &S,
     point: Vec3,
     max_distance: f32,
     seed: Option<(u32, Triangle)>,
-) -> Option<(u32, Triangle)> {
+    budget: usize,
+) -> Result<Option<(u32, Triangle)>, Crowded> {
     if !point.is_finite() || !(max_distance >= 0.0) {
-        return None;
+        return Ok(None);
     }
     let scale = scale_for(point);
     let scaled = point * scale;
@@ -227,6 +252,8 @@ pub(super) fn search<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANE
         limit: (scaled_max * scaled_max).min(f32::MAX),
         scale,
         best: None,
+        offered: 0,
+        budget,
     };
     if let Some((tri, t)) = seed {
         // The scalar walk gives the lanes' bits, so the seed ties with itself when its leaf
@@ -236,7 +263,10 @@ pub(super) fn search<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, const LANE
         v.consider(dot(d, d), tri, t);
     }
     tree.traverse(&mut v);
-    v.best
+    if v.offered > budget {
+        return Err(Crowded);
+    }
+    Ok(v.best)
 }
 
 /// What a search from `point` multiplies coordinates by: 1, or [`SCALE`] (2⁻⁶⁴) for a point

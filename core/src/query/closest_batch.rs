@@ -41,7 +41,9 @@ pub(super) fn closest_points_by<
     let order = morton_order(points.iter().copied(), keys, out.len())?;
     let mut seed = None;
     answer_in_order(points, order, out, |&p| {
-        let best = search::<A, S, LANES>(tree, source, p, max_distance, seed);
+        let best = search::<A, S, LANES>(tree, source, p, max_distance, seed, usize::MAX)
+            .ok()
+            .flatten();
         seed = best.or(seed);
         best.map(|b| answer(p, b))
     });

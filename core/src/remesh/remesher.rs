@@ -44,7 +44,11 @@ pub(crate) fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 /// triangle nearest its centroid does (their normals less than 90° apart). The input obeys
 /// the second rule, so the result does too, even where the target is as long as the part
 /// is thick. A vertex lies on the input, except the midpoint of a split whose point on the
-/// input was refused, until a smoothing move puts it there.
+/// input was refused, until a smoothing move puts it there. An edit is refused too where
+/// the input is too crowded to search: where more than 256 input triangles lie in the
+/// leaves of `reference` whose boxes hold the point it would be judged from (slivers
+/// through one point, copies of one triangle), every search from there would visit them
+/// all, so a run stays linear in the input however tangled it is.
 ///
 /// Boundary vertices never move and are never removed, so boundaries keep their shape
 /// (their edges are still split). Crease edges are never flipped; a vertex inside a nearly

@@ -51,13 +51,38 @@ pub(super) fn faces_input<Q: MeshQuery + ?Sized>(reference: &Q, p: [Vec3; 3]) ->
     })
 }
 
+/// More input triangle references than this in the leaves of the reference whose boxes hold
+/// a point, and the input is crowded there: no edit is judged by a search from that point.
+/// Every exact search from the point visits those leaves, and on input no box separates
+/// (thousands of slivers through one point, triangles spanning the whole mesh, copies of one
+/// triangle) every search would visit most of the mesh, and a run would take the square of
+/// its size. Real meshes stay far below (a cone's apex of 360 triangles is within it).
+pub(super) const CROWDED: usize = 256;
+
 /// The input's point nearest `p` and the triangle it lies on: first looked for within
 /// `near` (with a little room), then everywhere. The same answer either way; only the work
-/// differs.
+/// differs. `None` where the input is crowded at `p` ([`CROWDED`]): the edit asking is
+/// refused.
+///
+/// Each search is given [`CROWDED`] references to look at; only one that needs more asks
+/// whether the leaves holding `p` have more than that (a search limited to distance 0 visits
+/// exactly those), and goes on when not. So the verdict depends on that count alone, the
+/// same whatever order a structure visits its leaves in: a search that looked at no more
+/// than [`CROWDED`] references has looked at every leaf holding `p`.
 #[cfg_attr(target_os = "none", inline(never))]
 fn nearest<Q: MeshQuery + ?Sized>(reference: &Q, p: Vec3, near: f32) -> Option<(Vec3, Triangle)> {
-    closest_point_and_triangle(reference, reference, p, near * 1.001)
-        .or_else(|| closest_point_and_triangle(reference, reference, p, f32::INFINITY))
+    let search = |max, budget| closest_point_and_triangle(reference, reference, p, max, budget);
+    for max in [near * 1.001, f32::INFINITY] {
+        let found = match search(max, CROWDED) {
+            Ok(found) => found,
+            Err(_) if search(0.0, CROWDED).is_err() => return None,
+            Err(_) => search(max, usize::MAX).ok().flatten(),
+        };
+        if found.is_some() {
+            return found;
+        }
+    }
+    None
 }
 
 /// The direction of the normal of corners `p`, from its two edges at `p0` divided by their
