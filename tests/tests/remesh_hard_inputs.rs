@@ -313,9 +313,10 @@ fn a_target_too_small_for_memory_is_refused() {
 
 /// Slivers through one point, which no box separates: near the point every exact search
 /// visits every sliver, so a run that searched there would take the square of their number.
-/// Through 5,000 of them the input is crowded (more than 256 triangles in the leaves holding
-/// the point) and every edit that would be judged there is refused: the run makes none and
-/// returns the input. Through 100, the same slivers are split as usual.
+/// Through 5,000 of them the input is crowded (more triangles in the leaves holding the
+/// point than 1,024 plus four times the highest valence, here 1) and every edit that would
+/// be judged there is refused: the run makes none and returns the input. Through 100, the
+/// same slivers are split as usual.
 #[test]
 fn edits_where_the_input_is_crowded_are_refused() {
     let input = crossing(5_000);
@@ -331,4 +332,39 @@ fn edits_where_the_input_is_crowded_are_refused() {
     let sparse = crossing(100);
     let out = remesh(&sparse, &RemeshConfig::default()).unwrap();
     assert!(out.report.splits > 0, "{:?}", out.report);
+}
+
+/// A closed cone of 1,024 sections: its apex and its base centre are vertices of valence
+/// 1,024, and the points near the base centre lie in the boxes of both fans (about 2,048
+/// triangles). Fans are real geometry, not tangles: the crowding bound grows with the
+/// input's valence, so both fans are remeshed (at a fifth of the mean edge, no vertex keeps
+/// a valence anywhere near theirs).
+#[test]
+fn high_valence_fans_are_not_crowded() {
+    let sections = 1024u32;
+    let mut positions = vec![[0.0f32, 0.0, 1.0], [0.0, 0.0, 0.0]];
+    for i in 0..sections {
+        let a = std::f32::consts::TAU * i as f32 / sections as f32;
+        positions.push([0.5 * a.cos(), 0.5 * a.sin(), 0.0]);
+    }
+    let mut triangles = Vec::new();
+    for i in 0..sections {
+        let (r0, r1) = (2 + i, 2 + (i + 1) % sections);
+        triangles.push([0, r0, r1]);
+        triangles.push([1, r1, r0]);
+    }
+    let input: Mesh = (positions, triangles);
+    let config = RemeshConfig {
+        target: EdgeTarget::MeanEdgeTimes(0.2),
+        ..RemeshConfig::default()
+    };
+    let out = remesh(&input, &config).unwrap();
+    let mut valence = vec![0u32; out.positions.len()];
+    for t in &out.triangles {
+        for &v in t {
+            valence[v as usize] += 1;
+        }
+    }
+    let highest = valence.iter().copied().max().unwrap_or(0);
+    assert!(highest <= 64, "highest valence {highest}: {:?}", out.report);
 }

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use super::half_edges::HalfEdgeMesh;
 use super::shape::{flat_enough, flatness, normal_of};
-use super::surface::faces_input;
+use super::surface::Input;
 use crate::math::dot;
 use crate::query::MeshQuery;
 
@@ -19,7 +19,7 @@ pub(super) fn is_free(mesh: &HalfEdgeMesh<'_>, v: u32) -> bool {
 /// [`faces_input`]).
 pub(super) fn moves_safely<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     v: u32,
     to: Vec3,
 ) -> bool {
@@ -28,10 +28,7 @@ pub(super) fn moves_safely<Q: MeshQuery + ?Sized>(
     mesh.for_each_outgoing(v, |he| {
         if safe {
             let corners = mesh.triangle(he / 3);
-            safe = faces_input(
-                reference,
-                corners.map(|x| if x == v { to } else { mesh.position(x) }),
-            );
+            safe = input.faces_input(corners.map(|x| if x == v { to } else { mesh.position(x) }));
         }
     });
     safe

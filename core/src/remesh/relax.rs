@@ -12,7 +12,7 @@ use super::half_edges::HalfEdgeMesh;
 use super::moves::{is_free, moves_safely};
 use super::report::{RemeshObserver, RemeshStep};
 use super::shape::smallest_angle_sine;
-use super::surface::closest_on;
+use super::surface::Input;
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
 
@@ -35,7 +35,7 @@ const STEP_FRACTIONS: [f32; 2] = [1.0, 0.5];
 /// moves nothing (at most [`RELAX_SWEEPS`]). Returns the number of moves.
 pub(super) fn relax_small_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     low: f32,
     observer: &mut O,
 ) -> usize {
@@ -50,7 +50,7 @@ pub(super) fn relax_small_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Siz
             if now >= NARROW {
                 continue;
             }
-            if let Some(to) = better_place(mesh, reference, v, moves_along, now, low) {
+            if let Some(to) = better_place(mesh, input, v, moves_along, now, low) {
                 mesh.set_position(v, to);
                 moves += 1;
                 observer.edited(RemeshStep::Relax, mesh);
@@ -95,7 +95,7 @@ const SLIDE_FRACTIONS: [f32; 2] = [0.25, 0.125];
 /// still beats `now`.
 fn better_place<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     v: u32,
     freedom: Freedom,
     now: f32,
@@ -134,8 +134,8 @@ fn better_place<Q: MeshQuery + ?Sized>(
         }
     }
     let (goal, _) = best?;
-    let to = closest_on(reference, goal, p)?;
-    (ring_smallest_sine(mesh, v, to) > now && moves_safely(mesh, reference, v, to)).then_some(to)
+    let to = input.closest_on(goal, p)?;
+    (ring_smallest_sine(mesh, v, to) > now && moves_safely(mesh, input, v, to)).then_some(to)
 }
 
 /// How far a directional try goes, as a fraction of the mean distance to the neighbours.

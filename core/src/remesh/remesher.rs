@@ -9,7 +9,7 @@ use super::relax::relax_small_angles;
 use super::report::{Progress, RemeshObserver, RemeshReport, RemeshStep};
 use super::shape::{FLATTEST, flat_enough, flatness, normal_of, smallest_angle_sine};
 use super::smooth::smooth;
-use super::surface::{closest_on, faces_input};
+use super::surface::Input;
 use crate::error::{RemeshBuffer, RemeshError};
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
@@ -45,10 +45,12 @@ pub(crate) fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 /// the second rule, so the result does too, even where the target is as long as the part
 /// is thick. A vertex lies on the input, except the midpoint of a split whose point on the
 /// input was refused, until a smoothing move puts it there. An edit is refused too where
-/// the input is too crowded to search: where more than 256 input triangles lie in the
-/// leaves of `reference` whose boxes hold the point it would be judged from (slivers
-/// through one point, copies of one triangle), every search from there would visit them
-/// all, so a run stays linear in the input however tangled it is.
+/// the input is too crowded to search: where the leaves of `reference` whose boxes hold the
+/// point it would be judged from list more input triangles than 1,024 plus four times the
+/// input's highest vertex valence (slivers through one point, triangles spanning the whole
+/// mesh), every search from there would visit them all; a run on such input stays linear
+/// in its size, while a fan of many triangles around one vertex (a cylinder's cap) is
+/// remeshed as usual.
 ///
 /// Boundary vertices never move and are never removed, so boundaries keep their shape
 /// (their edges are still split). Crease edges are never flipped; a vertex inside a nearly
@@ -128,6 +130,7 @@ pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
         return Err(RemeshError::InvalidConfig { field: "target" });
     }
     mesh.drop_unused_vertices();
+    let input = &Input::new(reference, mesh);
     let mut report = RemeshReport {
         creases: config.feature_angle.map_or(0, |a| mesh.mark_creases(a)),
         peak_vertices: mesh.vertex_count(),
@@ -136,19 +139,19 @@ pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     };
     let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
     for _ in 0..config.iterations {
-        report.splits += split_long_edges(mesh, reference, high, observer)?;
+        report.splits += split_long_edges(mesh, input, high, observer)?;
         // Only splits add: the counts peak here.
         report.peak_vertices = report.peak_vertices.max(mesh.vertex_count());
         report.peak_triangles = report.peak_triangles.max(mesh.triangle_count());
-        report.collapses += collapse_short_edges(mesh, reference, low, high, observer);
-        report.flips += equalize_valences(mesh, reference, observer);
-        smooth(mesh, reference, positions_scratch, observer);
+        report.collapses += collapse_short_edges(mesh, input, low, high, observer);
+        report.flips += equalize_valences(mesh, input, observer);
+        smooth(mesh, input, positions_scratch, observer);
         report.iterations += 1;
         observer.iterated(&report);
     }
     if config.iterations > 0 {
-        report.flips += improve_angles(mesh, reference, observer);
-        report.relaxed = relax_small_angles(mesh, reference, low, observer);
+        report.flips += improve_angles(mesh, input, observer);
+        report.relaxed = relax_small_angles(mesh, input, low, observer);
     }
     Ok(report)
 }
@@ -208,7 +211,7 @@ fn terminal_edge(mesh: &HalfEdgeMesh<'_>, he: u32) -> u32 {
 /// a skinny triangle is another long edge from that same corner, and the count runs away.
 fn split_long_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     high: f32,
     observer: &mut O,
 ) -> Result<usize, RemeshError> {
@@ -224,7 +227,7 @@ fn split_long_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
             continue;
         }
         let edge = terminal_edge(mesh, he);
-        let Some(mid) = split_point(mesh, reference, edge) else {
+        let Some(mid) = split_point(mesh, input, edge) else {
             // Refused: triangle `t` keeps its long edge (it is not visited again in this pass).
             t += 1;
             continue;
@@ -244,7 +247,7 @@ fn split_long_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
 /// later smoothing pass puts such a vertex on the input).
 fn split_point<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     he: u32,
 ) -> Option<Vec3> {
     let (a, b) = mesh.ends(he);
@@ -253,12 +256,14 @@ fn split_point<Q: MeshQuery + ?Sized>(
     let on_input = if on_line {
         None
     } else {
-        closest_on(reference, middle, mesh.position(a)).filter(|&p| p != middle)
+        input
+            .closest_on(middle, mesh.position(a))
+            .filter(|&p| p != middle)
     };
     [on_input, Some(middle)]
         .into_iter()
         .flatten()
-        .find(|&at| splits_safely(mesh, reference, he, at))
+        .find(|&at| splits_safely(mesh, input, he, at))
 }
 
 /// Whether splitting the edge of `he` at `at` makes four (two on the boundary) triangles
@@ -268,7 +273,7 @@ fn split_point<Q: MeshQuery + ?Sized>(
 /// side.
 fn splits_safely<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     he: u32,
     at: Vec3,
 ) -> bool {
@@ -278,7 +283,7 @@ fn splits_safely<Q: MeshQuery + ?Sized>(
         let whole = normal_of(corners.map(|x| mesh.position(x)));
         [a, b].into_iter().all(|end| {
             let half = corners.map(|x| if x == end { at } else { mesh.position(x) });
-            dot(normal_of(half), whole) > 0.0 && faces_input(reference, half)
+            dot(normal_of(half), whole) > 0.0 && input.faces_input(half)
         })
     })
 }
@@ -287,7 +292,7 @@ fn splits_safely<Q: MeshQuery + ?Sized>(
 /// allow, each in a direction that removes a vertex [`HalfEdgeMesh::may_remove`] allows.
 fn collapse_short_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     low: f32,
     high: f32,
     observer: &mut O,
@@ -296,7 +301,7 @@ fn collapse_short_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     let mut collapses = 0usize;
     let mut he = 0u32;
     while (he as usize) < mesh.half_edge_count() {
-        if squared_length(mesh, he) < limit && try_collapse(mesh, reference, he, high) {
+        if squared_length(mesh, he) < limit && try_collapse(mesh, input, he, high) {
             collapses += 1;
             observer.edited(RemeshStep::Collapse, mesh);
             // Slots were refilled from the end: look at this one again.
@@ -310,7 +315,7 @@ fn collapse_short_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
 /// Collapses the edge of `he` one way or the other if allowed; true when it did.
 fn try_collapse<Q: MeshQuery + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     he: u32,
     high: f32,
 ) -> bool {
@@ -337,14 +342,14 @@ fn try_collapse<Q: MeshQuery + ?Sized>(
         let target = if stays {
             pb
         } else {
-            let Some(on_input) = closest_on(reference, middle, pa) else {
+            let Some(on_input) = input.closest_on(middle, pa) else {
                 continue;
             };
             on_input
         };
         if stays_short(mesh, a, b, target, high)
             && keeps_orientation(mesh, a, b, target)
-            && collapse_faces_input(mesh, reference, a, b, target)
+            && collapse_faces_input(mesh, input, a, b, target)
         {
             return mesh.collapse_edge(w, target);
         }
@@ -404,7 +409,7 @@ fn keeps_orientation(mesh: &HalfEdgeMesh<'_>, a: u32, b: u32, target: Vec3) -> b
 /// drift.
 fn collapse_faces_input<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     a: u32,
     b: u32,
     target: Vec3,
@@ -423,7 +428,7 @@ fn collapse_faces_input<Q: MeshQuery + ?Sized>(
                     mesh.position(x)
                 }
             });
-            faces = faces_input(reference, corners);
+            faces = input.faces_input(corners);
         });
     }
     faces
@@ -468,7 +473,7 @@ fn flip_candidate(mesh: &HalfEdgeMesh<'_>, he: u32) -> Option<FlipCandidate> {
 /// one flatter than [`FLATTEST`] and than the pair was.
 fn equalize_valences<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     observer: &mut O,
 ) -> usize {
     let mut flips = 0usize;
@@ -483,7 +488,7 @@ fn equalize_valences<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
             continue;
         };
         // `flip_edge` checks `can_flip` itself: the cheaper tests go first.
-        if after < before && flip_keeps_orientation(mesh, reference, he, g) && mesh.flip_edge(he) {
+        if after < before && flip_keeps_orientation(mesh, input, he, g) && mesh.flip_edge(he) {
             flips += 1;
             observer.edited(RemeshStep::Flip, mesh);
         }
@@ -514,7 +519,7 @@ const ANGLE_SWEEPS: usize = 3;
 /// until one flips nothing (at most [`ANGLE_SWEEPS`]). Vertices stay where they are.
 fn improve_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     observer: &mut O,
 ) -> usize {
     let mut flips = 0usize;
@@ -537,7 +542,7 @@ fn improve_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
                 continue;
             }
             let new = smallest_angle_sine([pa, pd, pc]).min(smallest_angle_sine([pd, pb, pc]));
-            if new > old && flip_keeps_orientation(mesh, reference, he, g) && mesh.flip_edge(he) {
+            if new > old && flip_keeps_orientation(mesh, input, he, g) && mesh.flip_edge(he) {
                 flips += 1;
                 observer.edited(RemeshStep::Flip, mesh);
             }
@@ -556,7 +561,7 @@ fn improve_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
 /// leaning, agrees with a new pair lying across the tube.
 fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
     mesh: &HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     he: u32,
     g: u32,
 ) -> bool {
@@ -576,8 +581,8 @@ fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
         && [new0, new1]
             .iter()
             .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
-        && faces_input(reference, [pa, pd, pc])
-        && faces_input(reference, [pd, pb, pc])
+        && input.faces_input([pa, pd, pc])
+        && input.faces_input([pd, pb, pc])
 }
 
 #[cfg(test)]
@@ -641,9 +646,11 @@ mod tests {
                 let bvh = tree
                     .build(&input, &crate::bvh::BuildConfig::default())
                     .unwrap();
+                let reference = bvh.with(&input);
+                let surface = Input::new(&reference, &mesh);
                 let collapses = collapse_short_edges(
                     &mut mesh,
-                    &bvh.with(&input),
+                    &surface,
                     low,
                     high,
                     &mut Progress(|_: &_| {}),

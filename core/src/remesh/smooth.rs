@@ -7,7 +7,7 @@ use glam::Vec3;
 use super::half_edges::HalfEdgeMesh;
 use super::moves::{is_free, moves_safely};
 use super::report::{RemeshObserver, RemeshStep};
-use super::surface::closest_on;
+use super::surface::Input;
 use crate::math::{cross, dot};
 use crate::query::MeshQuery;
 
@@ -21,7 +21,7 @@ use crate::query::MeshQuery;
 /// vertex aims. `goals` holds the goals: at least one entry per vertex.
 pub(super) fn smooth<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
-    reference: &Q,
+    input: &Input<'_, Q>,
     goals: &mut [[f32; 3]],
     observer: &mut O,
 ) {
@@ -35,10 +35,11 @@ pub(super) fn smooth<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
         if goal == p {
             continue;
         }
-        let safe = |to: &Vec3| *to != p && moves_safely(mesh, reference, v, *to);
-        let to = closest_on(reference, goal, p)
+        let safe = |to: &Vec3| *to != p && moves_safely(mesh, input, v, *to);
+        let to = input
+            .closest_on(goal, p)
             .filter(safe)
-            .or_else(|| closest_on(reference, p, goal).filter(safe));
+            .or_else(|| input.closest_on(p, goal).filter(safe));
         if let Some(to) = to {
             mesh.set_position(v, to);
             observer.edited(RemeshStep::Smooth, mesh);
