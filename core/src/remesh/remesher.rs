@@ -648,13 +648,8 @@ mod tests {
                     .unwrap();
                 let reference = bvh.with(&input);
                 let surface = Input::new(&reference, &mesh);
-                let collapses = collapse_short_edges(
-                    &mut mesh,
-                    &surface,
-                    low,
-                    high,
-                    &mut Progress(|_: &_| {}),
-                );
+                let collapses =
+                    collapse_short_edges(&mut mesh, &surface, low, high, &mut Progress(|_: &_| {}));
                 assert_eq!(collapses, 0);
                 assert!(longest(&mesh) <= high);
             } else {
