@@ -235,9 +235,9 @@ def run_remesh():
 
 def render_remesh(data):
     return ("meshq and gpytoolbox's `remesh_botsch` on the same meshes at each mesh's mean edge "
-            "length, 10 iterations, best of 3: the bundled meshes (the creases row keeps "
+            "length (the cone at a twentieth of it), 10 iterations, best of 3: the bundled meshes (the creases row keeps "
             "dihedral angles sharper than 45°) and the remeshing tests' hard inputs (capsules "
-            "with long side strips and high-valence poles, an open tube of strips, boxes, "
+            "with long side strips and high-valence poles, a closed cone of 1,024 needle-thin side facets, an open tube of strips, boxes, "
             "slivers, stretched spheres, and `scan-224`: an open range scan of 99,458 triangles with upright slivers across a jump edge). Both outputs are measured by the same code: "
             "degenerate (zero-area triangles and coincident vertices), flipped (facing against "
             "the nearest input triangle), the distance two ways over the bounding-box "

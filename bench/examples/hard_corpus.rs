@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use meshq_tests::hard_inputs::{Mesh, capsule, cuboid, range_scan, slivers, sphere, tube};
+use meshq_tests::hard_inputs::{Mesh, capsule, cone, cuboid, range_scan, slivers, sphere, tube};
 
 fn obj((positions, triangles): &Mesh) -> String {
     let mut text = String::new();
@@ -31,6 +31,7 @@ fn main() -> std::io::Result<()> {
         ("capsule-16", capsule(16, 0.05, 1.0)),
         ("capsule-32", capsule(32, 0.05, 1.0)),
         ("capsule-64", capsule(64, 0.05, 1.0)),
+        ("cone-1024", cone(1024, 0.5, 1.0)),
         ("tube-24", tube(24, 0.05, 1.0)),
         ("box-flat", cuboid(1.0, 0.3, 0.1)),
         ("box-cube", cuboid(1.0, 1.0, 1.0)),

@@ -1,6 +1,6 @@
 //! Meshes remeshing finds hard, made here: capsules with long thin side strips and
-//! high-valence poles, an open tube of strips, boxes, stretched spheres, a patch of slivers
-//! and a range scan.
+//! high-valence poles, a cone of needle-thin facets, an open tube of strips, boxes, stretched
+//! spheres, a patch of slivers and a range scan.
 
 use meshq::Vec3;
 
@@ -46,6 +46,24 @@ pub fn capsule(n: u32, radius: f32, height: f32) -> Mesh {
     let last = rings[rings.len() - 1];
     for i in 0..n {
         triangles.push([bottom, last + (i + 1) % n, last + i]);
+    }
+    (positions, triangles)
+}
+
+/// A closed cone of `n` sections: apex at `z = height`, base disc of `radius` at `z = 0`.
+/// Every side facet is a needle from the apex (at 1,024 sections, under a third of a degree
+/// there), and the apex and the base centre have valence `n`.
+pub fn cone(n: u32, radius: f32, height: f32) -> Mesh {
+    let mut positions = vec![[0.0, 0.0, height], [0.0, 0.0, 0.0]];
+    for i in 0..n {
+        let a = std::f32::consts::TAU * i as f32 / n as f32;
+        positions.push([radius * a.cos(), radius * a.sin(), 0.0]);
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let (r0, r1) = (2 + i, 2 + (i + 1) % n);
+        triangles.push([0, r0, r1]);
+        triangles.push([1, r1, r0]);
     }
     (positions, triangles)
 }

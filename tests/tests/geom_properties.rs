@@ -171,6 +171,38 @@ proptest! {
         }
     }
 
+    /// Slivers: needles (a cone's side facets meeting at its apex, a scan's jump edge) and
+    /// caps (a corner almost on the opposite side), with the point near the face: the
+    /// distance and the point must be right to within rounding of the coordinates (eight
+    /// units in the last place of the largest), whatever the shape. Ericson's signed areas
+    /// as differences of products of dots nearly cancel on a sliver, so a point over the
+    /// face was measured to an edge; and the plane's normal as a plain cross product of two
+    /// nearly parallel edges tilts by the rounding over the sliver's width.
+    #[test]
+    fn closest_point_triangle_on_slivers_matches_f64(
+        a in vec3(), b in vec3(), side in vec3(), along in 0.0f32..1.0, needle in any::<bool>(),
+        width in 1e-4f32..1e-2, u in 0.0f32..1.0, v in 0.0f32..1.0, lift in -1.0f32..1.0,
+    ) {
+        let ab = b - a;
+        let across = side - ab * (side.dot(ab) / ab.length_squared());
+        prop_assume!(ab.length() > 1e-2 && across.length() > 1e-3);
+        // A needle's third corner lies beside `a`, a cap's anywhere along `ab`.
+        let along = if needle { along * 1e-2 } else { along };
+        let c = a + ab * along + across.normalize() * (width * ab.length());
+        let tri = Triangle::new(a, b, c);
+        prop_assume!(!tri.is_degenerate());
+        let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+        let normal = ab.cross(c - a).normalize();
+        let p = tri.point_at(u, v) + normal * (lift * width * ab.length());
+        let got = closest_point_triangle(p, &tri);
+        let want = closest_on_triangle_f64(d(p), dtri(&tri));
+        let scale = [a, b, c, p].iter().map(|x| f64::from(x.abs().max_element())).fold(0.0, f64::max);
+        let bound = 8.0 * f64::from(f32::EPSILON) * scale;
+        let (distance, reference) = (f64::from(got.distance_squared).sqrt(), (want - d(p)).length());
+        prop_assert!((distance - reference).abs() <= bound, "{} vs {} (bound {})", distance, reference, bound);
+        prop_assert!((d(got.point) - want).length() <= bound, "{:?} vs {:?} (bound {})", got.point, want, bound);
+    }
+
     #[test]
     fn closest_points_segment_segment_match_f64(p1 in vec3(), q1 in vec3(), p2 in vec3(), q2 in vec3()) {
         let r = closest_points_segment_segment(p1, q1, p2, q2);

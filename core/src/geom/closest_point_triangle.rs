@@ -1,13 +1,16 @@
 use glam::{Vec2, Vec3};
 
 use super::closest_point_segment;
-use crate::math::{ClosestPoint, Triangle, TriangleFeature, dot};
+use crate::math::{ClosestPoint, Triangle, TriangleFeature, cross, dot};
 
 /// The point of triangle `tri` closest to `p`, with its barycentrics and feature.
 ///
 /// Classifies `p` against the Voronoi regions of the corners, the edges and the face (the
-/// region walk of Ericson, *Real-Time Collision Detection*, §5.1.5), so the answer is exact up
-/// to rounding and needs no square roots. The result's `tri` is 0; `distance_squared` is
+/// region walk of Ericson, *Real-Time Collision Detection*, §5.1.5), with no square roots.
+/// The face's signed areas are triple products with a normal computed across the first edge,
+/// and a point over the face goes to the foot of its perpendicular, so the point and the
+/// distance are right to within a few units of rounding of the coordinates on every shape,
+/// needles and caps (slivers) included. The result's `tri` is 0; `distance_squared` is
 /// `|p − point|²`. Barycentrics follow the crate convention: `point ≈ (1 − u − v)·a + u·b + v·c`.
 ///
 /// A degenerate triangle (a segment or a point) is handled as the union of its edges; its
@@ -80,7 +83,14 @@ pub(crate) fn closest_point_regions(
     if d3 >= 0.0 && d4 <= d3 {
         return (b, 1.0, 0.0, TriangleFeature::Vertex(1));
     }
-    let vc = d1 * d4 - d3 * d2;
+    // `vc`, `vb` and `va` are twice the signed areas of `p` with each edge, times `|n|`.
+    // Ericson writes them as differences of products of the dots above (Lagrange's
+    // identity); on a sliver both products are large and nearly equal, so in f32 the
+    // difference can take the wrong sign and a point over the face is measured to an edge.
+    // As `n · (edge × offset)` the cross product is exact to rounding of its own size, and
+    // an error in `n`'s direction counts only to second order.
+    let n = normal_across(ab, ac);
+    let vc = dot(n, cross(ab, ap));
     if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
         let s = d1 / (d1 - d3);
         return (a + ab * s, s, 0.0, TriangleFeature::Edge(0));
@@ -91,22 +101,34 @@ pub(crate) fn closest_point_regions(
     if d6 >= 0.0 && d5 <= d6 {
         return (c, 0.0, 1.0, TriangleFeature::Vertex(2));
     }
-    let vb = d5 * d2 - d1 * d6;
+    let vb = dot(n, cross(ap, ac));
     if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
         let s = d2 / (d2 - d6);
         return (a + ac * s, 0.0, s, TriangleFeature::Edge(2));
     }
-    let va = d3 * d6 - d5 * d4;
+    let va = dot(n, cross(c - b, bp));
     let e = d4 - d3;
     let f = d5 - d6;
     if va <= 0.0 && e >= 0.0 && f >= 0.0 {
         let s = e / (e + f);
         return (b + (c - b) * s, 1.0 - s, s, TriangleFeature::Edge(1));
     }
-    let inv = 1.0 / (va + vb + vc);
-    let u = vb * inv;
-    let v = vc * inv;
-    (a + ab * u + ac * v, u, v, TriangleFeature::Face)
+    // Over the face: the foot of the perpendicular. Rebuilding it from the barycentrics
+    // instead would carry their rounding, which on a sliver is a share of its long side.
+    let nn = dot(n, n);
+    let point = p - n * (dot(n, ap) / nn);
+    (point, vb / nn, vc / nn, TriangleFeature::Face)
+}
+
+/// The normal `ab × ac'` of the plane through edges `ab` and `ac`, where `ac'` is `ac` less its
+/// part along `ab`. The same vector as `ab × ac` in exact arithmetic; in `f32` that cross
+/// product rounds each coordinate by about `|ab|·|ac|`, which on a sliver (two edges nearly
+/// parallel) is large beside the normal itself, and tilts it. Taking out the parallel part
+/// first leaves an error along the normal or across `ab`, which tilts the plane only about
+/// the line `ab`; every corner lies within the sliver's width of that line.
+#[inline(always)]
+fn normal_across(ab: Vec3, ac: Vec3) -> Vec3 {
+    cross(ab, ac - ab * (dot(ab, ac) / dot(ab, ab)))
 }
 
 /// Closest point on a zero-area triangle: the nearest of its three edges.

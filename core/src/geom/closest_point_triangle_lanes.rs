@@ -29,12 +29,14 @@ impl TriangleLanes {
         let bp = p.sub(b);
         let d3 = ab.dot(bp);
         let d4 = ac.dot(bp);
-        let vc = d1 * d4 - d3 * d2;
+        // As the walk's `normal_across`: `ac − ab·t` is `ac + ab·(−t)`, rounded the same.
+        let n = ab.cross(ac.add_scaled(ab, -(ab.dot(ac) / ab.dot(ab))));
+        let vc = n.dot(ab.cross(ap));
         let cp = p.sub(c);
         let d5 = ab.dot(cp);
         let d6 = ac.dot(cp);
-        let vb = d5 * d2 - d1 * d6;
-        let va = d3 * d6 - d5 * d4;
+        let vb = n.dot(ap.cross(ac));
+        let va = n.dot(c.sub(b).cross(bp));
         let e = d4 - d3;
         let f = d5 - d6;
 
@@ -56,10 +58,10 @@ impl TriangleLanes {
         let along = Lanes3::select(in_ab, ab, Lanes3::select(in_ac, ac, c.sub(b)));
         let on_edge = base.add_scaled(along, s);
 
-        let inv = Vec4::ONE / (va + vb + vc);
-        let u = vb * inv;
-        let v = vc * inv;
-        let on_face = a.add_scaled(ab, u).add_scaled(ac, v);
+        // `p − n·t` as the walk computes it (adding `n·(−t)` rounds the same: negation is
+        // exact).
+        let t = n.dot(ap) / n.dot(n);
+        let on_face = p.add_scaled(n, -t);
 
         // Squared distances to each candidate, then the region's: a corner's offset is the
         // walk's `p − corner` already. Later regions first, so each earlier test overrides them,

@@ -52,6 +52,15 @@ impl Lanes3 {
         x * ox + y * oy + z * oz
     }
 
+    /// The cross product per lane, component by component as [`cross`](crate::math::cross).
+    #[inline(always)]
+    pub(crate) fn cross(self, o: Self) -> Self {
+        let ([x, y, z], [ox, oy, oz]) = (self.rows, o.rows);
+        Self {
+            rows: [y * oz - z * oy, z * ox - x * oz, x * oy - y * ox],
+        }
+    }
+
     #[inline(always)]
     pub(crate) fn select(mask: BVec4A, yes: Self, no: Self) -> Self {
         let ([yx, yy, yz], [nx, ny, nz]) = (yes.rows, no.rows);
