@@ -232,6 +232,45 @@ proptest! {
         prop_assert!((0.0..=1.0).contains(&r.s) && (0.0..=1.0).contains(&r.t));
     }
 
+    /// Nearly parallel segments (turned by 10⁻⁵ to 10⁻² radians, overlapping or not): the
+    /// distance within rounding of the coordinates (eight units in the last place of the
+    /// largest). As `a·e − b²` the lines' determinant cancels to noise there, and the
+    /// parameter it gives can sit anywhere along the segments, the distance off by up to the
+    /// angle times their length.
+    #[test]
+    fn closest_points_of_nearly_parallel_segments_match_f64(
+        p1 in vec3(), q1 in vec3(), axis in vec3(), angle in -5.0f32..-2.0, stretch in 0.3f32..2.0,
+        shift in -1.0f32..1.0, lift in vec3(),
+    ) {
+        let d1 = q1 - p1;
+        prop_assume!(d1.length() > 1e-1 && axis.length() > 1e-1);
+        let turn = glam::Quat::from_axis_angle(axis.normalize(), 10f32.powf(angle));
+        let p2 = p1 + d1 * shift + lift * 0.1;
+        let q2 = p2 + turn * d1 * stretch;
+        let r = closest_points_segment_segment(p1, q1, p2, q2);
+        let (a, b, c, e) = (d(q1 - p1), d(q2 - p2), d(p1), d(p2));
+        let mut want = [
+            (closest_on_segment_f64(c, e, e + b) - c).length(),
+            (closest_on_segment_f64(c + a, e, e + b) - (c + a)).length(),
+            (closest_on_segment_f64(e, c, c + a) - e).length(),
+            (closest_on_segment_f64(e + b, c, c + a) - (e + b)).length(),
+        ].into_iter().fold(f64::INFINITY, f64::min);
+        let n = a.cross(b);
+        if n.length_squared() > 0.0 {
+            let w = c - e;
+            let s = n.dot(b.cross(w)) / n.length_squared();
+            let t = n.dot(a.cross(w)) / n.length_squared();
+            if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
+                want = want.min(((c + a * s) - (e + b * t)).length());
+            }
+        }
+        let got = f64::from(r.distance_squared).sqrt();
+        let scale = [p1, q1, p2, q2].iter().map(|x| f64::from(x.abs().max_element())).fold(0.0, f64::max);
+        let bound = 8.0 * f64::from(f32::EPSILON) * scale;
+        prop_assert!((got - want).abs() <= bound, "{} vs {} (bound {})", got, want, bound);
+        prop_assert!((d(r.on_first) - d(r.on_second)).length() - got <= bound);
+    }
+
     #[test]
     fn point_in_triangle_2d_matches_f64(p in (coord(), coord()), a in (coord(), coord()), b in (coord(), coord()), c in (coord(), coord())) {
         let v = |(x, y): (f32, f32)| Vec2::new(x, y);

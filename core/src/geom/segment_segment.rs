@@ -1,6 +1,6 @@
 use glam::Vec3;
 
-use crate::math::dot;
+use crate::math::{cross, dot};
 
 /// The closest points between two segments.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,7 +25,9 @@ fn clamp01(x: f32) -> f32 {
 /// The closest points between segments `[p1, q1]` and `[p2, q2]`.
 ///
 /// Solves for the closest points of the two lines, clamps to the segments and re-projects
-/// (Ericson, *Real-Time Collision Detection*, §5.1.9). Parallel segments give one of the
+/// (Ericson, *Real-Time Collision Detection*, §5.1.9), with the lines' determinant taken as
+/// `|d1 × d2|²`, so nearly parallel segments are measured to within rounding of their
+/// coordinates too. Parallel segments (the cross product exactly zero) give one of the
 /// closest pairs (the one with the smaller `s` on the first segment, found by clamping
 /// `s = 0`); zero-length segments act as points.
 ///
@@ -54,10 +56,14 @@ pub fn closest_points_segment_segment(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) ->
             (clamp01(-c / a), 0.0)
         } else {
             let b = dot(d1, d2);
-            let denom = a * e - b * b;
+            // The lines' determinant `a·e − b²` and numerator `b·f − c·e` as the cross products
+            // they equal (Lagrange's identity): as differences of products they cancel to
+            // rounding noise when the segments are nearly parallel, and `s` lands anywhere.
+            let n = cross(d1, d2);
+            let denom = dot(n, n);
             // Parallel lines (denom = 0): any s works, take s = 0.
             let mut s = if denom > 0.0 {
-                clamp01((b * f - c * e) / denom)
+                clamp01(dot(n, cross(d2, r)) / denom)
             } else {
                 0.0
             };
