@@ -7,10 +7,11 @@ use crate::math::{ClosestPoint, Triangle, TriangleFeature, cross, dot};
 ///
 /// Classifies `p` against the Voronoi regions of the corners, the edges and the face (the
 /// region walk of Ericson, *Real-Time Collision Detection*, §5.1.5), with no square roots.
-/// The face's signed areas are triple products with a normal computed across the first edge,
-/// and a point over the face goes to the foot of its perpendicular, so the point and the
-/// distance are right to within a few units of rounding of the coordinates on every shape,
-/// needles and caps (slivers) included. The result's `tri` is 0; `distance_squared` is
+/// On a sliver (twice its area under an eighth of its longest edge squared) the face's
+/// signed areas are triple products with a normal computed across the first edge, and a
+/// point over the face goes to the foot of its perpendicular, so the point and the distance
+/// are right to within a few units of rounding of the coordinates on every shape, needles
+/// and caps included. The result's `tri` is 0; `distance_squared` is
 /// `|p − point|²`. Barycentrics follow the crate convention: `point ≈ (1 − u − v)·a + u·b + v·c`.
 ///
 /// A degenerate triangle (a segment or a point) is handled as the union of its edges; its
@@ -85,39 +86,80 @@ pub(crate) fn closest_point_regions(
     }
     // `vc`, `vb` and `va` are twice the signed areas of `p` with each edge, times `|n|`.
     // Ericson writes them as differences of products of the dots above (Lagrange's
-    // identity); on a sliver both products are large and nearly equal, so in f32 the
-    // difference can take the wrong sign and a point over the face is measured to an edge.
-    // As `n · (edge × offset)` the cross product is exact to rounding of its own size, and
-    // an error in `n`'s direction counts only to second order.
-    let n = normal_across(ab, ac);
-    let vc = dot(n, cross(ab, ap));
+    // identity), exact to rounding of the coordinates on a fair triangle. On a sliver both
+    // products are large and nearly equal, so in f32 the difference can take the wrong sign
+    // and a point over the face is measured to an edge; there they are triple products with
+    // a normal across the first edge instead (`n · (edge × offset)`: the cross product is
+    // exact to rounding of its own size, and an error in `n`'s direction counts only to
+    // second order).
+    let cp = p - c;
+    let d5 = dot(ab, cp);
+    let d6 = dot(ac, cp);
+    let e = d4 - d3;
+    let f = d5 - d6;
+    // `d1 − d3`, `d2 − d6` and `e + f` are the edges' squared lengths.
+    let n = sliver_normal(cross(ab, ac), (d1 - d3).max(d2 - d6).max(e + f), ab, ac);
+    let vc = match n {
+        Some(n) => dot(n, cross(ab, ap)),
+        None => d1 * d4 - d3 * d2,
+    };
     if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
         let s = d1 / (d1 - d3);
         return (a + ab * s, s, 0.0, TriangleFeature::Edge(0));
     }
-    let cp = p - c;
-    let d5 = dot(ab, cp);
-    let d6 = dot(ac, cp);
     if d6 >= 0.0 && d5 <= d6 {
         return (c, 0.0, 1.0, TriangleFeature::Vertex(2));
     }
-    let vb = dot(n, cross(ap, ac));
+    let vb = match n {
+        Some(n) => dot(n, cross(ap, ac)),
+        None => d5 * d2 - d1 * d6,
+    };
     if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
         let s = d2 / (d2 - d6);
         return (a + ac * s, 0.0, s, TriangleFeature::Edge(2));
     }
-    let va = dot(n, cross(c - b, bp));
-    let e = d4 - d3;
-    let f = d5 - d6;
+    let bc = c - b;
+    let va = match n {
+        Some(n) => dot(n, cross(bc, bp)),
+        None => d3 * d6 - d5 * d4,
+    };
     if va <= 0.0 && e >= 0.0 && f >= 0.0 {
         let s = e / (e + f);
-        return (b + (c - b) * s, 1.0 - s, s, TriangleFeature::Edge(1));
+        return (b + bc * s, 1.0 - s, s, TriangleFeature::Edge(1));
     }
-    // Over the face: the foot of the perpendicular. Rebuilding it from the barycentrics
-    // instead would carry their rounding, which on a sliver is a share of its long side.
-    let nn = dot(n, n);
-    let point = p - n * (dot(n, ap) / nn);
-    (point, vb / nn, vc / nn, TriangleFeature::Face)
+    match n {
+        // Over a sliver's face: the foot of the perpendicular. Rebuilt from the barycentrics
+        // it would carry their rounding, a share of the sliver's long side.
+        Some(n) => {
+            let nn = dot(n, n);
+            (
+                p - n * (dot(n, ap) / nn),
+                vb / nn,
+                vc / nn,
+                TriangleFeature::Face,
+            )
+        }
+        None => {
+            let inv = 1.0 / (va + vb + vc);
+            let u = vb * inv;
+            let v = vc * inv;
+            (a + ab * u + ac * v, u, v, TriangleFeature::Face)
+        }
+    }
+}
+
+/// Twice the area over the longest edge squared under which a triangle counts as a sliver
+/// (`1/8`: a smallest angle under about 7°). Above it the walk's differences of products
+/// keep the point within two units of rounding of the coordinates (measured on random
+/// triangles and points against `f64`).
+pub(crate) const SLIVER: f32 = 1.0 / 8.0;
+
+/// For a sliver (`|ab × ac|`, twice the area, under [`SLIVER`] times `longest`, the
+/// longest edge squared), the normal [`normal_across`] computes; `None` for a fair triangle.
+#[inline(always)]
+fn sliver_normal(plain: Vec3, longest: f32, ab: Vec3, ac: Vec3) -> Option<Vec3> {
+    let bound = longest * SLIVER;
+    (dot(plain, plain) < bound * bound).then(|| normal_across(ab, ac))
 }
 
 /// The normal `ab × ac'` of the plane through edges `ab` and `ac`, where `ac'` is `ac` less its

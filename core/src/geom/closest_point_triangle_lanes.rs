@@ -9,6 +9,7 @@
 
 use glam::{Vec3, Vec4};
 
+use super::closest_point_triangle::SLIVER;
 use super::triangle_lanes::{Lanes3, TriangleLanes};
 
 impl TriangleLanes {
@@ -29,16 +30,35 @@ impl TriangleLanes {
         let bp = p.sub(b);
         let d3 = ab.dot(bp);
         let d4 = ac.dot(bp);
-        // As the walk's `normal_across`: `ac − ab·t` is `ac + ab·(−t)`, rounded the same.
-        let n = ab.cross(ac.add_scaled(ab, -(ab.dot(ac) / ab.dot(ab))));
-        let vc = n.dot(ab.cross(ap));
         let cp = p.sub(c);
         let d5 = ab.dot(cp);
         let d6 = ac.dot(cp);
-        let vb = n.dot(ap.cross(ac));
-        let va = n.dot(c.sub(b).cross(bp));
+        let bc = c.sub(b);
         let e = d4 - d3;
         let f = d5 - d6;
+        // A fair triangle's signed areas as the walk's differences of products, and its face
+        // point from the barycentrics; a sliver's (the walk's `sliver_normal`) as triple
+        // products and the foot of the perpendicular, worked out only when a lane holds one.
+        let mut vc = d1 * d4 - d3 * d2;
+        let mut vb = d5 * d2 - d1 * d6;
+        let mut va = d3 * d6 - d5 * d4;
+        let inv = Vec4::ONE / (va + vb + vc);
+        let mut on_face = a.add_scaled(ab, vb * inv).add_scaled(ac, vc * inv);
+        let plain = ab.cross(ac);
+        let longest = (d1 - d3).max(d2 - d6).max(e + f);
+        let bound = longest * Vec4::splat(SLIVER);
+        let sliver = plain.dot(plain).cmplt(bound * bound);
+        if sliver.any() {
+            // As the walk's `normal_across`: `ac − ab·t` is `ac + ab·(−t)`, rounded the same.
+            let n = ab.cross(ac.add_scaled(ab, -(ab.dot(ac) / ab.dot(ab))));
+            vc = Vec4::select(sliver, n.dot(ab.cross(ap)), vc);
+            vb = Vec4::select(sliver, n.dot(ap.cross(ac)), vb);
+            va = Vec4::select(sliver, n.dot(bc.cross(bp)), va);
+            // `p − n·t` as the walk computes it (adding `n·(−t)` rounds the same: negation
+            // is exact).
+            let foot = p.add_scaled(n, -(n.dot(ap) / n.dot(n)));
+            on_face = Lanes3::select(sliver, foot, on_face);
+        }
 
         // The scalar walk's tests, in its order: the first that holds decides the region.
         let in_a = d1.cmple(zero) & d2.cmple(zero);
@@ -55,13 +75,8 @@ impl TriangleLanes {
         let den = Vec4::select(in_ab, d1 - d3, Vec4::select(in_ac, d2 - d6, e + f));
         let s = num / den;
         let base = Lanes3::select(edge_ab_or_ac, a, b);
-        let along = Lanes3::select(in_ab, ab, Lanes3::select(in_ac, ac, c.sub(b)));
+        let along = Lanes3::select(in_ab, ab, Lanes3::select(in_ac, ac, bc));
         let on_edge = base.add_scaled(along, s);
-
-        // `p − n·t` as the walk computes it (adding `n·(−t)` rounds the same: negation is
-        // exact).
-        let t = n.dot(ap) / n.dot(n);
-        let on_face = p.add_scaled(n, -t);
 
         // Squared distances to each candidate, then the region's: a corner's offset is the
         // walk's `p − corner` already. Later regions first, so each earlier test overrides them,
