@@ -59,6 +59,32 @@ fn closest_on_triangle_f64(p: DVec3, [a, b, c]: [DVec3; 3]) -> DVec3 {
     best
 }
 
+/// The distance between segments `[p1, q1]` and `[p2, q2]` in f64: the nearest of the four
+/// endpoint-to-segment distances and, where the two lines' closest points (from the cross
+/// products, a different formulation from the clamp-and-reproject code under test) lie on
+/// both segments, their distance.
+fn segment_distance_f64(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) -> f64 {
+    let (a, b, c, e) = (d(q1 - p1), d(q2 - p2), d(p1), d(p2));
+    let mut nearest = [
+        (closest_on_segment_f64(c, e, e + b) - c).length(),
+        (closest_on_segment_f64(c + a, e, e + b) - (c + a)).length(),
+        (closest_on_segment_f64(e, c, c + a) - e).length(),
+        (closest_on_segment_f64(e + b, c, c + a) - (e + b)).length(),
+    ]
+    .into_iter()
+    .fold(f64::INFINITY, f64::min);
+    let n = a.cross(b);
+    if n.length_squared() > 0.0 {
+        let w = c - e;
+        let s = n.dot(b.cross(w)) / n.length_squared();
+        let t = n.dot(a.cross(w)) / n.length_squared();
+        if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
+            nearest = nearest.min(((c + a * s) - (e + b * t)).length());
+        }
+    }
+    nearest
+}
+
 /// Ray–triangle in f64 by Cramer's rule: `Some((t, u, v, margin))`, where `margin` is how far
 /// the solution is from every decision boundary.
 fn ray_triangle_f64(o: DVec3, dir: DVec3, [a, b, c]: [DVec3; 3]) -> Option<(f64, f64, f64, f64)> {
@@ -206,27 +232,7 @@ proptest! {
     #[test]
     fn closest_points_segment_segment_match_f64(p1 in vec3(), q1 in vec3(), p2 in vec3(), q2 in vec3()) {
         let r = closest_points_segment_segment(p1, q1, p2, q2);
-        // Reference: the unclamped line solution when it lies on both segments, and the four
-        // endpoint-to-segment distances.
-        let (a, b, c, e) = (d(q1 - p1), d(q2 - p2), d(p1), d(p2));
-        let mut want = [
-            (closest_on_segment_f64(c, e, e + b) - c).length(),
-            (closest_on_segment_f64(c + a, e, e + b) - (c + a)).length(),
-            (closest_on_segment_f64(e, c, c + a) - e).length(),
-            (closest_on_segment_f64(e + b, c, c + a) - (e + b)).length(),
-        ].into_iter().fold(f64::INFINITY, f64::min);
-        // Non-parallel: the normal equations of the two lines (a different formulation from the
-        // clamp-and-reproject code under test).
-        if a.cross(b).length_squared() > 1e-12 {
-            let w = c - e;
-            let (aa, ab, bb, aw, bw) = (a.dot(a), a.dot(b), b.dot(b), a.dot(w), b.dot(w));
-            let den = aa * bb - ab * ab;
-            let s = (ab * bw - bb * aw) / den;
-            let t = (aa * bw - ab * aw) / den;
-            if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
-                want = want.min(((c + a * s) - (e + b * t)).length());
-            }
-        }
+        let want = segment_distance_f64(p1, q1, p2, q2);
         let got = f64::from(r.distance_squared).sqrt();
         prop_assert!((got - want).abs() <= 1e-3, "{} vs {}", got, want);
         prop_assert!((0.0..=1.0).contains(&r.s) && (0.0..=1.0).contains(&r.t));
@@ -248,22 +254,7 @@ proptest! {
         let p2 = p1 + d1 * shift + lift * 0.1;
         let q2 = p2 + turn * d1 * stretch;
         let r = closest_points_segment_segment(p1, q1, p2, q2);
-        let (a, b, c, e) = (d(q1 - p1), d(q2 - p2), d(p1), d(p2));
-        let mut want = [
-            (closest_on_segment_f64(c, e, e + b) - c).length(),
-            (closest_on_segment_f64(c + a, e, e + b) - (c + a)).length(),
-            (closest_on_segment_f64(e, c, c + a) - e).length(),
-            (closest_on_segment_f64(e + b, c, c + a) - (e + b)).length(),
-        ].into_iter().fold(f64::INFINITY, f64::min);
-        let n = a.cross(b);
-        if n.length_squared() > 0.0 {
-            let w = c - e;
-            let s = n.dot(b.cross(w)) / n.length_squared();
-            let t = n.dot(a.cross(w)) / n.length_squared();
-            if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
-                want = want.min(((c + a * s) - (e + b * t)).length());
-            }
-        }
+        let want = segment_distance_f64(p1, q1, p2, q2);
         let got = f64::from(r.distance_squared).sqrt();
         let scale = [p1, q1, p2, q2].iter().map(|x| f64::from(x.abs().max_element())).fold(0.0, f64::max);
         let bound = 8.0 * f64::from(f32::EPSILON) * scale;
