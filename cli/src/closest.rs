@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use anyhow::Result;
 use clap::Args;
+use meshq::inside::WindingAccuracy;
 use meshq::math::Vec3;
 use meshq::query::MeshQuery;
 use serde::Serialize;
@@ -14,7 +15,8 @@ use crate::raycast::per_second;
 use crate::records::{RecordReader, ResultWriter};
 use crate::structure::{PrepareTime, QueryInput, with_structure};
 use crate::threads::Threads;
-use crate::{output, progress};
+use crate::winding::{ACCURACY_HELP, accuracy_parser};
+use crate::{output, progress, winding};
 
 /// Points read and queried per chunk (12 MB of input).
 const CHUNK: usize = 1 << 20;
@@ -39,12 +41,20 @@ pub struct ClosestArgs {
     #[arg(long)]
     pub points: PathBuf,
     /// Results: per point, float32 distance then uint32 triangle (+inf and 0xFFFFFFFF when
-    /// nothing lies within --max-distance, the mesh is empty or the point is not finite).
+    /// nothing lies within --max-distance, the mesh is empty or the point is not finite); with
+    /// --signed the distance is negative inside.
     #[arg(long)]
     pub out: PathBuf,
     /// Only surface points within this distance (inclusive) count; default: no limit.
     #[arg(long, value_name = "D", value_parser = non_negative)]
     pub max_distance: Option<f32>,
+    /// Signed distances: negative inside, told by the generalized winding number (so open,
+    /// non-manifold and self-intersecting meshes have an inside too).
+    #[arg(long)]
+    pub signed: bool,
+    #[arg(long, value_name = "RATIO", default_value = "2", value_parser = accuracy_parser,
+          requires = "signed", help = ACCURACY_HELP)]
+    pub accuracy: WindingAccuracy,
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -55,6 +65,9 @@ struct Summary {
     points: u64,
     /// Points with a surface point within the limit.
     found: u64,
+    /// Of those, points inside (with --signed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    inside: Option<u64>,
     #[serde(flatten)]
     prepare: PrepareTime,
     /// Threads that answered (`--threads`).
@@ -72,12 +85,23 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
     let mut writer = ResultWriter::create(&args.out, &inputs)?;
     let limit = args.max_distance.unwrap_or(f32::INFINITY);
     let mut verb = "";
-    let summary = with_structure(&args.input, |s| {
+    let summary = with_structure(&args.input, |mut s| {
+        let built = if args.signed {
+            winding::prepare(&mut s)?
+        } else {
+            None
+        };
+        let tree = if args.signed {
+            Some(winding::tree(&s, &built)?)
+        } else {
+            None
+        };
         verb = s.verb();
         let bar = progress::bar(reader.expected, "points");
         let mut floats = Vec::new();
         let (mut points, mut keys, mut results) = (Vec::new(), Vec::new(), Vec::new());
-        let (mut query_seconds, mut found_count) = (0.0f64, 0u64);
+        let (mut near, mut numbers) = (Vec::new(), Vec::new());
+        let (mut query_seconds, mut found_count, mut inside) = (0.0f64, 0u64, 0u64);
         while reader.next_chunk(CHUNK, &mut floats)? > 0 {
             let (records, _) = floats.as_chunks::<3>();
             points.clear();
@@ -95,12 +119,37 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
                     meshq::parallel::closest_points(&s.scene, &points, limit, &mut results)
                 })?,
             }
+            if let Some(tree) = &tree {
+                // The sign: the winding numbers of the points a surface point was found for.
+                near.clear();
+                near.extend(
+                    results[..points.len()]
+                        .iter()
+                        .zip(&points)
+                        .filter_map(|(c, &p)| c.map(|_| p)),
+                );
+                numbers.resize(near.len(), 0.0f32);
+                keys.resize(near.len().max(points.len()), 0u64);
+                match threads.pool() {
+                    None => tree.winding_numbers(&near, args.accuracy, &mut keys, &mut numbers)?,
+                    Some(pool) => pool.install(|| {
+                        meshq::parallel::winding_numbers(tree, &near, args.accuracy, &mut numbers)
+                    })?,
+                }
+            }
             query_seconds += start.elapsed().as_secs_f64();
+            let mut signs = numbers[..near.len()].iter();
             for (found, &p) in results[..points.len()].iter().zip(&points) {
                 found_count += u64::from(found.is_some());
                 let (d, tri) =
                     found.map_or((f32::INFINITY, u32::MAX), |c| (c.distance_from(p), c.tri));
-                writer.write(d, tri)?;
+                // As WindingTree::signed_distance: inside when |w| ≥ 1/2.
+                let is_inside = match (found, args.signed) {
+                    (Some(_), true) => signs.next().is_some_and(|w| w.abs() >= 0.5),
+                    _ => false,
+                };
+                inside += u64::from(is_inside);
+                writer.write(if is_inside { -d } else { d }, tri)?;
             }
             bar.inc(points.len() as u64);
         }
@@ -108,6 +157,7 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
         Ok(Summary {
             points: reader.count,
             found: found_count,
+            inside: args.signed.then_some(inside),
             prepare: s.time(),
             threads: threads.count(),
             query_seconds,

@@ -6,6 +6,7 @@ mod atomic;
 mod bake;
 mod check;
 mod closest;
+mod inside;
 mod inspect;
 mod inspect_cells;
 mod mesh_write;
@@ -18,6 +19,7 @@ mod remesh;
 mod structure;
 mod structure_arg;
 mod threads;
+mod winding;
 mod workload;
 
 use meshq_cli::mesh_file;
@@ -43,6 +45,9 @@ enum Command {
     Raycast(raycast::RaycastArgs),
     /// Find the closest surface point for points from a file.
     Closest(closest::ClosestArgs),
+    /// Tell which points are inside a mesh (generalized winding numbers: open and
+    /// non-manifold meshes too).
+    Inside(inside::InsideArgs),
     /// Remesh a mesh toward uniform, near-equilateral triangles on its surface.
     Remesh(remesh::RemeshArgs),
     /// Find where a mesh meets itself, or another mesh.
@@ -61,6 +66,7 @@ fn main() -> ExitCode {
         Command::Inspect(args) => inspect::run(args),
         Command::Raycast(args) => raycast::run(args),
         Command::Closest(args) => closest::run(args),
+        Command::Inside(args) => inside::run(args),
         Command::Remesh(args) => remesh::run(args),
         Command::Check(args) => check::run(args),
         Command::Workload(args) => workload::run(args),

@@ -44,6 +44,8 @@
 //! - [`kdtree`], [`octree`], [`grid`]: the structures that cut space into cells, on what they
 //!   share in [`cells`] (reference padding, the depth-first build inside one references
 //!   buffer, packed references, figures).
+//! - [`inside`]: inside, outside and how far — generalized winding numbers (fast, on open
+//!   and non-manifold meshes too), containment and signed distance.
 //! - [`collide`]: where meshes meet — two meshes (each with its BVH, the second placed by an
 //!   [`Affine`](collide::Affine) map) or one mesh with itself: yes/no, the triangle pairs,
 //!   the crossing segments.
@@ -93,6 +95,9 @@
 
 #[cfg(feature = "alloc")]
 extern crate alloc;
+// Only for what the standard library does faster with the same results (see the `std` feature).
+#[cfg(all(feature = "std", not(test)))]
+extern crate std;
 
 pub mod advanced;
 #[cfg(feature = "blob")]
@@ -103,6 +108,7 @@ pub mod collide;
 pub mod error;
 pub mod geom;
 pub mod grid;
+pub mod inside;
 pub mod kdtree;
 pub mod math;
 pub mod mesh;

@@ -30,6 +30,7 @@ use alloc::vec::Vec;
 use rayon::prelude::*;
 
 use crate::error::{BatchBuffer, BatchError};
+use crate::inside::{SignedDistance, WindingAccuracy, WindingTree};
 use crate::math::{ClosestPoint, Ray, RayHit, Vec3};
 use crate::query::batch_order::query_index;
 use crate::query::ray_order::KeyGrid;
@@ -185,5 +186,38 @@ pub fn closest_points<Q: MeshQuery + Sync + ?Sized>(
 ) -> Result<(), BatchError> {
     in_runs(points, out, |run, keys, answers| {
         query.closest_points(run, max_distance, keys, answers)
+    })
+}
+
+/// [`WindingTree::winding_numbers`] on every thread of the pool: `out[i]` is exactly
+/// [`WindingTree::winding_number`] for `points[i]`.
+///
+/// # Errors
+/// As [`raycast_batch`].
+pub fn winding_numbers(
+    tree: &WindingTree<'_>,
+    points: &[Vec3],
+    accuracy: WindingAccuracy,
+    out: &mut [f32],
+) -> Result<(), BatchError> {
+    in_runs(points, out, |run, keys, answers| {
+        tree.winding_numbers(run, accuracy, keys, answers)
+    })
+}
+
+/// [`WindingTree::signed_distances`] on every thread of the pool: `out[i]` is exactly
+/// [`WindingTree::signed_distance`] for `points[i]`.
+///
+/// # Errors
+/// As [`raycast_batch`].
+pub fn signed_distances(
+    tree: &WindingTree<'_>,
+    points: &[Vec3],
+    max_distance: f32,
+    accuracy: WindingAccuracy,
+    out: &mut [Option<SignedDistance>],
+) -> Result<(), BatchError> {
+    in_runs(points, out, |run, keys, answers| {
+        tree.signed_distances(run, max_distance, accuracy, keys, answers)
     })
 }

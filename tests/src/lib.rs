@@ -8,6 +8,7 @@ pub mod hard_inputs;
 pub mod oracle;
 pub mod suite;
 pub mod topology;
+pub mod winding_oracle;
 pub mod workload;
 
 pub use assets::{

@@ -39,6 +39,7 @@ mod spatial_splits;
 mod structure;
 mod watertight;
 mod wide_structure;
+mod winding_numbers;
 
 /// With `autotests = false` a file of this folder runs only if it is declared above: every `.rs`
 /// file here but this one must be, or a new test file would be skipped without a word.

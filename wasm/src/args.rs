@@ -67,7 +67,7 @@ impl core::fmt::Display for JsNumber {
 }
 
 /// A number (`f64`) or a `TypeError`.
-fn number(value: &JsValue, what: &str) -> Result<f64, JsValue> {
+pub fn number(value: &JsValue, what: &str) -> Result<f64, JsValue> {
     value.as_f64().ok_or_else(|| {
         type_error(&format!(
             "{what} must be a number, got {}",

@@ -141,7 +141,7 @@ fn byte_span(a: &js_sys::Object) -> (js_sys::ArrayBuffer, f64, f64) {
 
 /// A `RangeError` when two of the `outputs` (typed arrays, with their argument names) share
 /// bytes: one answer would overwrite another, so the call refuses before writing anything.
-fn outputs_apart(outputs: &[(&js_sys::Object, &str)]) -> Result<(), JsValue> {
+pub(crate) fn outputs_apart(outputs: &[(&js_sys::Object, &str)]) -> Result<(), JsValue> {
     for (i, (a, name_a)) in outputs.iter().enumerate() {
         let (buffer_a, start_a, end_a) = byte_span(a);
         for (b, name_b) in outputs.iter().skip(i + 1) {

@@ -97,7 +97,11 @@ pub fn build(
         }
         (other, _) => MeshIndex::build(&mesh, other).map_err(error)?,
     };
-    Ok(Storage { scene, blob: None })
+    Ok(Storage {
+        scene,
+        blob: None,
+        winding: None,
+    })
 }
 
 /// A generous bound on what building takes per triangle and per vertex (structure, packed
@@ -147,5 +151,6 @@ pub fn from_blob(bytes: Vec<u8>) -> Result<Storage, JsError> {
     Ok(Storage {
         scene,
         blob: Some(bytes),
+        winding: None,
     })
 }

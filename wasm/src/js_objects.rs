@@ -14,6 +14,9 @@ export function meshq_ray_hit(t, distance, px, py, pz, triangle, u, v, nx, ny, n
 export function meshq_closest_point(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
   return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
 }
+export function meshq_signed_distance(distance, px, py, pz, triangle, u, v, nx, ny, nz, windingNumber) {
+  return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz }, windingNumber };
+}
 ")]
 extern "C" {
     /// A `RayHit`: `{ t, distance, point: {x, y, z}, triangle, u, v, normal: {x, y, z} }`.
@@ -45,6 +48,23 @@ extern "C" {
         nx: f32,
         ny: f32,
         nz: f32,
+    ) -> JsValue;
+
+    /// A `SignedDistance`: a `ClosestPoint` whose `distance` is negative inside, with the
+    /// `windingNumber` that gave the sign.
+    #[allow(clippy::too_many_arguments)]
+    pub fn meshq_signed_distance(
+        distance: f32,
+        px: f32,
+        py: f32,
+        pz: f32,
+        triangle: u32,
+        u: f32,
+        v: f32,
+        nx: f32,
+        ny: f32,
+        nz: f32,
+        winding_number: f32,
     ) -> JsValue;
 }
 

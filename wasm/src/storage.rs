@@ -13,6 +13,9 @@ pub struct Storage {
     pub scene: MeshIndex,
     /// The blob this was loaded from.
     pub blob: Option<Vec<u8>>,
+    /// For a k-d tree, octree or grid: a BVH of the same mesh with its winding-number
+    /// expansions, made by the first inside query (a BVH prepares its own).
+    pub winding: Option<meshq::owned::MeshBvh>,
 }
 
 /// The queries go through [`MeshQuery`]'s generic implementation for `MeshIndex` (one walk

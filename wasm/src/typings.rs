@@ -47,6 +47,13 @@ export interface ClosestPoint {
   normal: XYZ;
 }
 
+/** A signed distance: the surface point nearest a query point, `distance` negative inside
+ *  (where the generalized winding number is at least 1/2 in magnitude), and the winding
+ *  number that gave the sign. */
+export interface SignedDistance extends ClosestPoint {
+  windingNumber: number;
+}
+
 /** Options of `MeshBvh.build`; every field is optional. */
 export interface MeshBvhOptions {
   /** Which structure answers (default `'bvh'`); every structure gives the same answers. */

@@ -728,3 +728,47 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
         );
     }
 }
+
+const WINDING_GOLDEN: &str = include_str!("../../tests/golden/winding.txt");
+
+#[wasm_bindgen_test]
+fn winding_numbers_match_the_golden_digest() {
+    for (name, obj) in MESHES {
+        let (positions, _) = load(obj);
+        let corners: Vec<[f32; 3]> = positions
+            .chunks_exact(3)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect();
+        let bounds = meshq_workload::centre_radius(&corners).2;
+        let points: Vec<Vec3> =
+            meshq_workload::QueryPoints::new(bounds, meshq_workload::WINDING_SEED)
+                .take(2000)
+                .collect();
+        let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
+        // A k-d tree too: its winding numbers come from a BVH of the same mesh, the same bits.
+        for options in [JsValue::UNDEFINED, option("structure", "kdtree")] {
+            let mut built = build(obj, &options);
+            let numbers = Float32Array::new_with_length(points.len() as u32);
+            let inside = built
+                .winding_number_batch(
+                    &floats_js(&flat),
+                    &numbers.clone().into(),
+                    &JsValue::UNDEFINED,
+                )
+                .unwrap();
+            let numbers = numbers.to_vec();
+            let digest = meshq_workload::WindingDigest::of(&numbers);
+            let golden = meshq_workload::find_winding_golden(WINDING_GOLDEN, name).unwrap();
+            assert_eq!(digest, golden, "{name}: winding numbers in WebAssembly");
+            assert_eq!(inside, golden.inside, "{name}");
+            for (k, p) in points.iter().enumerate().step_by(97) {
+                let one = built
+                    .winding_number(&floats_js(&p.to_array()), None)
+                    .unwrap();
+                assert_eq!(one.to_bits(), numbers[k].to_bits(), "{name} point {k}");
+                let holds = built.contains(&floats_js(&p.to_array()), None).unwrap();
+                assert_eq!(holds, numbers[k].abs() >= 0.5, "{name} point {k}");
+            }
+        }
+    }
+}

@@ -14,7 +14,8 @@
 //!
 //! [`parity`] runs a fixed set of these queries on any target and digests every result bit;
 //! [`golden`] reads and writes the golden file those digests are checked against, and
-//! [`remesh_golden`] the golden file of remeshing results.
+//! [`remesh_golden`] the golden file of remeshing results, [`winding_golden`] that of winding
+//! numbers.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -26,6 +27,7 @@ pub mod golden;
 pub mod parity;
 pub mod remesh_golden;
 mod rng;
+pub mod winding_golden;
 
 use glam::Vec3;
 use meshq::math::{Aabb, Ray};
@@ -34,6 +36,7 @@ pub use golden::{GoldenEntry, GoldenError, find_golden};
 pub use parity::{ParityDigest, ParityReport, ParitySpec, ParityTarget, run_parity};
 pub use remesh_golden::{MeshDigest, RemeshGolden, find_remesh_golden};
 pub use rng::SplitMix64;
+pub use winding_golden::{WINDING_SEED, WindingDigest, find_winding_golden};
 
 /// Bounding-box centre `c`, half-diagonal `r` and the box of a point set.
 #[must_use]

@@ -29,6 +29,9 @@ pub enum BufferKind {
     /// The entries of a collapse plan (one per inner binary node; size it with
     /// [`WideBvh::measure`](crate::wide::WideBvh::measure)).
     CollapsePlan,
+    /// The expansions of a winding-number tree (one
+    /// [`WindingNode`](crate::inside::WindingNode) per tree node).
+    WindingNodes,
 }
 
 /// Why a structure could not be built.
@@ -80,6 +83,7 @@ impl fmt::Display for BuildError {
                     BufferKind::References => "reference",
                     BufferKind::SplitRefs => "split reference",
                     BufferKind::CollapsePlan => "collapse plan",
+                    BufferKind::WindingNodes => "winding node",
                 };
                 write!(f, "{which} buffer too small: needed {needed}, got {got}")
             }

@@ -6,6 +6,7 @@ use alloc::vec::Vec;
 use crate::advanced::{CollapsePlan, CollapseRoles};
 use crate::bvh::{BuildConfig, Bvh, BvhNode, PrimRef, SpatialSplits, node_capacity};
 use crate::error::BuildError;
+use crate::inside::WindingNode;
 use crate::math::{Aabb, PackedTriangle, Triangle};
 use crate::mesh::ValidMesh;
 use crate::query::{
@@ -44,6 +45,8 @@ pub struct MeshBvh {
     pub(super) config: BuildConfig,
     /// The references of triangles held in several leaves (spatial splits), by triangle.
     pub(super) splits: Vec<SplitRef>,
+    /// The winding-number expansions, one per binary node, once prepared.
+    pub(super) winding: Option<Vec<WindingNode>>,
 }
 
 /// The nodes queries walk: the four-wide tree, the same quantized, or the eight-wide tree.
@@ -270,6 +273,7 @@ impl MeshBvh {
             wide,
             config,
             splits: Vec::new(),
+            winding: None,
         })
     }
 

@@ -20,6 +20,7 @@ mod cell_scene;
 #[cfg(feature = "blob-cells")]
 mod index_blob;
 mod mesh_bvh;
+mod mesh_bvh_winding;
 mod mesh_cells;
 mod mesh_grid;
 mod mesh_index;

@@ -1,0 +1,264 @@
+//! The per-node dipole expansions of the fast winding number, and their bottom-up build.
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+use crate::bvh::{Bvh, BvhNode};
+use crate::math::{Triangle, dot};
+use crate::mesh::ValidMesh;
+use crate::query::SplitRefs;
+
+/// What a BVH node's triangles look like from far away: the moments of their area-weighted
+/// normals about an area-weighted centre, from which the winding number's expansion to second
+/// order is taken (Barill et al. 2018), 140 bytes. One per node of the binary tree, at the
+/// node's index.
+///
+/// Lengths are in the tree's units ([`WindingTree::scale`](super::WindingTree::scale)): the
+/// mesh's coordinates times a power of two that brings the tree's box to a size near 1, so
+/// that the moments stay within `f32` for every valid mesh.
+///
+/// Writing `aₜ` for a triangle's area, `nₜ` for its unit normal and `cₜ` for its centroid, over
+/// the node's triangles:
+/// - `centre` = `Σ aₜ·cₜ / Σ aₜ` (the middle of the triangles' corners when the area is 0);
+/// - `radius` ≥ the distance from `centre` to every corner of every triangle;
+/// - `normal` = `Σ aₜ·nₜ`, the area-weighted normal (units: length²);
+/// - `area` = `Σ aₜ`;
+/// - `first_moment[3·i + j]` = `Σ aₜ·nₜ[i]·(cₜ − centre)[j]` (units: length³), row-major;
+/// - `second_moment[6·i + s]` = `Σ nₜ[i]·∫ₜ x[j]·x[k] dA` with `x` the offset from `centre`, for
+///   the pairs `(j, k)` in the order `s` = xx, xy, xz, yy, yz, zz (units: length⁴).
+///
+/// A triangle that spatial splits put in several leaves counts in the leaf holding its first
+/// reference only. Triangles of zero area count nothing.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WindingNode {
+    /// Area-weighted centre of the node's triangles.
+    pub centre: [f32; 3],
+    /// Bound on the distance from `centre` to any corner of the node's triangles.
+    pub radius: f32,
+    /// Area-weighted normal, `Σ aₜ·nₜ`.
+    pub normal: [f32; 3],
+    /// Total area of the node's triangles.
+    pub area: f32,
+    /// First moment of the area-weighted normal about `centre`, row-major (see the type).
+    pub first_moment: [f32; 9],
+    /// Second moment of the area-weighted normal about `centre`, symmetric pairs packed (see
+    /// the type).
+    pub second_moment: [f32; 18],
+}
+
+impl WindingNode {
+    /// A placeholder for initialising buffers: no area, radius 0 at the origin.
+    pub const EMPTY: Self = Self {
+        centre: [0.0; 3],
+        radius: 0.0,
+        normal: [0.0; 3],
+        area: 0.0,
+        first_moment: [0.0; 9],
+        second_moment: [0.0; 18],
+    };
+
+    /// `centre` as a vector.
+    #[inline]
+    #[must_use]
+    pub fn centre(&self) -> Vec3 {
+        Vec3::from_array(self.centre)
+    }
+
+    /// `normal` as a vector.
+    #[inline]
+    #[must_use]
+    pub fn normal(&self) -> Vec3 {
+        Vec3::from_array(self.normal)
+    }
+}
+
+impl Default for WindingNode {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+/// Whether the reference in `slot` is the one that counts triangle `tri`: always for a triangle
+/// held once, otherwise when `slot` is its first reference.
+#[inline]
+pub(super) fn counts_here(splits: &SplitRefs<'_>, slot: usize, tri: u32) -> bool {
+    splits
+        .of(tri)
+        .next()
+        .is_none_or(|r| r.slot as usize == slot)
+}
+
+/// The triangles a leaf counts, by slot order, their corners multiplied by `scale` (a power of
+/// two: exactly).
+pub(super) fn leaf_triangles<'m>(
+    bvh: &Bvh<'m>,
+    mesh: ValidMesh<'m>,
+    node: &BvhNode,
+    scale: f32,
+) -> impl Iterator<Item = Triangle> + Clone + 'm {
+    let (first, count) = (node.first as usize, node.count as usize);
+    let order = bvh.order();
+    let splits = bvh.split_refs();
+    order
+        .get(first..first.saturating_add(count))
+        .unwrap_or_default()
+        .iter()
+        .enumerate()
+        .filter(move |&(k, &tri)| counts_here(&splits, first + k, tri))
+        .filter_map(move |(_, &tri)| mesh.triangle(tri))
+        .map(move |t| Triangle::new(t.a * scale, t.b * scale, t.c * scale))
+}
+
+/// The power of two nearest above `1 / extent` for the largest side of `bounds` (1 for an empty
+/// or flat-to-a-point box): multiplying by it is exact, and it brings the mesh to a size near 1,
+/// where the moments (up to the fourth power of a length) neither overflow nor underflow.
+pub(super) fn unit_scale(bounds: crate::math::Aabb) -> f32 {
+    let extent = (bounds.max - bounds.min).max_element();
+    if !(extent > 0.0 && extent.is_finite()) {
+        return 1.0;
+    }
+    // The biased exponent e puts extent in [2^(e−127), 2^(e−126)); 2^(127−e) is its inverse's
+    // power of two, kept within the normal range.
+    let biased = (extent.to_bits() >> 23) & 0xff;
+    f32::from_bits(254u32.saturating_sub(biased).clamp(1, 254) << 23)
+}
+
+/// `|v|` through `libm`.
+#[inline]
+fn length(v: Vec3) -> f32 {
+    libm::sqrtf(dot(v, v))
+}
+
+/// `moment += a ⊗ b` (row `i`, column `j`: `a[i]·b[j]`).
+#[inline]
+fn add_outer(moment: &mut [f32; 9], a: Vec3, b: Vec3) {
+    let (a, b) = (a.to_array(), b.to_array());
+    for (i, row) in moment.chunks_exact_mut(3).enumerate() {
+        let ai = a.get(i).copied().unwrap_or(0.0);
+        for (m, bj) in row.iter_mut().zip(b) {
+            *m += ai * bj;
+        }
+    }
+}
+
+/// The pairs `(j, k)`, `j ≤ k`, of a packed symmetric 3 × 3 matrix, in storage order.
+pub(super) const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+
+/// `second += a ⊗ S` for the symmetric matrix `S` given as a function of `(j, k)`.
+#[inline]
+fn add_outer_symmetric(second: &mut [f32; 18], a: Vec3, s: impl Fn(usize, usize) -> f32) {
+    let a = a.to_array();
+    for (i, row) in second.chunks_exact_mut(6).enumerate() {
+        let ai = a.get(i).copied().unwrap_or(0.0);
+        for (m, &(j, k)) in row.iter_mut().zip(&PAIRS) {
+            *m += ai * s(j, k);
+        }
+    }
+}
+
+/// Component `i` of `v`.
+#[inline]
+fn at(v: Vec3, i: usize) -> f32 {
+    v.to_array().get(i).copied().unwrap_or(0.0)
+}
+
+/// A leaf's expansion from its triangles.
+pub(super) fn leaf_expansion(triangles: impl Iterator<Item = Triangle> + Clone) -> WindingNode {
+    let (mut area, mut weighted, mut normal) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
+    let (mut low, mut high) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for t in triangles.clone() {
+        let n = t.normal() * 0.5;
+        let a = length(n);
+        area += a;
+        weighted += centroid(&t) * a;
+        normal += n;
+        let b = t.bounds();
+        (low, high) = (low.min(b.min), high.max(b.max));
+    }
+    let centre = if area > 0.0 {
+        weighted / area
+    } else if low.x <= high.x {
+        (low + high) * 0.5
+    } else {
+        Vec3::ZERO
+    };
+    let (mut first_moment, mut second_moment, mut radius) = ([0.0f32; 9], [0.0f32; 18], 0.0f32);
+    for t in triangles {
+        let n = t.normal() * 0.5;
+        add_outer(&mut first_moment, n, centroid(&t) - centre);
+        // ∫ x xᵀ dA over a triangle is a/12 · (Σ vᵢvᵢᵀ + s sᵀ), s = Σ vᵢ; with the normal's
+        // length a folded in, n/12 carries it.
+        let (a, b, c) = (t.a - centre, t.b - centre, t.c - centre);
+        let sum = a + b + c;
+        add_outer_symmetric(&mut second_moment, n * (1.0 / 12.0), |j, k| {
+            at(a, j) * at(a, k)
+                + at(b, j) * at(b, k)
+                + at(c, j) * at(c, k)
+                + at(sum, j) * at(sum, k)
+        });
+        for corner in [t.a, t.b, t.c] {
+            radius = radius.max(length(corner - centre));
+        }
+    }
+    WindingNode {
+        centre: centre.to_array(),
+        radius,
+        normal: normal.to_array(),
+        area,
+        first_moment,
+        second_moment,
+    }
+}
+
+/// An inner node's expansion from its two children's: the moments move to the new centre
+/// (with `δ` a child's centre less the new one, `C + N ⊗ δ` and
+/// `D + C ⊗ δ + (C ⊗ δ)ᵀ⁽ʲᵏ⁾ + N ⊗ δ ⊗ δ`), the radius bounds both children's balls.
+pub(super) fn merged_expansion(left: &WindingNode, right: &WindingNode) -> WindingNode {
+    let area = left.area + right.area;
+    let (cl, cr) = (left.centre(), right.centre());
+    let centre = if area > 0.0 {
+        (cl * left.area + cr * right.area) / area
+    } else {
+        (cl + cr) * 0.5
+    };
+    let mut first_moment = [0.0f32; 9];
+    let mut second_moment = [0.0f32; 18];
+    for child in [left, right] {
+        let shift = child.centre() - centre;
+        // The second moment moves with the child's first moment, taken before it moves.
+        let first = |i: usize, j: usize| child.first_moment.get(3 * i + j).copied().unwrap_or(0.0);
+        for (i, row) in second_moment.chunks_exact_mut(6).enumerate() {
+            let own = child
+                .second_moment
+                .get(6 * i..6 * i + 6)
+                .unwrap_or_default();
+            let ni = at(child.normal(), i);
+            for ((m, &(j, k)), &d) in row.iter_mut().zip(&PAIRS).zip(own) {
+                *m += d
+                    + first(i, j) * at(shift, k)
+                    + first(i, k) * at(shift, j)
+                    + ni * at(shift, j) * at(shift, k);
+            }
+        }
+        for (m, &c) in first_moment.iter_mut().zip(&child.first_moment) {
+            *m += c;
+        }
+        add_outer(&mut first_moment, child.normal(), shift);
+    }
+    let radius = (left.radius + length(cl - centre)).max(right.radius + length(cr - centre));
+    WindingNode {
+        centre: centre.to_array(),
+        radius,
+        normal: (left.normal() + right.normal()).to_array(),
+        area,
+        first_moment,
+        second_moment,
+    }
+}
+
+/// The centroid `(a + b + c) / 3`.
+#[inline]
+fn centroid(t: &Triangle) -> Vec3 {
+    (t.a + t.b + t.c) * (1.0 / 3.0)
+}

@@ -1,0 +1,205 @@
+//! Inside, outside and how far: winding numbers, containment and signed distance on a
+//! `MeshBvh`, one point at a time or a batch per call. The winding-number expansions are made
+//! by the first such call (a BVH's own tree; for a k-d tree, octree or grid, a BVH of the same
+//! mesh beside it) and kept.
+
+use glam::Vec3;
+use meshq::bvh::BuildConfig;
+use meshq::inside::{WindingAccuracy, WindingTree};
+use meshq::owned::{MeshBvh as OwnedBvh, MeshIndex};
+use wasm_bindgen::prelude::*;
+
+use crate::MeshBvh;
+use crate::args::{
+    JsNumber, floats, max_distance, number, output_f32, output_u32, range_error, vector,
+};
+use crate::batch::{MISS_DISTANCE, MISS_TRIANGLE};
+use crate::js_objects::meshq_signed_distance;
+use crate::storage::Storage;
+
+/// The `accuracy` argument: omitted or `null` for the default far ratio (2), a number ≥ 1, or
+/// `Infinity` for the exact sum.
+fn accuracy(value: &JsValue) -> Result<WindingAccuracy, JsValue> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(WindingAccuracy::DEFAULT);
+    }
+    let x = number(value, "accuracy")?;
+    WindingAccuracy::new(x as f32).ok_or_else(|| {
+        range_error(&format!(
+            "accuracy must be a number ≥ 1 (Infinity: exact), got {}",
+            JsNumber(x)
+        ))
+    })
+}
+
+impl Storage {
+    /// The winding-number tree, its expansions made on first use.
+    fn winding(&mut self) -> Result<WindingTree<'_>, JsValue> {
+        let failed = |e: meshq::error::BuildError| JsValue::from(JsError::new(&e.to_string()));
+        match &mut self.scene {
+            MeshIndex::Bvh(bvh) => bvh.prepare_winding_numbers().map_err(failed)?,
+            other => {
+                if self.winding.is_none() {
+                    let bvh = OwnedBvh::build(&other.mesh(), &BuildConfig::default())
+                        .and_then(OwnedBvh::with_winding_numbers)
+                        .map_err(failed)?;
+                    self.winding = Some(bvh);
+                }
+            }
+        }
+        let bvh = match (&self.scene, &self.winding) {
+            (MeshIndex::Bvh(bvh), _) | (_, Some(bvh)) => bvh,
+            _ => return Err(JsError::new("no winding-number tree").into()),
+        };
+        bvh.winding()
+            .ok_or_else(|| JsError::new("the winding-number tree was not prepared").into())
+    }
+}
+
+/// The points of a batch: a `Float32Array` of 3 numbers per point.
+fn batch_points(points: &JsValue) -> Result<Vec<Vec3>, JsValue> {
+    let values = floats(points, "points")?;
+    if !values.len().is_multiple_of(3) {
+        return Err(range_error(&format!(
+            "points hold {} numbers, not a multiple of 3",
+            values.len()
+        )));
+    }
+    Ok(values
+        .chunks_exact(3)
+        .map(|p| Vec3::new(p[0], p[1], p[2]))
+        .collect())
+}
+
+#[wasm_bindgen]
+impl MeshBvh {
+    /// The generalized winding number of the mesh at `point` (`Vec3Like`): 1 inside a closed
+    /// mesh whose triangles face outwards, 0 outside, fractions near holes, so that open,
+    /// non-manifold and self-intersecting meshes have an inside too. `accuracy` (omitted: 2) is
+    /// the far ratio of the fast winding number: a group of triangles counts by its expansion
+    /// when the point is farther than `accuracy` times its radius (larger is more exact and
+    /// slower; `Infinity` sums every triangle). The first call prepares the expansions.
+    #[wasm_bindgen(js_name = windingNumber)]
+    pub fn winding_number(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] point: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
+    ) -> Result<f32, JsValue> {
+        let p = vector(point, "point")?;
+        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
+        Ok(self.storage.winding()?.winding_number(p, accuracy))
+    }
+
+    /// Whether `point` (`Vec3Like`) is inside the mesh: `|windingNumber| ≥ 0.5`. `accuracy` as
+    /// for `windingNumber`.
+    pub fn contains(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] point: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
+    ) -> Result<bool, JsValue> {
+        let p = vector(point, "point")?;
+        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
+        Ok(self.storage.winding()?.contains(p, accuracy))
+    }
+
+    /// The signed distance from `point` (`Vec3Like`) to the mesh, negative inside: the closest
+    /// surface point within `maxDistance` (omitted or `null`: any distance), exactly as
+    /// `closestPoint` finds it, signed by the winding number (`accuracy` as for
+    /// `windingNumber`). Returns `{ distance, point, triangle, u, v, normal, windingNumber }`
+    /// (`SignedDistance`) or `null` when nothing lies within `maxDistance`.
+    #[wasm_bindgen(js_name = signedDistance, unchecked_return_type = "SignedDistance | null")]
+    pub fn signed_distance(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Vec3Like")] point: &JsValue,
+        #[wasm_bindgen(js_name = maxDistance, unchecked_param_type = "number | null")]
+        max_distance_in: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
+    ) -> Result<JsValue, JsValue> {
+        let p = vector(point, "point")?;
+        let limit = max_distance(&max_distance_in.unwrap_or(JsValue::UNDEFINED))?;
+        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
+        let tree = self.storage.winding()?;
+        let Some(s) = tree.signed_distance(p, limit, accuracy) else {
+            return Ok(JsValue::NULL);
+        };
+        let n = tree
+            .mesh()
+            .triangle(s.closest.tri)
+            .and_then(|t| t.unit_normal())
+            .unwrap_or(Vec3::ZERO);
+        let c = s.closest;
+        Ok(meshq_signed_distance(
+            s.distance,
+            c.point.x,
+            c.point.y,
+            c.point.z,
+            c.tri,
+            c.u,
+            c.v,
+            n.x,
+            n.y,
+            n.z,
+            s.winding_number,
+        ))
+    }
+
+    /// The winding number of every point of `points` (a `Float32Array`, 3 numbers per point)
+    /// into `numbers[i]` (a `Float32Array`, one per point), each exactly `windingNumber`'s;
+    /// `accuracy` as there. Returns the number of points inside (`|w| ≥ 0.5`).
+    #[wasm_bindgen(js_name = windingNumberBatch)]
+    pub fn winding_number_batch(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] points: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] numbers: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] accuracy_in: &JsValue,
+    ) -> Result<u32, JsValue> {
+        let queries = batch_points(points)?;
+        let out = output_f32(numbers, "numbers", queries.len(), " (one per point)")?;
+        let accuracy = accuracy(accuracy_in)?;
+        let tree = self.storage.winding()?;
+        let mut answers = vec![0.0f32; queries.len()];
+        let mut keys = vec![0u64; queries.len()];
+        tree.winding_numbers(&queries, accuracy, &mut keys, &mut answers)
+            .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
+        out.copy_from(&answers);
+        Ok(answers.iter().filter(|w| w.abs() >= 0.5).count() as u32)
+    }
+
+    /// The signed distance of every point of `points` (a `Float32Array`, 3 numbers per point)
+    /// within `maxDistance` (omitted: any distance) into `distances[i]` (a `Float32Array`,
+    /// negative inside) and the closest point's triangle into `triangles[i]` (a
+    /// `Uint32Array`), each exactly `signedDistance`'s; a point that finds nothing writes
+    /// `MISS_DISTANCE` and `MISS_TRIANGLE`. `accuracy` as for `windingNumber`. Returns the
+    /// number of points found.
+    #[wasm_bindgen(js_name = signedDistanceBatch)]
+    pub fn signed_distance_batch(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] points: &JsValue,
+        #[wasm_bindgen(js_name = maxDistance, unchecked_param_type = "number | null | undefined")]
+        max_distance_in: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] distances: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] accuracy_in: &JsValue,
+    ) -> Result<u32, JsValue> {
+        let queries = batch_points(points)?;
+        let n = queries.len();
+        let limit = max_distance(max_distance_in)?;
+        let distances = output_f32(distances, "distances", n, " (one per point)")?;
+        let triangles = output_u32(triangles, "triangles", n, " (one per point)")?;
+        crate::batch::outputs_apart(&[(&distances, "distances"), (&triangles, "triangles")])?;
+        let accuracy = accuracy(accuracy_in)?;
+        let tree = self.storage.winding()?;
+        let mut answers = vec![None; n];
+        let mut keys = vec![0u64; n];
+        tree.signed_distances(&queries, limit, accuracy, &mut keys, &mut answers)
+            .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
+        let (mut d, mut t) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for a in &answers {
+            d.push(a.map_or(MISS_DISTANCE, |s| s.distance));
+            t.push(a.map_or(MISS_TRIANGLE, |s| s.closest.tri));
+        }
+        distances.copy_from(&d);
+        triangles.copy_from(&t);
+        Ok(answers.iter().filter(|a| a.is_some()).count() as u32)
+    }
+}
