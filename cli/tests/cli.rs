@@ -1123,3 +1123,138 @@ fn spatial_splits_bake_a_version_5_blob_that_answers_as_brute_force() {
         assert!(err.contains("--spatial-splits"), "{err}");
     }
 }
+
+#[test]
+fn inside_and_signed_closest_give_the_library_answers_on_every_input() {
+    use meshq::inside::WindingAccuracy;
+    let dir = tempfile::tempdir().unwrap();
+    let mesh_path = asset("spot.obj");
+    let loaded = load_mesh("spot");
+    let mesh = MeshRef::new(&loaded.positions, &loaded.triangles)
+        .validate()
+        .unwrap();
+    let scene = MeshBvh::build(&mesh, &BuildConfig::default())
+        .unwrap()
+        .with_winding_numbers()
+        .unwrap();
+    let tree = scene.winding().unwrap();
+    let mut points = workload::closest_points(&loaded.positions, 3000, 5);
+    points.push(Vec3::new(f32::NAN, 0.0, 0.0));
+    let points_path = dir.path().join("points.bin");
+    write_f32s(&points_path, points.iter().flat_map(|p| p.to_array()));
+    let blob = dir.path().join("spot.meshq");
+    ok(&[&"bake", &mesh_path, &"-o", &blob]);
+    for accuracy in ["2", "3", "exact"] {
+        let wanted = match accuracy {
+            "exact" => WindingAccuracy::EXACT,
+            ratio => WindingAccuracy::new(ratio.parse().unwrap()).unwrap(),
+        };
+        let out = dir.path().join(format!("inside-{accuracy}.bin"));
+        ok(&[
+            &"inside",
+            &mesh_path,
+            &"--points",
+            &points_path,
+            &"--out",
+            &out,
+            &"--accuracy",
+            &accuracy,
+        ]);
+        let records = read_records(&out);
+        assert_eq!(records.len(), points.len());
+        for (&(w, inside), &p) in records.iter().zip(&points) {
+            let want = tree.winding_number(p, wanted);
+            assert_eq!(w.to_bits(), want.to_bits(), "{accuracy} at {p}");
+            assert_eq!(inside, u32::from(want.abs() >= 0.5), "{accuracy} at {p}");
+        }
+        // A blob, an octree, two threads: the same records, byte for byte.
+        for extra in [
+            vec![blob.as_os_str()],
+            vec![
+                mesh_path.as_os_str(),
+                "--structure".as_ref(),
+                "octree".as_ref(),
+            ],
+            vec![mesh_path.as_os_str(), "--threads".as_ref(), "2".as_ref()],
+        ] {
+            let again = dir.path().join("again.bin");
+            let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"inside"];
+            for a in &extra {
+                args.push(a);
+            }
+            args.extend([
+                &"--points" as &dyn AsRef<std::ffi::OsStr>,
+                &points_path,
+                &"--out",
+                &again,
+            ]);
+            args.extend([&"--accuracy" as &dyn AsRef<std::ffi::OsStr>, &accuracy]);
+            ok(&args);
+            assert_eq!(
+                std::fs::read(&again).unwrap(),
+                std::fs::read(&out).unwrap(),
+                "{extra:?}"
+            );
+        }
+    }
+    let signed = dir.path().join("signed.bin");
+    ok(&[
+        &"closest",
+        &mesh_path,
+        &"--points",
+        &points_path,
+        &"--out",
+        &signed,
+        &"--signed",
+        &"--max-distance",
+        &"0.02",
+    ]);
+    let records = read_records(&signed);
+    let (mut negative, mut found) = (0, 0);
+    for (&(d, tri), &p) in records.iter().zip(&points) {
+        match tree.signed_distance(p, 0.02, WindingAccuracy::DEFAULT) {
+            Some(s) => {
+                assert_eq!(
+                    (d.to_bits(), tri),
+                    (s.distance.to_bits(), s.closest.tri),
+                    "{p}"
+                );
+                negative += usize::from(d < 0.0);
+                found += 1;
+            }
+            None => assert_eq!((d, tri), (f32::INFINITY, u32::MAX), "{p}"),
+        }
+    }
+    assert!(
+        negative > 10 && found > negative,
+        "{negative} inside of {found}"
+    );
+    fails(
+        &[
+            &"inside",
+            &mesh_path,
+            &"--points",
+            &points_path,
+            &"--out",
+            &signed,
+            &"--accuracy",
+            &"0.5",
+        ],
+        2,
+        "ratio ≥ 1",
+    );
+    fails(
+        &[
+            &"closest",
+            &mesh_path,
+            &"--points",
+            &points_path,
+            &"--out",
+            &signed,
+            &"--accuracy",
+            &"2",
+        ],
+        2,
+        "--signed",
+    );
+}
