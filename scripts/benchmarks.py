@@ -244,6 +244,46 @@ def render_remesh(data):
             "diagonal.\n\n" + data["table"])
 
 
+# --- inside and signed distance against libigl -----------------------------------------------
+
+def run_inside():
+    commands = [BUILD_CLI, f"{PEERS_PY} bench/peers/inside.py --json"]
+    sh(commands[0])
+    return commands, {"rows": json.loads(sh(commands[1]))}
+
+
+def render_inside(data):
+    wn, sd = [], []
+    for r in data["rows"]:
+        lib = r["libigl"]
+        wn.append((r["mesh"], "libigl `fast_winding_number` (β 2)", f"{lib['seconds']:.3f}", "",
+                   f"{lib['largest_error']:.1e}", f"{lib['mean_error']:.1e}", ""))
+        for ratio, m in r["meshq"].items():
+            mark = " (equal accuracy)" if ratio == r["equal_accuracy_ratio"] else ""
+            wn.append((r["mesh"], f"meshq `inside --accuracy {ratio}`{mark}", f"{m['seconds']:.3f}",
+                       f"{m['build_seconds']:.3f}", f"{m['largest_error']:.1e}", f"{m['mean_error']:.1e}",
+                       f"{m['ratio']:.2f}×"))
+        s = r["signed"]
+        sd.append((r["mesh"], "libigl `signed_distance` (fast winding number)", f"{s['libigl_seconds']:.3f}",
+                   str(s["libigl_wrong_signs"]), f"{s['libigl_magnitude_difference_over_diagonal']:.1e}", ""))
+        for ratio, m in s["meshq"].items():
+            sd.append((r["mesh"], f"meshq `closest --signed --accuracy {ratio}`", f"{m['seconds']:.3f}",
+                       str(m["wrong_signs"]), f"{m['magnitude_difference_over_diagonal']:.1e}", f"{m['ratio']:.2f}×"))
+    points = data["rows"][0]["points"] if data["rows"] else 0
+    exact = data["rows"][0]["exact_points"] if data["rows"] else 0
+    return (f"{points:,} query points per mesh (the closest-point workload), one core. Times include "
+            "building the tree and its expansions (libigl's call builds its own); the error is the "
+            f"largest and mean difference from the exact winding number (`igl.winding_number`, f64) on "
+            f"the first {exact:,} points; β is the accuracy ratio ([inside.md](inside.md)).\n\n"
+            + table(["mesh", "winding numbers", "time (s)", "of which build (s)", "largest error",
+                     "mean error", "speed-up"], wn)
+            + "\n\nSigned distance: wrong signs against the exact winding number (points whose number "
+            "is within 0.01 of 1/2 left out); the largest difference of the magnitude from libigl's "
+            "unsigned distance, over the diagonal.\n\n"
+            + table(["mesh", "signed distance", "time (s)", "wrong signs", "magnitude difference",
+                     "speed-up"], sd))
+
+
 # --- threads ----------------------------------------------------------------------------------
 
 def run_threads():
@@ -282,6 +322,7 @@ SECTIONS = {
     "threads": ("Threads", run_threads, render_lines),
     "node": ("Node: WebAssembly against three-mesh-bvh", run_node, render_node),
     "remesh": ("Remeshing against gpytoolbox", run_remesh, render_remesh),
+    "inside": ("Inside and signed distance against libigl", run_inside, render_inside),
     "firmware": ("Firmware: Cortex-M4F in QEMU", run_firmware, render_firmware),
 }
 
@@ -324,6 +365,13 @@ def summary_rows(results):
             if group.endswith("overlapping") and "meshq_intersects" in e and "parry3d_intersection_test" in e:
                 rows.append(("mesh–mesh yes/no, two overlapping bunnies", "parry3d `intersection_test`",
                              f"{e['parry3d_intersection_test'] / e['meshq_intersects']:.1f}×"))
+    if "inside" in results:
+        for r in results["inside"]["data"]["rows"]:
+            if r["mesh"] == "stanford-bunny" and r["equal_accuracy_ratio"]:
+                m = r["meshq"][r["equal_accuracy_ratio"]]
+                rows.append(("winding numbers, bunny, 100k points, equal accuracy", "libigl `fast_winding_number`", f"{m['ratio']:.2f}×"))
+                sd = r["signed"]["meshq"][r["equal_accuracy_ratio"]]
+                rows.append(("signed distance, bunny, 100k points", "libigl `signed_distance`", f"{sd['ratio']:.2f}×"))
     if "remesh" in results:
         times = {}
         lines = results["remesh"]["data"]["table"].splitlines()

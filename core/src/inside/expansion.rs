@@ -8,24 +8,30 @@ use crate::math::{Triangle, dot};
 use crate::mesh::ValidMesh;
 use crate::query::SplitRefs;
 
-/// What a BVH node's triangles look like from far away: the moments of their area-weighted
-/// normals about an area-weighted centre, from which the winding number's expansion to second
-/// order is taken (Barill et al. 2018), 140 bytes. One per node of the binary tree, at the
-/// node's index.
+/// What a BVH node's triangles look like from far away: the winding number's expansion to
+/// second order about an area-weighted centre (Barill et al. 2018), in the form its evaluation
+/// reads, 112 bytes. One per node of the binary tree, at the node's index.
 ///
 /// Lengths are in the tree's units ([`WindingTree::scale`](super::WindingTree::scale)): the
 /// mesh's coordinates times a power of two that brings the tree's box to a size near 1, so
 /// that the moments stay within `f32` for every valid mesh.
 ///
-/// Writing `aₜ` for a triangle's area, `nₜ` for its unit normal and `cₜ` for its centroid, over
-/// the node's triangles:
+/// Writing `aₜ` for a triangle's area, `nₜ` for its unit normal, `cₜ` for its centroid and `x`
+/// for a point's offset from `centre`, over the node's triangles:
 /// - `centre` = `Σ aₜ·cₜ / Σ aₜ` (the middle of the triangles' corners when the area is 0);
-/// - `radius` ≥ the distance from `centre` to every corner of every triangle;
-/// - `normal` = `Σ aₜ·nₜ`, the area-weighted normal (units: length²);
-/// - `area` = `Σ aₜ`;
-/// - `first_moment[3·i + j]` = `Σ aₜ·nₜ[i]·(cₜ − centre)[j]` (units: length³), row-major;
-/// - `second_moment[6·i + s]` = `Σ nₜ[i]·∫ₜ x[j]·x[k] dA` with `x` the offset from `centre`, for
-///   the pairs `(j, k)` in the order `s` = xx, xy, xz, yy, yz, zz (units: length⁴).
+/// - `radius` = the largest distance from `centre` to a corner of a triangle;
+/// - `normal` = `N` = `Σ aₜ·nₜ`, the area-weighted normal (units: length²); `area` = `Σ aₜ`;
+/// - with the first moment `Cᵢⱼ = Σ nₜᵢ·∫ₜ xⱼ dA` (length³) and the second
+///   `Dᵢⱼₖ = Σ nₜᵢ·∫ₜ xⱼxₖ dA` (length⁴), the coefficients of the solid angle's terms in the
+///   unit direction `u` from the point to `centre`:
+///   - `first[0]` = `tr C`, and `first[1..7]` the coefficients of `uₓ², u_y², u_z², uₓu_y,
+///     uₓu_z, u_yu_z` in `−3·uᵀCu`;
+///   - `second[0..10]` the coefficients of `uₓ³, uₓ²u_y, uₓ²u_z, uₓu_y², uₓu_yu_z, uₓu_z², u_y³,
+///     u_y²u_z, u_yu_z², u_z³` in `7.5·Σ Dᵢⱼₖuᵢuⱼuₖ`, and `second[10..13]` the vector `L` with
+///     `L·u = −1.5·(2·Σ Dᵢᵢₖuₖ + Σ uᵢDᵢⱼⱼ)`;
+///
+/// so that at distance `d` the node's solid angle is
+/// `N·u / d² + (first[0] + Σ first·u²) / d³ + (Σ second·u³ + L·u) / d⁴`.
 ///
 /// A triangle that spatial splits put in several leaves counts in the leaf holding its first
 /// reference only. Triangles of zero area count nothing.
@@ -34,17 +40,16 @@ use crate::query::SplitRefs;
 pub struct WindingNode {
     /// Area-weighted centre of the node's triangles.
     pub centre: [f32; 3],
-    /// Bound on the distance from `centre` to any corner of the node's triangles.
+    /// The largest distance from `centre` to a corner of the node's triangles.
     pub radius: f32,
     /// Area-weighted normal, `Σ aₜ·nₜ`.
     pub normal: [f32; 3],
     /// Total area of the node's triangles.
     pub area: f32,
-    /// First moment of the area-weighted normal about `centre`, row-major (see the type).
-    pub first_moment: [f32; 9],
-    /// Second moment of the area-weighted normal about `centre`, symmetric pairs packed (see
-    /// the type).
-    pub second_moment: [f32; 18],
+    /// The first-moment term's coefficients (see the type).
+    pub first: [f32; 7],
+    /// The second-moment term's coefficients (see the type).
+    pub second: [f32; 13],
 }
 
 impl WindingNode {
@@ -54,8 +59,8 @@ impl WindingNode {
         radius: 0.0,
         normal: [0.0; 3],
         area: 0.0,
-        first_moment: [0.0; 9],
-        second_moment: [0.0; 18],
+        first: [0.0; 7],
+        second: [0.0; 13],
     };
 
     /// `centre` as a vector.
@@ -71,12 +76,91 @@ impl WindingNode {
     pub fn normal(&self) -> Vec3 {
         Vec3::from_array(self.normal)
     }
+
+    /// The evaluation form of a node's moments, with its `radius`.
+    pub(super) fn of(m: &Moments, radius: f32) -> Self {
+        let c = |i: usize, j: usize| m.first_moment.get(3 * i + j).copied().unwrap_or(0.0);
+        let first = [
+            c(0, 0) + c(1, 1) + c(2, 2),
+            -3.0 * c(0, 0),
+            -3.0 * c(1, 1),
+            -3.0 * c(2, 2),
+            -3.0 * (c(0, 1) + c(1, 0)),
+            -3.0 * (c(0, 2) + c(2, 0)),
+            -3.0 * (c(1, 2) + c(2, 1)),
+        ];
+        // Σ Dᵢⱼₖuᵢuⱼuₖ gathered by monomial: every ordered (i, j, k) adds Dᵢ(jk) to the
+        // monomial of its sorted indices.
+        let d = |i: usize, j: usize, k: usize| {
+            let (j, k) = if j <= k { (j, k) } else { (k, j) };
+            let pair = PAIRS.iter().position(|&p| p == (j, k)).unwrap_or(0);
+            m.second_moment.get(6 * i + pair).copied().unwrap_or(0.0)
+        };
+        let mut cubic = [0.0f32; 10];
+        for i in 0..3 {
+            for j in 0..3 {
+                for k in 0..3 {
+                    let mut sorted = [i, j, k];
+                    sorted.sort_unstable();
+                    let slot = CUBES.iter().position(|&c| c == sorted).unwrap_or(0);
+                    if let Some(x) = cubic.get_mut(slot) {
+                        *x += d(i, j, k);
+                    }
+                }
+            }
+        }
+        let diagonal = |k: usize| d(0, 0, k) + d(1, 1, k) + d(2, 2, k);
+        let traces = |i: usize| d(i, 0, 0) + d(i, 1, 1) + d(i, 2, 2);
+        let linear = |k: usize| -1.5 * (2.0 * diagonal(k) + traces(k));
+        let mut second = [0.0f32; 13];
+        for (out, x) in second.iter_mut().zip(cubic) {
+            *out = 7.5 * x;
+        }
+        for (k, out) in second.iter_mut().skip(10).enumerate() {
+            *out = linear(k);
+        }
+        Self {
+            centre: m.centre.to_array(),
+            radius,
+            normal: m.normal.to_array(),
+            area: m.area,
+            first,
+            second,
+        }
+    }
 }
 
 impl Default for WindingNode {
     fn default() -> Self {
         Self::EMPTY
     }
+}
+
+/// The monomials of `second[0..10]`, as sorted index triples.
+const CUBES: [[usize; 3]; 10] = [
+    [0, 0, 0],
+    [0, 0, 1],
+    [0, 0, 2],
+    [0, 1, 1],
+    [0, 1, 2],
+    [0, 2, 2],
+    [1, 1, 1],
+    [1, 1, 2],
+    [1, 2, 2],
+    [2, 2, 2],
+];
+
+/// A node's moments in full, as the bottom-up build carries them: the centre, area and
+/// area-weighted normal, `first_moment[3·i + j]` = `Cᵢⱼ` and `second_moment[6·i + s]` = `Dᵢⱼₖ`
+/// for the pairs `(j, k)` of [`PAIRS`] (see [`WindingNode`]), and a bound on the radius.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Moments {
+    pub(super) centre: Vec3,
+    pub(super) radius: f32,
+    pub(super) normal: Vec3,
+    pub(super) area: f32,
+    pub(super) first_moment: [f32; 9],
+    pub(super) second_moment: [f32; 18],
 }
 
 /// Whether the reference in `slot` is the one that counts triangle `tri`: always for a triangle
@@ -163,8 +247,8 @@ fn at(v: Vec3, i: usize) -> f32 {
     v.to_array().get(i).copied().unwrap_or(0.0)
 }
 
-/// A leaf's expansion from its triangles.
-pub(super) fn leaf_expansion(triangles: impl Iterator<Item = Triangle> + Clone) -> WindingNode {
+/// A leaf's moments from its triangles.
+pub(super) fn leaf_moments(triangles: impl Iterator<Item = Triangle> + Clone) -> Moments {
     let (mut area, mut weighted, mut normal) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
     let (mut low, mut high) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
     for t in triangles.clone() {
@@ -201,22 +285,22 @@ pub(super) fn leaf_expansion(triangles: impl Iterator<Item = Triangle> + Clone) 
             radius = radius.max(length(corner - centre));
         }
     }
-    WindingNode {
-        centre: centre.to_array(),
+    Moments {
+        centre,
         radius,
-        normal: normal.to_array(),
+        normal,
         area,
         first_moment,
         second_moment,
     }
 }
 
-/// An inner node's expansion from its two children's: the moments move to the new centre
+/// An inner node's moments from its two children's: the moments move to the new centre
 /// (with `δ` a child's centre less the new one, `C + N ⊗ δ` and
 /// `D + C ⊗ δ + (C ⊗ δ)ᵀ⁽ʲᵏ⁾ + N ⊗ δ ⊗ δ`), the radius bounds both children's balls.
-pub(super) fn merged_expansion(left: &WindingNode, right: &WindingNode) -> WindingNode {
+pub(super) fn merged_moments(left: &Moments, right: &Moments) -> Moments {
     let area = left.area + right.area;
-    let (cl, cr) = (left.centre(), right.centre());
+    let (cl, cr) = (left.centre, right.centre);
     let centre = if area > 0.0 {
         (cl * left.area + cr * right.area) / area
     } else {
@@ -225,7 +309,7 @@ pub(super) fn merged_expansion(left: &WindingNode, right: &WindingNode) -> Windi
     let mut first_moment = [0.0f32; 9];
     let mut second_moment = [0.0f32; 18];
     for child in [left, right] {
-        let shift = child.centre() - centre;
+        let shift = child.centre - centre;
         // The second moment moves with the child's first moment, taken before it moves.
         let first = |i: usize, j: usize| child.first_moment.get(3 * i + j).copied().unwrap_or(0.0);
         for (i, row) in second_moment.chunks_exact_mut(6).enumerate() {
@@ -233,7 +317,7 @@ pub(super) fn merged_expansion(left: &WindingNode, right: &WindingNode) -> Windi
                 .second_moment
                 .get(6 * i..6 * i + 6)
                 .unwrap_or_default();
-            let ni = at(child.normal(), i);
+            let ni = at(child.normal, i);
             for ((m, &(j, k)), &d) in row.iter_mut().zip(&PAIRS).zip(own) {
                 *m += d
                     + first(i, j) * at(shift, k)
@@ -244,13 +328,13 @@ pub(super) fn merged_expansion(left: &WindingNode, right: &WindingNode) -> Windi
         for (m, &c) in first_moment.iter_mut().zip(&child.first_moment) {
             *m += c;
         }
-        add_outer(&mut first_moment, child.normal(), shift);
+        add_outer(&mut first_moment, child.normal, shift);
     }
     let radius = (left.radius + length(cl - centre)).max(right.radius + length(cr - centre));
-    WindingNode {
-        centre: centre.to_array(),
+    Moments {
+        centre,
         radius,
-        normal: (left.normal() + right.normal()).to_array(),
+        normal: left.normal + right.normal,
         area,
         first_moment,
         second_moment,

@@ -3,7 +3,9 @@
 use glam::Vec3;
 
 use super::WindingAccuracy;
-use super::expansion::{WindingNode, leaf_expansion, leaf_triangles, merged_expansion, unit_scale};
+use super::expansion::{
+    Moments, WindingNode, leaf_moments, leaf_triangles, merged_moments, unit_scale,
+};
 use crate::bvh::{Bvh, MAX_DEPTH};
 use crate::error::{BufferKind, BuildError};
 use crate::math::dot;
@@ -29,8 +31,8 @@ pub struct WindingTree<'a> {
 
 impl<'a> WindingTree<'a> {
     /// Works out the expansion of every node of `bvh` (built over `mesh`, with or without
-    /// spatial splits) into `nodes`, one per tree node, bottom up: `O(triangles + nodes)`, no
-    /// other memory.
+    /// spatial splits) into `nodes`, one per tree node, bottom up, on a few KiB of stack; each
+    /// node's radius is measured over its triangles' corners: `O(triangles × depth)`.
     ///
     /// # Errors
     /// [`BuildError::BufferTooSmall`] (buffer [`BufferKind::WindingNodes`]) when `nodes` holds
@@ -48,27 +50,54 @@ impl<'a> WindingTree<'a> {
             got,
         })?;
         let scale = unit_scale(bvh.bounds());
-        // Children come after their parents, so from last to first sees both before each parent.
-        for i in (0..count).rev() {
-            let Some(node) = bvh.nodes().get(i) else {
+        // Post order on fixed stacks: a node's full moments exist only until its parent
+        // merges them, so at most one per level waits (the tree is at most MAX_DEPTH deep).
+        let tree = bvh.nodes();
+        let mut work = [(0u32, false); 2 * MAX_DEPTH as usize + 2];
+        let mut done = [Moments::default(); MAX_DEPTH as usize + 2];
+        let (mut wp, mut dp) = (usize::from(count > 0), 0usize);
+        while wp > 0 {
+            wp -= 1;
+            let (index, merge) = work.get(wp).copied().unwrap_or_default();
+            let Some(node) = tree.get(index as usize) else {
                 continue;
             };
-            let expansion = if node.is_leaf() {
-                leaf_expansion(leaf_triangles(&bvh, mesh, node, scale))
+            let moments = if node.is_leaf() {
+                leaf_moments(leaf_triangles(&bvh, mesh, node, scale))
+            } else if !merge {
+                // Again after both children, which run left first.
+                for next in [
+                    (index, true),
+                    (node.first.wrapping_add(1), false),
+                    (node.first, false),
+                ] {
+                    if let Some(slot) = work.get_mut(wp) {
+                        *slot = next;
+                        wp += 1;
+                    }
+                }
+                continue;
             } else {
-                let first = node.first as usize;
-                let child = |k: usize| nodes.get(k).copied().unwrap_or_default();
-                let mut merged = merged_expansion(&child(first), &child(first + 1));
+                dp = dp.saturating_sub(2);
+                let child = |k: usize| done.get(k).copied().unwrap_or_default();
+                let mut merged = merged_moments(&child(dp), &child(dp + 1));
                 // The children's balls bound the node loosely, more so each level up; the
                 // corners themselves give the radius the far test wants small.
-                merged.radius =
-                    merged
-                        .radius
-                        .min(subtree_radius(&bvh, mesh, i, scale, merged.centre()));
+                merged.radius = merged.radius.min(subtree_radius(
+                    &bvh,
+                    mesh,
+                    index as usize,
+                    scale,
+                    merged.centre,
+                ));
                 merged
             };
-            if let Some(slot) = nodes.get_mut(i) {
-                *slot = expansion;
+            if let Some(slot) = nodes.get_mut(index as usize) {
+                *slot = WindingNode::of(&moments, moments.radius);
+            }
+            if let Some(slot) = done.get_mut(dp) {
+                *slot = moments;
+                dp += 1;
             }
         }
         Ok(Self {

@@ -172,61 +172,25 @@ fn sqrt_lanes(v: Vec4) -> Vec4 {
     Vec4::new(root(v.x), root(v.y), root(v.z), root(v.w))
 }
 
-/// A node's solid angle at four points `centre − offset` from its expansion: with `d` the
-/// distance, `u = offset / d`, `N` the area-weighted normal and `C`, `D` the first and second
-/// moments, the first three terms of the Taylor series of the kernel about the centre:
-/// `N·u / d²`, `(tr C − 3·uᵀCu) / d³` and
-/// `(15·Σ uᵢuⱼuₖDᵢⱼₖ − 3·(2·Σ Dᵢᵢₖuₖ + Σ uᵢDᵢⱼⱼ)) / (2·d⁴)`.
+/// A node's solid angle at four points `centre − offset` from its expansion (see
+/// [`WindingNode`] for the terms): `N·u / d² + (first[0] + Σ first·u²) / d³ +
+/// (Σ second·u³ + L·u) / d⁴`, with `u = offset / d`.
 #[inline(always)]
 fn far_field(e: &WindingNode, offset: &Lanes, squared: Vec4) -> Vec4 {
     let [nx, ny, nz] = e.normal;
-    let [c0, c1, c2, c3, c4, c5, c6, c7, c8] = e.first_moment;
-    let trace = c0 + c4 + c8;
-    // D's rows pack xx, xy, xz, yy, yz, zz.
-    let [
-        x0,
-        x1,
-        x2,
-        x3,
-        x4,
-        x5,
-        y0,
-        y1,
-        y2,
-        y3,
-        y4,
-        y5,
-        z0,
-        z1,
-        z2,
-        z3,
-        z4,
-        z5,
-    ] = e.second_moment;
-    // Σᵢ Dᵢᵢₖ and Σⱼ Dᵢⱼⱼ, once per node.
-    let diagonal = [x0 + y1 + z2, x1 + y3 + z4, x2 + y4 + z5];
-    let traces = [x0 + x3 + x5, y0 + y3 + y5, z0 + z3 + z5];
+    let [trace, fxx, fyy, fzz, fxy, fxz, fyz] = e.first;
+    let [xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz, lx, ly, lz] = e.second;
     // One square root and one division; every other power of 1/d by multiplication.
     let inverse = Vec4::ONE / sqrt_lanes(squared);
     let inverse_squared = inverse * inverse;
     let (ux, uy, uz) = (offset.x * inverse, offset.y * inverse, offset.z * inverse);
-    let dipole = (ux * nx + uy * ny + uz * nz) * inverse_squared;
-    let (cx, cy, cz) = (
-        ux * c0 + uy * c1 + uz * c2,
-        ux * c3 + uy * c4 + uz * c5,
-        ux * c6 + uy * c7 + uz * c8,
-    );
-    let first =
-        (Vec4::splat(trace) - (ux * cx + uy * cy + uz * cz) * 3.0) * (inverse_squared * inverse);
     let (xx, yy, zz, xy, xz, yz) = (ux * ux, uy * uy, uz * uz, ux * uy, ux * uz, uy * uz);
-    let quadratic = |m: [f32; 6]| {
-        (xx * m[0] + yy * m[3] + zz * m[5]) + (xy * m[1] + xz * m[2] + yz * m[4]) * 2.0
-    };
-    let cubic = ux * quadratic([x0, x1, x2, x3, x4, x5])
-        + uy * quadratic([y0, y1, y2, y3, y4, y5])
-        + uz * quadratic([z0, z1, z2, z3, z4, z5]);
-    let linear = (ux * diagonal[0] + uy * diagonal[1] + uz * diagonal[2]) * 2.0
-        + (ux * traces[0] + uy * traces[1] + uz * traces[2]);
-    let second = (cubic * 7.5 - linear * 1.5) * (inverse_squared * inverse_squared);
+    let dipole = (ux * nx + uy * ny + uz * nz) * inverse_squared;
+    let first = ((xx * fxx + yy * fyy + zz * fzz) + (xy * fxy + xz * fxz + yz * fyz) + trace)
+        * (inverse_squared * inverse);
+    let cubic = ux * ((xx * xxx + xy * xxy + xz * xxz) + (yy * xyy + yz * xyz + zz * xzz))
+        + uy * (yy * yyy + yz * yyz + zz * yzz)
+        + uz * (zz * zzz);
+    let second = (cubic + (ux * lx + uy * ly + uz * lz)) * (inverse_squared * inverse_squared);
     dipole + first + second
 }
