@@ -89,35 +89,37 @@ impl WindingNode {
             -3.0 * (c(0, 2) + c(2, 0)),
             -3.0 * (c(1, 2) + c(2, 1)),
         ];
-        // Σ Dᵢⱼₖuᵢuⱼuₖ gathered by monomial: every ordered (i, j, k) adds Dᵢ(jk) to the
-        // monomial of its sorted indices.
-        let d = |i: usize, j: usize, k: usize| {
-            let (j, k) = if j <= k { (j, k) } else { (k, j) };
-            let pair = PAIRS.iter().position(|&p| p == (j, k)).unwrap_or(0);
-            m.second_moment.get(6 * i + pair).copied().unwrap_or(0.0)
-        };
-        let mut cubic = [0.0f32; 10];
-        for i in 0..3 {
-            for j in 0..3 {
-                for k in 0..3 {
-                    let mut sorted = [i, j, k];
-                    sorted.sort_unstable();
-                    let slot = CUBES.iter().position(|&c| c == sorted).unwrap_or(0);
-                    if let Some(x) = cubic.get_mut(slot) {
-                        *x += d(i, j, k);
-                    }
-                }
-            }
-        }
-        let diagonal = |k: usize| d(0, 0, k) + d(1, 1, k) + d(2, 2, k);
-        let traces = |i: usize| d(i, 0, 0) + d(i, 1, 1) + d(i, 2, 2);
-        let linear = |k: usize| -1.5 * (2.0 * diagonal(k) + traces(k));
+        // Σ Dᵢⱼₖuᵢuⱼuₖ gathered by monomial: each ordered (i, j, k) adds Dᵢ(jk) to the
+        // monomial of its indices. Rows of D pack the pairs xx, xy, xz, yy, yz, zz.
+        let [
+            [x00, x01, x02, x11, x12, x22],
+            [y00, y01, y02, y11, y12, y22],
+            [z00, z01, z02, z11, z12, z22],
+        ] = rows(&m.second_moment);
+        let cubic = [
+            x00,
+            2.0 * x01 + y00,
+            2.0 * x02 + z00,
+            x11 + 2.0 * y01,
+            2.0 * (x12 + y02 + z01),
+            x22 + 2.0 * z02,
+            y11,
+            2.0 * y12 + z11,
+            y22 + 2.0 * z12,
+            z22,
+        ];
+        // 2·Σᵢ Dᵢ(ik) + Σⱼ Dₖ(jj), component k.
+        let linear = [
+            2.0 * (x00 + y01 + z02) + (x00 + x11 + x22),
+            2.0 * (x01 + y11 + z12) + (y00 + y11 + y22),
+            2.0 * (x02 + y12 + z22) + (z00 + z11 + z22),
+        ];
         let mut second = [0.0f32; 13];
         for (out, x) in second.iter_mut().zip(cubic) {
             *out = 7.5 * x;
         }
-        for (k, out) in second.iter_mut().skip(10).enumerate() {
-            *out = linear(k);
+        for (out, l) in second.iter_mut().skip(10).zip(linear) {
+            *out = -1.5 * l;
         }
         Self {
             centre: m.centre.to_array(),
@@ -136,19 +138,35 @@ impl Default for WindingNode {
     }
 }
 
-/// The monomials of `second[0..10]`, as sorted index triples.
-const CUBES: [[usize; 3]; 10] = [
-    [0, 0, 0],
-    [0, 0, 1],
-    [0, 0, 2],
-    [0, 1, 1],
-    [0, 1, 2],
-    [0, 2, 2],
-    [1, 1, 1],
-    [1, 1, 2],
-    [1, 2, 2],
-    [2, 2, 2],
-];
+/// The three packed rows of a second moment.
+#[inline]
+fn rows(d: &[f32; 18]) -> [[f32; 6]; 3] {
+    let [
+        a0,
+        a1,
+        a2,
+        a3,
+        a4,
+        a5,
+        b0,
+        b1,
+        b2,
+        b3,
+        b4,
+        b5,
+        c0,
+        c1,
+        c2,
+        c3,
+        c4,
+        c5,
+    ] = *d;
+    [
+        [a0, a1, a2, a3, a4, a5],
+        [b0, b1, b2, b3, b4, b5],
+        [c0, c1, c2, c3, c4, c5],
+    ]
+}
 
 /// A node's moments in full, as the bottom-up build carries them: the centre, area and
 /// area-weighted normal, `first_moment[3·i + j]` = `Cᵢⱼ` and `second_moment[6·i + s]` = `Dᵢⱼₖ`

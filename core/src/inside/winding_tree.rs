@@ -210,12 +210,14 @@ fn subtree_radius(
         count: (high.first + high.count).saturating_sub(low.first),
         ..low
     };
-    let mut radius = 0.0f32;
+    // The largest square, then one root: the root is monotonic and correctly rounded, so
+    // this is the largest root, bit for bit.
+    let mut farthest = 0.0f32;
     for t in leaf_triangles(bvh, mesh, &span, scale) {
         for corner in [t.a, t.b, t.c] {
             let d = corner - centre;
-            radius = radius.max(libm::sqrtf(dot(d, d)));
+            farthest = farthest.max(dot(d, d));
         }
     }
-    radius
+    libm::sqrtf(farthest)
 }
