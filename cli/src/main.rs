@@ -16,6 +16,7 @@ mod quality;
 mod raycast;
 mod records;
 mod remesh;
+mod sdf;
 mod structure;
 mod structure_arg;
 mod threads;
@@ -48,6 +49,8 @@ enum Command {
     /// Tell which points are inside a mesh (generalized winding numbers: open and
     /// non-manifold meshes too).
     Inside(inside::InsideArgs),
+    /// Write a signed-distance volume of a mesh (NRRD).
+    Sdf(sdf::SdfArgs),
     /// Remesh a mesh toward uniform, near-equilateral triangles on its surface.
     Remesh(remesh::RemeshArgs),
     /// Find where a mesh meets itself, or another mesh.
@@ -67,6 +70,7 @@ fn main() -> ExitCode {
         Command::Raycast(args) => raycast::run(args),
         Command::Closest(args) => closest::run(args),
         Command::Inside(args) => inside::run(args),
+        Command::Sdf(args) => sdf::run(args),
         Command::Remesh(args) => remesh::run(args),
         Command::Check(args) => check::run(args),
         Command::Workload(args) => workload::run(args),

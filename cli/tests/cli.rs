@@ -1258,3 +1258,80 @@ fn inside_and_signed_closest_give_the_library_answers_on_every_input() {
         "--signed",
     );
 }
+
+#[test]
+fn sdf_writes_the_library_volume_as_nrrd() {
+    use meshq::inside::{SampleGrid, WindingAccuracy};
+    let dir = tempfile::tempdir().unwrap();
+    let mesh_path = asset("spot.obj");
+    let loaded = load_mesh("spot");
+    let mesh = MeshRef::new(&loaded.positions, &loaded.triangles)
+        .validate()
+        .unwrap();
+    let scene = MeshBvh::build(&mesh, &BuildConfig::default())
+        .unwrap()
+        .with_winding_numbers()
+        .unwrap();
+    let tree = scene.winding().unwrap();
+    let grid = SampleGrid::cubic(mesh.bounds(), 20, 0.1).unwrap();
+    let mut want = vec![0.0f32; grid.len()];
+    tree.signed_distance_grid(&scene, &grid, 0.05, WindingAccuracy::DEFAULT, 0, &mut want)
+        .unwrap();
+    let one = dir.path().join("one.nrrd");
+    let two = dir.path().join("two.nrrd");
+    ok(&[
+        &"sdf",
+        &mesh_path,
+        &"-o",
+        &one,
+        &"--resolution",
+        &"20",
+        &"--band",
+        &"0.05",
+    ]);
+    ok(&[
+        &"sdf",
+        &mesh_path,
+        &"-o",
+        &two,
+        &"--resolution",
+        &"20",
+        &"--band",
+        &"0.05",
+        &"--threads",
+        &"2",
+    ]);
+    let bytes = std::fs::read(&one).unwrap();
+    assert_eq!(bytes, std::fs::read(&two).unwrap());
+    let end = bytes.windows(2).position(|w| w == b"\n\n").unwrap() + 2;
+    let header = std::str::from_utf8(&bytes[..end]).unwrap();
+    let [nx, ny, nz] = grid.counts();
+    assert!(header.starts_with("NRRD0004\n"), "{header}");
+    assert!(
+        header.contains(&format!("sizes: {nx} {ny} {nz}\n")),
+        "{header}"
+    );
+    assert!(header.contains("type: float\n") && header.contains("endian: little\n"));
+    let values: Vec<f32> = bytes[end..]
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    assert_eq!(values.len(), grid.len());
+    assert!(
+        values
+            .iter()
+            .zip(&want)
+            .all(|(a, b)| a.to_bits() == b.to_bits())
+    );
+    assert!(values.iter().any(|&v| v < 0.0) && values.contains(&0.05));
+    fails(
+        &[&"sdf", &mesh_path, &"-o", &one, &"--resolution", &"1"],
+        2,
+        "resolution",
+    );
+    fails(
+        &[&"sdf", &mesh_path, &"-o", &one, &"--band=0"],
+        2,
+        "distance > 0",
+    );
+}

@@ -30,7 +30,7 @@ use alloc::vec::Vec;
 use rayon::prelude::*;
 
 use crate::error::{BatchBuffer, BatchError};
-use crate::inside::{SignedDistance, WindingAccuracy, WindingTree};
+use crate::inside::{SampleGrid, SignedDistance, WindingAccuracy, WindingTree};
 use crate::math::{ClosestPoint, Ray, RayHit, Vec3};
 use crate::query::batch_order::query_index;
 use crate::query::ray_order::KeyGrid;
@@ -210,14 +210,42 @@ pub fn winding_numbers(
 ///
 /// # Errors
 /// As [`raycast_batch`].
-pub fn signed_distances(
+pub fn signed_distances<Q: MeshQuery + Sync + ?Sized>(
     tree: &WindingTree<'_>,
+    surface: &Q,
     points: &[Vec3],
     max_distance: f32,
     accuracy: WindingAccuracy,
     out: &mut [Option<SignedDistance>],
 ) -> Result<(), BatchError> {
     in_runs(points, out, |run, keys, answers| {
-        tree.signed_distances(run, max_distance, accuracy, keys, answers)
+        tree.signed_distances(surface, run, max_distance, accuracy, keys, answers)
     })
+}
+
+/// [`WindingTree::signed_distance_grid`] for the whole of `grid` on every thread of the pool,
+/// in runs of [`RUN`] samples: `out[i]` is exactly the single-threaded value.
+///
+/// # Errors
+/// [`BatchError::BufferTooSmall`] when `out` does not hold exactly one value per sample.
+pub fn signed_distance_grid<Q: MeshQuery + Sync + ?Sized>(
+    tree: &WindingTree<'_>,
+    surface: &Q,
+    grid: &SampleGrid,
+    band: f32,
+    accuracy: WindingAccuracy,
+    out: &mut [f32],
+) -> Result<(), BatchError> {
+    if out.len() != grid.len() {
+        return Err(BatchError::BufferTooSmall {
+            buffer: BatchBuffer::Results,
+            needed: grid.len(),
+            got: out.len(),
+        });
+    }
+    out.par_chunks_mut(RUN)
+        .enumerate()
+        .try_for_each(|(run, values)| {
+            tree.signed_distance_grid(surface, grid, band, accuracy, run * RUN, values)
+        })
 }

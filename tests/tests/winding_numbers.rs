@@ -6,7 +6,7 @@ use meshq::MeshBvh;
 use meshq::bvh::{BuildConfig, SpatialSplits};
 use meshq::inside::{WindingAccuracy, WindingTree};
 use meshq::mesh::MeshRef;
-use meshq::query::MeshQuery;
+use meshq::query::{MeshQuery, Traverse};
 use meshq_tests::hard_inputs::{self, Mesh};
 use meshq_tests::winding_oracle::{odd_crossings_f64, winding_number_f64};
 use meshq_tests::{load_mesh, workload};
@@ -345,14 +345,21 @@ fn batches_and_threads_give_the_single_answers() {
         single
     );
     let mut signed = vec![None; points.len()];
-    meshq::parallel::signed_distances(&tree, &points, 0.05, accuracy, &mut signed).unwrap();
+    meshq::parallel::signed_distances(&tree, &scene, &points, 0.05, accuracy, &mut signed).unwrap();
     for (s, &p) in signed.iter().zip(&points) {
         assert_eq!(*s, tree.signed_distance(p, 0.05, accuracy));
     }
     assert!(signed.iter().any(Option::is_none) && signed.iter().any(Option::is_some));
     let mut alone = vec![None; points.len()];
-    tree.signed_distances(&points, 0.05, accuracy, &mut keys, &mut alone)
-        .unwrap();
+    tree.signed_distances(
+        &tree.bvh().with(&tree.mesh()),
+        &points,
+        0.05,
+        accuracy,
+        &mut keys,
+        &mut alone,
+    )
+    .unwrap();
     assert_eq!(alone, signed);
     let mut short = vec![0.0f32; 3];
     assert!(
@@ -508,4 +515,85 @@ fn the_golden_winding_file_holds_every_bundled_mesh() {
     if std::env::var_os("MESHQ_BLESS_GOLDEN").is_some() {
         std::fs::write(&path, file).unwrap();
     }
+}
+
+#[test]
+fn signed_distance_grids_hold_the_single_answers_and_their_band() {
+    use meshq::inside::SampleGrid;
+    let mesh = bundled("spot");
+    let scene = prepared(&mesh);
+    let tree = scene.winding().unwrap();
+    let bounds = tree.mesh().bounds();
+    let grid = SampleGrid::cubic(bounds, 24, 0.1).unwrap();
+    let [nx, ny, nz] = grid.counts();
+    assert_eq!(nx.max(ny).max(nz), 24);
+    let spacing = grid.spacing();
+    assert!(spacing.x == spacing.y && spacing.y == spacing.z && spacing.x > 0.0);
+    let last = grid.point(grid.len() - 1);
+    assert!(grid.min().cmple(bounds.min).all() && last.cmpge(bounds.max).all());
+    let accuracy = WindingAccuracy::DEFAULT;
+    let mut whole = vec![0.0f32; grid.len()];
+    tree.signed_distance_grid(&scene, &grid, f32::INFINITY, accuracy, 0, &mut whole)
+        .unwrap();
+    let mut inside = 0;
+    for (i, &v) in whole.iter().enumerate() {
+        let p = grid.point(i);
+        let single = tree.signed_distance(p, f32::INFINITY, accuracy).unwrap();
+        assert_eq!(v.to_bits(), single.distance.to_bits(), "sample {i}");
+        let w = winding_number_f64(&mesh.0, &mesh.1, p);
+        if (w.abs() - 0.5).abs() > 0.01 {
+            assert_eq!(v < 0.0, w.abs() >= 0.5, "sample {i}");
+        }
+        inside += usize::from(v < 0.0);
+    }
+    assert!(inside > 100 && inside < grid.len() / 2, "{inside} inside");
+    // In slices, on the pool, through the binary tree: the same bits.
+    let mut sliced = vec![0.0f32; grid.len()];
+    for (k, chunk) in sliced.chunks_mut(1000).enumerate() {
+        let own = tree.bvh();
+        let own_mesh = tree.mesh();
+        tree.signed_distance_grid(
+            &own.with(&own_mesh),
+            &grid,
+            f32::INFINITY,
+            accuracy,
+            k * 1000,
+            chunk,
+        )
+        .unwrap();
+    }
+    assert_eq!(sliced, whole);
+    let mut pooled = vec![0.0f32; grid.len()];
+    meshq::parallel::signed_distance_grid(
+        &tree,
+        &scene,
+        &grid,
+        f32::INFINITY,
+        accuracy,
+        &mut pooled,
+    )
+    .unwrap();
+    assert_eq!(pooled, whole);
+    // A narrow band: exact within it, ±band with the same sign beyond.
+    let band = 4.0 * spacing.x;
+    let mut banded = vec![0.0f32; grid.len()];
+    tree.signed_distance_grid(&scene, &grid, band, accuracy, 0, &mut banded)
+        .unwrap();
+    for (i, (&b, &v)) in banded.iter().zip(&whole).enumerate() {
+        if v.abs() <= band {
+            assert_eq!(b.to_bits(), v.to_bits(), "sample {i}");
+        } else {
+            assert_eq!(b, band.copysign(v), "sample {i}");
+        }
+    }
+    // Too long or empty an output: refused, untouched.
+    let mut long = vec![7.0f32; grid.len() + 1];
+    assert!(
+        tree.signed_distance_grid(&scene, &grid, band, accuracy, 0, &mut long)
+            .is_err()
+    );
+    assert!(long.iter().all(|&v| v == 7.0));
+    assert!(SampleGrid::new(bounds, [0, 4, 4]).is_none());
+    assert!(SampleGrid::cubic(bounds, 1, 0.1).is_none());
+    assert!(SampleGrid::cubic(bounds, 8, f32::NAN).is_none());
 }

@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 use meshq::bvh::BuildConfig;
-use meshq::inside::{WindingAccuracy, WindingTree};
+use meshq::inside::{SampleGrid, WindingAccuracy, WindingTree};
 use meshq::owned::{MeshBvh as OwnedBvh, MeshIndex};
 use wasm_bindgen::prelude::*;
 
@@ -14,7 +14,7 @@ use crate::args::{
     JsNumber, floats, max_distance, number, output_f32, output_u32, range_error, vector,
 };
 use crate::batch::{MISS_DISTANCE, MISS_TRIANGLE};
-use crate::js_objects::meshq_signed_distance;
+use crate::js_objects::{meshq_signed_distance, set};
 use crate::storage::Storage;
 
 /// The `accuracy` argument: omitted or `null` for the default far ratio (2), a number ≥ 1, or
@@ -33,8 +33,8 @@ fn accuracy(value: &JsValue) -> Result<WindingAccuracy, JsValue> {
 }
 
 impl Storage {
-    /// The winding-number tree, its expansions made on first use.
-    fn winding(&mut self) -> Result<WindingTree<'_>, JsValue> {
+    /// Makes the winding-number expansions, once.
+    fn prepare_winding(&mut self) -> Result<(), JsValue> {
         let failed = |e: meshq::error::BuildError| JsValue::from(JsError::new(&e.to_string()));
         match &mut self.scene {
             MeshIndex::Bvh(bvh) => bvh.prepare_winding_numbers().map_err(failed)?,
@@ -47,6 +47,11 @@ impl Storage {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// The winding-number tree [`Storage::prepare_winding`] made.
+    fn winding(&self) -> Result<WindingTree<'_>, JsValue> {
         let bvh = match (&self.scene, &self.winding) {
             (MeshIndex::Bvh(bvh), _) | (_, Some(bvh)) => bvh,
             _ => return Err(JsError::new("no winding-number tree").into()),
@@ -87,7 +92,11 @@ impl MeshBvh {
     ) -> Result<f32, JsValue> {
         let p = vector(point, "point")?;
         let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
-        Ok(self.storage.winding()?.winding_number(p, accuracy))
+        Ok({
+            self.storage.prepare_winding()?;
+            self.storage.winding()?
+        }
+        .winding_number(p, accuracy))
     }
 
     /// Whether `point` (`Vec3Like`) is inside the mesh: `|windingNumber| ≥ 0.5`. `accuracy` as
@@ -99,7 +108,11 @@ impl MeshBvh {
     ) -> Result<bool, JsValue> {
         let p = vector(point, "point")?;
         let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
-        Ok(self.storage.winding()?.contains(p, accuracy))
+        Ok({
+            self.storage.prepare_winding()?;
+            self.storage.winding()?
+        }
+        .contains(p, accuracy))
     }
 
     /// The signed distance from `point` (`Vec3Like`) to the mesh, negative inside: the closest
@@ -118,7 +131,10 @@ impl MeshBvh {
         let p = vector(point, "point")?;
         let limit = max_distance(&max_distance_in.unwrap_or(JsValue::UNDEFINED))?;
         let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
-        let tree = self.storage.winding()?;
+        let tree = {
+            self.storage.prepare_winding()?;
+            self.storage.winding()?
+        };
         let Some(s) = tree.signed_distance(p, limit, accuracy) else {
             return Ok(JsValue::NULL);
         };
@@ -156,7 +172,10 @@ impl MeshBvh {
         let queries = batch_points(points)?;
         let out = output_f32(numbers, "numbers", queries.len(), " (one per point)")?;
         let accuracy = accuracy(accuracy_in)?;
-        let tree = self.storage.winding()?;
+        let tree = {
+            self.storage.prepare_winding()?;
+            self.storage.winding()?
+        };
         let mut answers = vec![0.0f32; queries.len()];
         let mut keys = vec![0u64; queries.len()];
         tree.winding_numbers(&queries, accuracy, &mut keys, &mut answers)
@@ -188,11 +207,21 @@ impl MeshBvh {
         let triangles = output_u32(triangles, "triangles", n, " (one per point)")?;
         crate::batch::outputs_apart(&[(&distances, "distances"), (&triangles, "triangles")])?;
         let accuracy = accuracy(accuracy_in)?;
-        let tree = self.storage.winding()?;
+        let tree = {
+            self.storage.prepare_winding()?;
+            self.storage.winding()?
+        };
         let mut answers = vec![None; n];
         let mut keys = vec![0u64; n];
-        tree.signed_distances(&queries, limit, accuracy, &mut keys, &mut answers)
-            .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
+        tree.signed_distances(
+            &self.storage.scene,
+            &queries,
+            limit,
+            accuracy,
+            &mut keys,
+            &mut answers,
+        )
+        .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
         let (mut d, mut t) = (Vec::with_capacity(n), Vec::with_capacity(n));
         for a in &answers {
             d.push(a.map_or(MISS_DISTANCE, |s| s.distance));
@@ -201,5 +230,63 @@ impl MeshBvh {
         distances.copy_from(&d);
         triangles.copy_from(&t);
         Ok(answers.iter().filter(|a| a.is_some()).count() as u32)
+    }
+
+    /// A signed-distance volume: `resolution` samples (2–1024) along the longest axis of the
+    /// mesh's box grown by `padding` (omitted: 0.1) times that axis on every side, cubic cells,
+    /// values negative inside; samples farther than `band` (omitted: no band) hold `±band`.
+    /// `accuracy` as for `windingNumber`. Returns `{ values, counts, origin, spacing }`:
+    /// `values` a `Float32Array` with x fastest (ready for a `Data3DTexture` of size
+    /// `counts`), `origin` the first sample `[x, y, z]`, `spacing` the cell size.
+    #[wasm_bindgen(js_name = signedDistanceGrid, unchecked_return_type = "SignedDistanceGrid")]
+    pub fn signed_distance_grid(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "number")] resolution: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] padding: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] band: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
+    ) -> Result<JsValue, JsValue> {
+        let samples = number(resolution, "resolution")?;
+        if !(2.0..=1024.0).contains(&samples) || samples.fract() != 0.0 {
+            return Err(range_error(&format!(
+                "resolution must be a whole number from 2 to 1024, got {}",
+                JsNumber(samples)
+            )));
+        }
+        let padding = match padding {
+            None => 0.1,
+            Some(v) if v.is_undefined() || v.is_null() => 0.1,
+            Some(v) => {
+                let p = number(&v, "padding")?;
+                if !(p >= 0.0 && p.is_finite()) {
+                    return Err(range_error(&format!(
+                        "padding must be a number ≥ 0, got {}",
+                        JsNumber(p)
+                    )));
+                }
+                p as f32
+            }
+        };
+        let band = max_distance(&band.unwrap_or(JsValue::UNDEFINED))
+            .map_err(|_| range_error("band must be a number ≥ 0 (or omitted for none)"))?;
+        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
+        self.storage.prepare_winding()?;
+        let tree = self.storage.winding()?;
+        let grid = SampleGrid::cubic(tree.mesh().bounds(), samples as u32, padding)
+            .ok_or_else(|| range_error("the mesh has no extent to sample"))?;
+        let mut values = vec![0.0f32; grid.len()];
+        tree.signed_distance_grid(&self.storage.scene, &grid, band, accuracy, 0, &mut values)
+            .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
+        let out = js_sys::Object::new();
+        let counts = grid.counts();
+        set(&out, "values", js_sys::Float32Array::from(&values[..]))?;
+        set(&out, "counts", js_sys::Uint32Array::from(&counts[..]))?;
+        set(
+            &out,
+            "origin",
+            js_sys::Float32Array::from(&grid.min().to_array()[..]),
+        )?;
+        set(&out, "spacing", grid.spacing().x)?;
+        Ok(out.into())
     }
 }

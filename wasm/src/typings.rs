@@ -54,6 +54,15 @@ export interface SignedDistance extends ClosestPoint {
   windingNumber: number;
 }
 
+/** A signed-distance volume (`MeshBvh.signedDistanceGrid`): `values` x fastest, then y, then
+ *  z, negative inside; sample `(i, j, k)` lies at `origin + spacing·(i, j, k)`. */
+export interface SignedDistanceGrid {
+  values: Float32Array;
+  counts: Uint32Array;
+  origin: Float32Array;
+  spacing: number;
+}
+
 /** Options of `MeshBvh.build`; every field is optional. */
 export interface MeshBvhOptions {
   /** Which structure answers (default `'bvh'`); every structure gives the same answers. */

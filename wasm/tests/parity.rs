@@ -772,3 +772,35 @@ fn winding_numbers_match_the_golden_digest() {
         }
     }
 }
+
+#[wasm_bindgen_test]
+fn a_signed_distance_grid_holds_the_single_signed_distances() {
+    let mut built = build(MESHES[2].1, &JsValue::UNDEFINED);
+    let volume = built
+        .signed_distance_grid(&JsValue::from(12), None, None, None)
+        .unwrap();
+    let field = |k: &str| Reflect::get(&volume, &k.into()).unwrap();
+    let values = Float32Array::from(field("values")).to_vec();
+    let counts = Uint32Array::from(field("counts")).to_vec();
+    let origin = Float32Array::from(field("origin")).to_vec();
+    let spacing = field("spacing").as_f64().unwrap() as f32;
+    assert_eq!(values.len(), counts.iter().product::<u32>() as usize);
+    let (nx, ny) = (counts[0] as usize, counts[1] as usize);
+    for (i, &v) in values.iter().enumerate().step_by(7) {
+        let p = Vec3::from_array([origin[0], origin[1], origin[2]])
+            + Vec3::new(
+                (i % nx) as f32,
+                ((i / nx) % ny) as f32,
+                (i / (nx * ny)) as f32,
+            ) * spacing;
+        let single = built
+            .signed_distance(&floats_js(&p.to_array()), None, None)
+            .unwrap();
+        let d = Reflect::get(&single, &"distance".into())
+            .unwrap()
+            .as_f64()
+            .unwrap() as f32;
+        assert_eq!(d.to_bits(), v.to_bits(), "sample {i}");
+    }
+    assert!(values.iter().any(|&v| v < 0.0));
+}

@@ -10,7 +10,9 @@
 //! - [`signed_distance`](WindingTree::signed_distance): the closest point with that sign,
 //!   negative inside;
 //!
-//! each also as a batch.
+//! each also as a batch, and signed distances over a lattice of samples
+//! ([`signed_distance_grid`](WindingTree::signed_distance_grid) over a [`SampleGrid`]), with an
+//! optional narrow band.
 //!
 //! ```
 //! use meshq::prelude::*;
@@ -33,6 +35,7 @@
 
 mod accuracy;
 mod expansion;
+mod sample_grid;
 mod signed_distance;
 mod winding_batch;
 mod winding_tree;
@@ -40,5 +43,6 @@ mod winding_walk;
 
 pub use accuracy::WindingAccuracy;
 pub use expansion::WindingNode;
+pub use sample_grid::SampleGrid;
 pub use signed_distance::SignedDistance;
 pub use winding_tree::WindingTree;

@@ -49,3 +49,20 @@ pub(super) fn closest_points_by<
     });
     Ok(())
 }
+
+/// One closest point seeded with `seed` (the triangle an earlier query nearby found, updated to
+/// this one's): exactly [`MeshQuery::closest_point`](crate::query::MeshQuery::closest_point)'s
+/// answer, found sooner when the seed is near, as in [`closest_points`].
+pub(crate) fn closest_point_seeded<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &A,
+    source: &S,
+    point: Vec3,
+    max_distance: f32,
+    seed: &mut Option<(u32, crate::math::Triangle)>,
+) -> Option<ClosestPoint> {
+    let best = search::<A, S, LANES_PAY>(tree, source, point, max_distance, *seed, usize::MAX)
+        .ok()
+        .flatten();
+    *seed = best.or(*seed);
+    best.map(|b| answer(point, b))
+}

@@ -94,6 +94,7 @@ pub(crate) mod batch_order;
 pub(crate) mod cell;
 mod closest;
 mod closest_batch;
+pub(crate) use closest_batch::closest_point_seeded;
 mod closest_far;
 pub(crate) mod leaf;
 mod leaf_batches;
