@@ -249,7 +249,7 @@ def render_remesh(data):
 def run_inside():
     commands = [BUILD_CLI, f"{PEERS_PY} bench/peers/inside.py --json"]
     sh(commands[0])
-    return commands, {"rows": json.loads(sh(commands[1]))}
+    return commands, json.loads(sh(commands[1]))
 
 
 def render_inside(data):
@@ -281,7 +281,19 @@ def render_inside(data):
             "is within 0.01 of 1/2 left out); the largest difference of the magnitude from libigl's "
             "unsigned distance, over the diagonal.\n\n"
             + table(["mesh", "signed distance", "time (s)", "wrong signs", "magnitude difference",
-                     "speed-up"], sd))
+                     "speed-up"], sd)
+            + grid_text(data.get("grid")))
+
+
+def grid_text(grid):
+    if not grid:
+        return ""
+    c = grid["counts"]
+    return (f"\n\nA signed-distance volume of {grid['mesh']}, {c[0]}×{c[1]}×{c[2]} samples (`meshq sdf "
+            f"--resolution {max(c)}`), on every core ({grid['threads']}): meshq "
+            f"{grid['meshq_seconds']:.2f} s, libigl `signed_distance` on the same points "
+            f"{grid['libigl_seconds']:.2f} s: **{grid['ratio']:.2f}×**; the signs differ at "
+            f"{grid['sign_disagreements']} samples.")
 
 
 # --- threads ----------------------------------------------------------------------------------
@@ -366,7 +378,7 @@ def summary_rows(results):
                 rows.append(("mesh–mesh yes/no, two overlapping bunnies", "parry3d `intersection_test`",
                              f"{e['parry3d_intersection_test'] / e['meshq_intersects']:.1f}×"))
     if "inside" in results:
-        for r in results["inside"]["data"]["rows"]:
+        for r in results["inside"]["data"].get("rows", []):
             if r["mesh"] == "stanford-bunny" and r["equal_accuracy_ratio"]:
                 m = r["meshq"][r["equal_accuracy_ratio"]]
                 rows.append(("winding numbers, bunny, 100k points, equal accuracy", "libigl `fast_winding_number`", f"{m['ratio']:.2f}×"))

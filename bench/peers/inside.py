@@ -22,6 +22,11 @@ anything starts; the meshq command inherits that):
   fast-winding-number mode returns other magnitudes near the surface, also reported), and the
   signs with the exact winding number's (points where they differ, among those whose exact
   number is not within 0.01 of 1/2).
+- a signed-distance volume of the first mesh, `--grid` samples along its longest axis
+  (default 128), on every core: `meshq sdf MESH --resolution N --threads 0` against
+  `igl.signed_distance` (fast-winding-number sign; libigl spreads it over every core itself)
+  at the volume's sample points read back from meshq's NRRD header, once each; the signs
+  compared.
 Times are the best of `--repeat` rounds (default 3).
 
 Set up once: scripts/peers-setup.sh (a virtual environment in target/peers-venv).
@@ -137,6 +142,42 @@ def run_mesh(name, args, work):
     return row
 
 
+def run_grid(name, args, work):
+    path = ROOT / "assets" / f"{name}.obj" if not name.endswith((".obj", ".ply")) else pathlib.Path(name)
+    v, f = read_mesh(path)
+    v = np.ascontiguousarray(v, dtype=np.float64)
+    f = np.ascontiguousarray(f, dtype=np.int64)
+    volume = work / "volume.nrrd"
+    os.sched_setaffinity(0, set(range(os.cpu_count())))
+    try:
+        t, summary = meshq_run(
+            args.meshq, ["sdf", str(path), "-o", str(volume), "--resolution", str(args.grid), "--threads", "0"], 1
+        )
+        data = volume.read_bytes()
+        end = data.index(b"\n\n") + 2
+        ours = np.frombuffer(data[end:], dtype="<f4")
+        nx, ny, nz = summary["counts"]
+        o = np.array(summary["origin"], dtype=np.float32)
+        h = np.array(summary["spacing"], dtype=np.float32)
+        k, j, i = np.meshgrid(np.arange(nz), np.arange(ny), np.arange(nx), indexing="ij")
+        index = np.stack([i.ravel(), j.ravel(), k.ravel()], 1).astype(np.float32)
+        points = (o + index * h).astype(np.float64)
+        start = time.perf_counter()
+        s, _i, _c, _n = igl.signed_distance(points, v, f, igl.SIGNED_DISTANCE_TYPE_FAST_WINDING_NUMBER)
+        igl_time = time.perf_counter() - start
+    finally:
+        os.sched_setaffinity(0, {0})
+    return {
+        "mesh": path.stem,
+        "counts": summary["counts"],
+        "threads": summary["threads"],
+        "meshq_seconds": t,
+        "libigl_seconds": igl_time,
+        "ratio": igl_time / t,
+        "sign_disagreements": int(np.sum(np.sign(ours) != np.sign(s))),
+    }
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("meshes", nargs="*", default=DEFAULT_MESHES)
@@ -145,6 +186,7 @@ def main():
     parser.add_argument("--exact", type=int, default=5_000, help="points checked against the exact number")
     parser.add_argument("--ratios", default="2,2.5,3", help="meshq --accuracy values, comma-separated")
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--grid", type=int, default=128, help="volume samples along the longest axis (0: none)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
     args.ratios = args.ratios.split(",")
@@ -153,9 +195,16 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.meshes:
             rows.append(run_mesh(name, args, pathlib.Path(tmp)))
+        grid = run_grid(args.meshes[0], args, pathlib.Path(tmp)) if args.grid else None
     if args.json:
-        print(json.dumps(rows, indent=1))
+        print(json.dumps({"rows": rows, "grid": grid}, indent=1))
         return
+    if grid:
+        c = grid["counts"]
+        print(
+            f"{grid['mesh']} volume {c[0]}x{c[1]}x{c[2]} on {grid['threads']} threads: meshq sdf {grid['meshq_seconds']:.2f} s,"
+            f" libigl signed_distance {grid['libigl_seconds']:.2f} s: {grid['ratio']:.2f}x; signs differ at {grid['sign_disagreements']} samples"
+        )
     for row in rows:
         lib = row["libigl"]
         print(f"{row['mesh']} ({row['triangles']} triangles, {row['points']} points; errors on {row['exact_points']})")

@@ -11,6 +11,8 @@ import init, {
   type ClosestPoint,
   type MeshBvhOptions,
   type PairsResult,
+  type SignedDistance,
+  type SignedDistanceGrid,
   type RayHit,
   type RemeshResult,
   type Vec3Like,
@@ -51,6 +53,13 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const points = queryPoints(bvh.bounds(), 1, 10);
   bvh.closestPointBatch(points, undefined, new Float32Array(30), new Uint32Array(10), new Float32Array(10));
   const misses: number = MeshBvh.MISS_T + MeshBvh.MISS_DISTANCE + MeshBvh.MISS_TRIANGLE;
+  const w: number = bvh.windingNumber([0, 0, 0]);
+  const inside: boolean = bvh.contains({ x: 0, y: 0, z: 0 }, 3);
+  const signed: SignedDistance | null = bvh.signedDistance([0, 0, 0], null, Infinity);
+  const inside_count: number = bvh.windingNumberBatch(points, new Float32Array(10));
+  bvh.signedDistanceBatch(points, 0.5, new Float32Array(10), new Uint32Array(10), 2);
+  const volume: SignedDistanceGrid = bvh.signedDistanceGrid(32, 0.1, null, 2);
+  const texel: number = volume.values[0] + volume.counts[0] + volume.origin[0] + volume.spacing;
 
   const layout: BlobLayout = 'packed';
   const bytes: Uint8Array = loaded.toBlob();
