@@ -39,7 +39,7 @@ impl WindingTree<'_> {
 
     /// [`WindingTree::signed_distance`] of each point into `out[i]`, exactly, the closest
     /// points found by `surface`: any structure over this tree's mesh with its triangles — the
-    /// owned [`MeshBvh`](crate::owned::MeshBvh) that holds this tree (its wide nodes over
+    /// owned `MeshBvh` (feature `alloc`) that holds this tree (its wide nodes over
     /// packed triangles, the fastest), a blob's view, or `tree.bvh().with(&tree.mesh())` —
     /// each finds the same points, bit for bit. `keys` is scratch, one `u64` per point, as for
     /// [`WindingTree::winding_numbers`].
