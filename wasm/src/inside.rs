@@ -167,11 +167,11 @@ impl MeshBvh {
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] points: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] numbers: &JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] accuracy_in: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let queries = batch_points(points)?;
         let out = output_f32(numbers, "numbers", queries.len(), " (one per point)")?;
-        let accuracy = accuracy(accuracy_in)?;
+        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
         let tree = {
             self.storage.prepare_winding()?;
             self.storage.winding()?
@@ -198,7 +198,7 @@ impl MeshBvh {
         max_distance_in: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] distances: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] accuracy_in: &JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let queries = batch_points(points)?;
         let n = queries.len();
@@ -206,7 +206,7 @@ impl MeshBvh {
         let distances = output_f32(distances, "distances", n, " (one per point)")?;
         let triangles = output_u32(triangles, "triangles", n, " (one per point)")?;
         crate::batch::outputs_apart(&[(&distances, "distances"), (&triangles, "triangles")])?;
-        let accuracy = accuracy(accuracy_in)?;
+        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
         let tree = {
             self.storage.prepare_winding()?;
             self.storage.winding()?

@@ -750,11 +750,7 @@ fn winding_numbers_match_the_golden_digest() {
             let mut built = build(obj, &options);
             let numbers = Float32Array::new_with_length(points.len() as u32);
             let inside = built
-                .winding_number_batch(
-                    &floats_js(&flat),
-                    &numbers.clone().into(),
-                    &JsValue::UNDEFINED,
-                )
+                .winding_number_batch(&floats_js(&flat), &numbers.clone().into(), None)
                 .unwrap();
             let numbers = numbers.to_vec();
             let digest = meshq_workload::WindingDigest::of(&numbers);

@@ -56,7 +56,7 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const w: number = bvh.windingNumber([0, 0, 0]);
   const inside: boolean = bvh.contains({ x: 0, y: 0, z: 0 }, 3);
   const signed: SignedDistance | null = bvh.signedDistance([0, 0, 0], null, Infinity);
-  const inside_count: number = bvh.windingNumberBatch(points, new Float32Array(10));
+  const insideCount: number = bvh.windingNumberBatch(points, new Float32Array(10));
   bvh.signedDistanceBatch(points, 0.5, new Float32Array(10), new Uint32Array(10), 2);
   const volume: SignedDistanceGrid = bvh.signedDistanceGrid(32, 0.1, null, 2);
   const texel: number = volume.values[0] + volume.counts[0] + volume.origin[0] + volume.spacing;
