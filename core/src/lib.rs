@@ -95,9 +95,6 @@
 
 #[cfg(feature = "alloc")]
 extern crate alloc;
-// Only for what the standard library does faster with the same results (see the `std` feature).
-#[cfg(all(feature = "std", not(test)))]
-extern crate std;
 
 pub mod advanced;
 #[cfg(feature = "blob")]

@@ -160,16 +160,15 @@ fn mask_of(bits: u32) -> BVec4A {
     BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0)
 }
 
-/// Lane-wise square root, correctly rounded as every target's scalar one. With the standard
-/// library (feature `std`) each lane is the compiler's own square root, which it fuses into one
-/// SIMD instruction where the target has one; without it, `libm`'s (the same values).
+/// Lane-wise square root through `libm`, correctly rounded, as every target rounds it.
 #[inline(always)]
 fn sqrt_lanes(v: Vec4) -> Vec4 {
-    #[cfg(feature = "std")]
-    let root = |x: f32| x.sqrt();
-    #[cfg(not(feature = "std"))]
-    let root = libm::sqrtf;
-    Vec4::new(root(v.x), root(v.y), root(v.z), root(v.w))
+    Vec4::new(
+        libm::sqrtf(v.x),
+        libm::sqrtf(v.y),
+        libm::sqrtf(v.z),
+        libm::sqrtf(v.w),
+    )
 }
 
 /// A node's solid angle at four points `centre − offset` from its expansion (see
