@@ -1,4 +1,5 @@
-//! Mesh–mesh intersection against parry3d's `intersection_test` on two `TriMesh` shapes, and
+//! Mesh–mesh intersection against parry3d's `intersection_test` on two `TriMesh` shapes,
+//! mesh–mesh distance against parry3d's `distance` (a copy 0.01 of the diagonal apart), and
 //! meshq's self-intersection check, in one run on the same meshes and placements.
 //!
 //! `MESHQ_BENCH_MESHES` picks the mesh (the first of its comma-separated bundled names or
@@ -14,12 +15,13 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use meshq::Traverse;
 use meshq::bvh::BuildConfig;
 use meshq::collide::{
-    Affine, PairBudget, TrianglePair, intersecting_pairs, meshes_intersect, self_intersecting_pairs,
+    Affine, DistanceLimits, PairBudget, TrianglePair, intersecting_pairs, mesh_distance,
+    meshes_intersect, self_intersecting_pairs,
 };
 use meshq::owned::MeshBvh;
 use meshq_tests::{LoadedMesh, load_mesh, load_obj};
 use parry3d::math::{Pose, Vector};
-use parry3d::query::intersection_test;
+use parry3d::query::{distance, intersection_test};
 use parry3d::shape::TriMesh;
 
 fn scene() -> LoadedMesh {
@@ -156,6 +158,43 @@ fn collide(c: &mut Criterion) {
         });
         group.finish();
     }
+    // Distance: a copy moved along x until its box starts 0.01 of the diagonal past the
+    // first's (the "two bunnies 0.01 diagonal apart").
+    let diagonal = extent.iter().map(|e| e * e).sum::<f32>().sqrt();
+    let shift = [extent[0] + 0.01 * diagonal, 0.0, 0.0];
+    let place = Affine::translation(shift);
+    let pose_b = Pose::translation(shift[0], shift[1], shift[2]);
+    let parry_distance = || {
+        distance(&Pose::IDENTITY, &parry_a, &pose_b, &parry_a)
+            .expect("parry3d supports two meshes")
+            .distance
+    };
+    let ours_distance = || {
+        mesh_distance(ours, ours, Some(&place), DistanceLimits::default(), budget)
+            .expect("within budget")
+            .expect("an answer")
+    };
+    let (theirs, found) = (parry_distance(), ours_distance());
+    eprintln!(
+        "{} / 0.01 apart: meshq {} (triangles {} and {}), parry3d {theirs}",
+        scene.name, found.distance, found.triangle_a, found.triangle_b
+    );
+    assert!(
+        (found.distance - theirs).abs() <= 1e-4 * diagonal,
+        "the libraries disagree on the distance"
+    );
+    let mut group = c.benchmark_group(format!("distance/{}/0.01 apart", scene.name));
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(2));
+    group.bench_function("meshq_mesh_distance", |b| {
+        b.iter(|| black_box(ours_distance()))
+    });
+    group.bench_function("parry3d_distance", |b| {
+        b.iter(|| black_box(parry_distance()))
+    });
+    group.finish();
+
     let mut out = vec![TrianglePair::default(); 1 << 16];
     let found = self_intersecting_pairs(&tree, &mesh, budget, &mut out).expect("within budget");
     eprintln!(

@@ -4,6 +4,7 @@
 //! brute-force oracles that scan every triangle with the public primitive tests.
 
 pub mod assets;
+pub mod distance_oracle;
 pub mod hard_inputs;
 pub mod oracle;
 pub mod suite;

@@ -19,6 +19,7 @@ mod edge_cases;
 mod eight_wide;
 mod geom_properties;
 mod large_trees;
+mod mesh_distance;
 mod mesh_index;
 mod module_layering;
 mod overlap_and_refit;

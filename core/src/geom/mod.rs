@@ -25,6 +25,7 @@ mod triangle_aabb;
 mod triangle_lanes;
 mod triangle_obb;
 mod triangle_triangle;
+mod triangle_triangle_distance;
 
 pub(crate) use clip_triangle_aabb::clip_triangle_aabb;
 pub use closest_point_plane::closest_point_plane;
@@ -43,6 +44,7 @@ pub use triangle_aabb::overlap_triangle_aabb;
 pub use triangle_obb::overlap_triangle_obb;
 pub(crate) use triangle_triangle::onto_dominant_plane;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
+pub use triangle_triangle_distance::{TriangleTriangleClosest, closest_points_triangle_triangle};
 
 pub(crate) use closest_point_triangle::closest_point_regions;
 pub(crate) use ray_aabb::SlabRay;

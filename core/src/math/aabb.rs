@@ -158,6 +158,18 @@ impl Aabb {
         dx * dx + dy * dy + dz * dz
     }
 
+    /// Squared distance between the nearest points of this box and `o` (0 when they
+    /// overlap or touch; +∞ when either is empty). A lower bound of the squared distance
+    /// between anything the two boxes hold.
+    #[inline]
+    #[must_use]
+    pub fn distance_squared_to_aabb(&self, o: &Self) -> f32 {
+        let dx = max_f32(max_f32(o.min.x - self.max.x, self.min.x - o.max.x), 0.0);
+        let dy = max_f32(max_f32(o.min.y - self.max.y, self.min.y - o.max.y), 0.0);
+        let dz = max_f32(max_f32(o.min.z - self.max.z, self.min.z - o.max.z), 0.0);
+        dx * dx + dy * dy + dz * dz
+    }
+
     /// True when every corner coordinate is finite.
     #[inline]
     #[must_use]
