@@ -82,7 +82,7 @@ struct Against {
 }
 
 /// Reads `path` as a valid mesh and builds its BVH.
-fn load(path: &Path) -> Result<(crate::mesh_file::MeshData, String)> {
+pub(crate) fn load(path: &Path) -> Result<(crate::mesh_file::MeshData, String)> {
     let data = read_mesh(path)?;
     MeshRef::new(&data.positions, &data.triangles)
         .validate()
@@ -90,7 +90,7 @@ fn load(path: &Path) -> Result<(crate::mesh_file::MeshData, String)> {
     Ok((data, path.display().to_string()))
 }
 
-fn bvh_of(data: &crate::mesh_file::MeshData, name: &str) -> Result<MeshBvh> {
+pub(crate) fn bvh_of(data: &crate::mesh_file::MeshData, name: &str) -> Result<MeshBvh> {
     let mesh = MeshRef::new(&data.positions, &data.triangles)
         .validate()
         .with_context(|| format!("{name}: invalid mesh"))?;
@@ -99,7 +99,7 @@ fn bvh_of(data: &crate::mesh_file::MeshData, name: &str) -> Result<MeshBvh> {
 }
 
 /// Parses the `--transform` text: 16 finite numbers, an affine matrix.
-fn parse_transform(text: &str) -> Result<Affine> {
+pub(crate) fn parse_transform(text: &str) -> Result<Affine> {
     let numbers: Vec<f32> = text
         .split(|c: char| c == ',' || c.is_whitespace())
         .filter(|s| !s.is_empty())

@@ -6,6 +6,7 @@ mod atomic;
 mod bake;
 mod check;
 mod closest;
+mod distance;
 mod inside;
 mod inspect;
 mod inspect_cells;
@@ -55,6 +56,8 @@ enum Command {
     Remesh(remesh::RemeshArgs),
     /// Find where a mesh meets itself, or another mesh.
     Check(check::CheckArgs),
+    /// Find how far apart two meshes are: the closest pair of points.
+    Distance(distance::DistanceArgs),
     /// Write a reproducible ray or point set for a mesh (the DESIGN.md workloads).
     Workload(workload::WorkloadArgs),
 }
@@ -73,6 +76,7 @@ fn main() -> ExitCode {
         Command::Sdf(args) => sdf::run(args),
         Command::Remesh(args) => remesh::run(args),
         Command::Check(args) => check::run(args),
+        Command::Distance(args) => distance::run(args),
         Command::Workload(args) => workload::run(args),
     };
     match result {

@@ -1335,3 +1335,111 @@ fn sdf_writes_the_library_volume_as_nrrd() {
         "distance > 0",
     );
 }
+
+#[test]
+fn distance_reports_the_brute_force_closest_pair() {
+    use meshq_tests::distance_oracle::{self, Tri64, point_triangle_squared, widen};
+    let spot = asset("spot.obj");
+    let parse = |s: String| serde_json::from_str::<serde_json::Value>(&s).unwrap();
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let tris: Vec<Tri64> = (0..mesh.triangle_count() as u32)
+        .map(|t| widen(&mesh.triangle(t).unwrap()))
+        .collect();
+    let width = loaded
+        .positions
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(l, h), p| (l.min(p[0]), h.max(p[0])));
+    let size = (width.1 - width.0) as f64;
+    // Apart (a little more than its width along x) and crossing (a quarter of it).
+    for (shift, meets) in [
+        (1.1 * (width.1 - width.0), false),
+        (0.25 * (width.1 - width.0), true),
+    ] {
+        let transform = format!("1,0,0,0,0,1,0,0,0,0,1,0,{shift},0,0,1");
+        let report = parse(ok(&[
+            &"distance",
+            &spot,
+            &spot,
+            &"--transform",
+            &transform,
+            &"--json",
+        ]));
+        let moved: Vec<Tri64> = (0..mesh.triangle_count() as u32)
+            .map(|t| {
+                let d = Vec3::new(shift, 0.0, 0.0);
+                let t = mesh.triangle(t).unwrap();
+                widen(&meshq::math::Triangle::new(t.a + d, t.b + d, t.c + d))
+            })
+            .collect();
+        let expected = distance_oracle::mesh_mesh(&tris, &moved);
+        let c = &report["closest"];
+        let got = c["distance"].as_f64().unwrap();
+        assert!(
+            (got - expected).abs() <= size * 1e-6,
+            "{report}: brute force {expected}"
+        );
+        assert_eq!(report["meets"], meets, "{report}");
+        let point = |v: &serde_json::Value| {
+            Vec3::new(
+                v[0].as_f64().unwrap() as f32,
+                v[1].as_f64().unwrap() as f32,
+                v[2].as_f64().unwrap() as f32,
+            )
+            .as_dvec3()
+        };
+        let ta = &tris[c["triangle_a"].as_u64().unwrap() as usize];
+        let tb = &moved[c["triangle_b"].as_u64().unwrap() as usize];
+        assert!(point_triangle_squared(point(&c["point_a"]), ta).sqrt() <= size * 1e-6);
+        assert!(point_triangle_squared(point(&c["point_b"]), tb).sqrt() <= size * 1e-6);
+        // Below the distance, nothing is found; the text says so.
+        if !meets {
+            let limit = format!("{}", expected * 0.5);
+            let far = parse(ok(&[
+                &"distance",
+                &spot,
+                &spot,
+                &"--transform",
+                &transform,
+                &"--max-distance",
+                &limit,
+                &"--json",
+            ]));
+            assert!(far["closest"].is_null(), "{far}");
+            let text = ok(&[
+                &"distance",
+                &spot,
+                &spot,
+                &"--transform",
+                &transform,
+                &"--max-distance",
+                &limit,
+            ]);
+            assert!(text.contains("farther apart than"), "{text}");
+        }
+    }
+    fails(
+        &[&"distance", &spot, &spot, &"--max-distance=-1"],
+        1,
+        "--max-distance",
+    );
+    fails(
+        &[&"distance", &spot, &spot, &"--transform", &"1,2"],
+        1,
+        "16 numbers",
+    );
+    fails(&[&"distance", &spot], 2, "<OTHER>");
+    fails(
+        &[
+            &"distance",
+            &spot,
+            &spot,
+            &"--max-pair-tests",
+            &"1",
+            &"--transform",
+            &"1,0,0,0,0,1,0,0,0,0,1,0,2,0,0,1",
+        ],
+        1,
+        "--max-pair-tests",
+    );
+}
