@@ -450,3 +450,68 @@ fn the_generic_walk_carries_distance_and_intersection() {
     .unwrap();
     assert_eq!((flow, first.0), (ControlFlow::Break(()), 1));
 }
+
+/// The closest pairs of each bundled mesh against copies of itself in the golden placements.
+fn golden_pairs(name: &str) -> Vec<Option<meshq_workload::distance_golden::DigestedPair>> {
+    let mesh = bundled(name);
+    let v = valid(&mesh);
+    let positions = &mesh.0;
+    let bvh = MeshBvh::build(&v, &BuildConfig::default()).unwrap();
+    let (c, r, _) = meshq_workload::centre_radius(positions);
+    let (t, p) = (bvh.bvh(), bvh.packed());
+    let n = v.triangle_count();
+    meshq_workload::DISTANCE_PLACEMENTS
+        .iter()
+        .map(|&placement| {
+            let matrix = meshq_workload::placement_for(c.to_array(), r, placement);
+            let place = Affine::from_cols_4x4(&matrix).unwrap();
+            let found = mesh_distance(
+                t.with(&p),
+                t.with(&p),
+                Some(&place),
+                DistanceLimits::default(),
+                PairBudget::for_triangles(n, n),
+            )
+            .unwrap();
+            if let Some(f) = found {
+                check(name, &triangles(&v), &triangles(&v), &place, Some(f));
+            }
+            found.map(|f| {
+                (
+                    f.distance,
+                    f.on_a.to_array(),
+                    f.on_b.to_array(),
+                    f.triangle_a,
+                    f.triangle_b,
+                )
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn the_golden_distance_file_holds_every_bundled_mesh() {
+    // The WebAssembly tests check the same digests (wasm/tests/parity.rs); each pair is
+    // checked against brute force first.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("golden/distance.txt");
+    let mut file = String::from(
+        "# meshq mesh-distance golden file: see meshq_workload::distance_golden. Rewrite with\n\
+         # MESHQ_BLESS_GOLDEN=1 cargo test -p meshq-tests --test integration mesh_distance::\n",
+    );
+    let recorded = std::fs::read_to_string(&path).unwrap_or_default();
+    for name in ["spot", "fandisk", "cow"] {
+        let digest = meshq_workload::DistanceDigest::of(&golden_pairs(name));
+        file += &format!("{name} {digest}\n");
+        if std::env::var_os("MESHQ_BLESS_GOLDEN").is_none() {
+            let golden = meshq_workload::find_distance_golden(&recorded, name)
+                .unwrap_or_else(|e| panic!("{name}: {e}; bless with MESHQ_BLESS_GOLDEN=1"));
+            assert_eq!(
+                digest, golden,
+                "{name}: pairs changed; bless on purpose only"
+            );
+        }
+    }
+    if std::env::var_os("MESHQ_BLESS_GOLDEN").is_some() {
+        std::fs::write(&path, file).unwrap();
+    }
+}

@@ -101,8 +101,13 @@ declare module './meshq_wasm.js' {
     getBoundingBox(target?: Box3): Box3;
     /** Not supported: throws (rebuild with `computeBoundsTree`). */
     refit(): never;
-    /** Not supported yet: throws. */
-    closestPointToGeometry(): never;
+    /**
+     * three-mesh-bvh's `closestPointToGeometry`: the closest pair of points of this mesh and
+     * `geometry` placed by `geometryToBvh`; `target1` (this mesh, its frame) filled and
+     * returned, `target2` (the geometry, its own frame) filled when given; null beyond
+     * `maxThreshold`. `minThreshold` stops at the first pair that close.
+     */
+    closestPointToGeometry(geometry: BufferGeometry, geometryToBvh: Matrix4, target1?: Partial<ClosestPointTarget>, target2?: Partial<ClosestPointTarget> | null, minThreshold?: number, maxThreshold?: number): ClosestPointTarget | null;
   }
 }
 

@@ -326,9 +326,40 @@ MeshBvh.prototype.refit = function refit() {
   throw new Error('refit is not supported by meshq: call geometry.computeBoundsTree() again after moving vertices');
 };
 
-/** Not supported yet: throws rather than answer wrongly. */
-MeshBvh.prototype.closestPointToGeometry = function closestPointToGeometry() {
-  throw new Error('closestPointToGeometry is not supported by meshq yet');
+/**
+ * three-mesh-bvh's `boundsTree.closestPointToGeometry(geometry, geometryToBvh, target1 = {},
+ * target2 = {}, minThreshold = 0, maxThreshold = Infinity)`: the closest pair of points of this
+ * tree's mesh and `geometry`, placed in this tree's frame by the Matrix4 `geometryToBvh`.
+ * Fills `target1` with `{ point, distance, faceIndex }` on this mesh (in its frame) and, when
+ * given, `target2` with the same on `geometry` (its point in `geometry`'s own frame, its
+ * distance measured there), and returns `target1`; `null` when nothing lies within
+ * `maxThreshold`. `minThreshold` ends the search at the first pair found that close. Uses
+ * `geometry.boundsTree` when it has one, else builds one for the call and frees it. Meshes
+ * that meet are at distance 0.
+ */
+MeshBvh.prototype.closestPointToGeometry = function closestPointToGeometry(geometry, geometryToBvh, target1 = {}, target2 = {}, minThreshold = 0, maxThreshold = Infinity) {
+  const own = liveTree(geometry);
+  const temporary = own ? null : buildFor(geometry);
+  let found;
+  try {
+    found = this.distanceToMesh(own ?? temporary, geometryToBvh.elements, maxThreshold, minThreshold);
+  } finally {
+    temporary?.free();
+  }
+  if (!found) return null;
+  target1.point ??= new Vector3();
+  target1.point.set(found.pointA.x, found.pointA.y, found.pointA.z);
+  target1.distance = found.distance;
+  target1.faceIndex = found.triangleA;
+  if (target2) {
+    const toGeometry = new Matrix4().copy(geometryToBvh).invert();
+    target2.point ??= new Vector3();
+    target2.point.set(found.pointB.x, found.pointB.y, found.pointB.z).applyMatrix4(toGeometry);
+    const onThis = new Vector3(found.pointA.x, found.pointA.y, found.pointA.z).applyMatrix4(toGeometry);
+    target2.distance = onThis.distanceTo(target2.point);
+    target2.faceIndex = found.triangleB;
+  }
+  return target1;
 };
 
 /** Frees `this.boundsTree`. */

@@ -7,8 +7,8 @@ use meshq::Traverse;
 use meshq::advanced::{BvhNode, TreeArrays};
 use meshq::bvh::{BuildConfig, Bvh};
 use meshq::collide::{
-    Affine, CrossingSegment, Found, PairBudget, TrianglePair, intersecting_pairs,
-    intersection_segments, meshes_intersect, self_intersecting_pairs,
+    Affine, CrossingSegment, DistanceLimits, Found, PairBudget, TrianglePair, intersecting_pairs,
+    intersection_segments, mesh_distance, meshes_intersect, self_intersecting_pairs,
 };
 use meshq::error::PairBudgetSpent;
 use meshq::owned::{MeshBvh as CoreBvh, MeshIndex};
@@ -16,9 +16,9 @@ use meshq::query::{PackedTriangles, With};
 use wasm_bindgen::prelude::*;
 
 use crate::MeshBvh;
-use crate::args::range_error;
+use crate::args::{max_distance, number, range_error};
 use crate::fields::{optional_matrix, optional_u32};
-use crate::js_objects::set;
+use crate::js_objects::{meshq_mesh_distance, set};
 
 /// The BVH the checks walk: the structure itself when it is one, else one built here over the
 /// same mesh (a k-d tree, octree or grid is not a tree of boxes).
@@ -62,6 +62,18 @@ fn test_budget(max_tests: Option<JsValue>, a: usize, b: usize) -> Result<PairBud
             max_tests: max_tests as usize,
         },
     ))
+}
+
+/// `stopAt`: omitted or `null` → 0 (stop only where the meshes meet); otherwise a number ≥ 0.
+fn stop_distance(value: &JsValue) -> Result<f32, JsValue> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(0.0);
+    }
+    let x = number(value, "stopAt")?;
+    if !(x >= 0.0) {
+        return Err(range_error("stopAt must be a number ≥ 0 (or omitted)"));
+    }
+    Ok(x as f32)
 }
 
 /// A spent budget as a `RangeError` naming the option that raises it.
@@ -212,6 +224,55 @@ impl MeshBvh {
             .flatten()
             .collect();
         Ok(Float32Array::from(flat.as_slice()))
+    }
+
+    /// The closest pair of points of this mesh and `other`, placed in this mesh's frame by
+    /// `matrix` as in `intersectsMesh`: `{ distance, pointA, pointB, triangleA, triangleB }`
+    /// (`MeshDistance`, both points in this mesh's frame), or `null` when no pair is within
+    /// `maxDistance` (omitted or `null`: any distance; a small bound answers "within d?"
+    /// fast). Meshes that meet (touching counts) are at distance exactly 0. `stopAt` (omitted:
+    /// 0) ends the search at the first pair found that close, though a closer one may exist
+    /// (three-mesh-bvh's `minThreshold`). Apart, the distance is the smallest to within a
+    /// factor 1 + 2⁻¹⁷; ties go to the first pair found, the same on every target.
+    /// `maxTests` bounds the work as in `intersectsMesh`.
+    #[wasm_bindgen(js_name = distanceToMesh, unchecked_return_type = "MeshDistance | null")]
+    pub fn distance_to_mesh(
+        &self,
+        other: &MeshBvh,
+        #[wasm_bindgen(unchecked_param_type = "Matrix4Like | null")] matrix: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxDistance, unchecked_param_type = "number | null")]
+        max_distance_in: Option<JsValue>,
+        #[wasm_bindgen(js_name = stopAt, unchecked_param_type = "number | null")]
+        stop_at_in: Option<JsValue>,
+        #[wasm_bindgen(js_name = maxTests, unchecked_param_type = "number | null")]
+        max_tests: Option<JsValue>,
+    ) -> Result<JsValue, JsValue> {
+        let place = placement(matrix)?;
+        let limit = max_distance(&max_distance_in.unwrap_or(JsValue::UNDEFINED))?;
+        let stop_at = stop_distance(&stop_at_in.unwrap_or(JsValue::UNDEFINED))?;
+        let (na, nb) = triangle_counts(self, other);
+        let budget = test_budget(max_tests, na, nb)?;
+        let limits = DistanceLimits {
+            max_distance: limit,
+            stop_at,
+        };
+        let found = on_both(self, other, |a, b| {
+            mesh_distance(a, b, place.as_ref(), limits, budget)
+        })?
+        .map_err(spent)?;
+        Ok(found.map_or(JsValue::NULL, |f| {
+            meshq_mesh_distance(
+                f.distance,
+                f.on_a.x,
+                f.on_a.y,
+                f.on_a.z,
+                f.on_b.x,
+                f.on_b.y,
+                f.on_b.z,
+                f.triangle_a,
+                f.triangle_b,
+            )
+        }))
     }
 
     /// Where this mesh meets itself: pairs of its triangles (lower index first) that meet

@@ -14,6 +14,9 @@ export function meshq_ray_hit(t, distance, px, py, pz, triangle, u, v, nx, ny, n
 export function meshq_closest_point(distance, px, py, pz, triangle, u, v, nx, ny, nz) {
   return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz } };
 }
+export function meshq_mesh_distance(distance, ax, ay, az, bx, by, bz, triangleA, triangleB) {
+  return { distance, pointA: { x: ax, y: ay, z: az }, pointB: { x: bx, y: by, z: bz }, triangleA, triangleB };
+}
 export function meshq_signed_distance(distance, px, py, pz, triangle, u, v, nx, ny, nz, windingNumber) {
   return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz }, windingNumber };
 }
@@ -48,6 +51,21 @@ extern "C" {
         nx: f32,
         ny: f32,
         nz: f32,
+    ) -> JsValue;
+
+    /// A `MeshDistance`: `{ distance, pointA: {x, y, z}, pointB: {x, y, z}, triangleA,
+    /// triangleB }`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn meshq_mesh_distance(
+        distance: f32,
+        ax: f32,
+        ay: f32,
+        az: f32,
+        bx: f32,
+        by: f32,
+        bz: f32,
+        triangle_a: u32,
+        triangle_b: u32,
     ) -> JsValue;
 
     /// A `SignedDistance`: a `ClosestPoint` whose `distance` is negative inside, with the

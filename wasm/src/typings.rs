@@ -54,6 +54,17 @@ export interface SignedDistance extends ClosestPoint {
   windingNumber: number;
 }
 
+/** The closest pair of points of two meshes (`MeshBvh.distanceToMesh`): `pointA` on this
+ *  mesh, `pointB` on the other, both in this mesh's frame, `distance` between them (0 where
+ *  the meshes meet), and the triangles holding them. */
+export interface MeshDistance {
+  distance: number;
+  pointA: XYZ;
+  pointB: XYZ;
+  triangleA: number;
+  triangleB: number;
+}
+
 /** A signed-distance volume (`MeshBvh.signedDistanceGrid`): `values` x fastest, then y, then
  *  z, negative inside; sample `(i, j, k)` lies at `origin + spacing·(i, j, k)`. */
 export interface SignedDistanceGrid {

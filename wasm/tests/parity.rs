@@ -800,3 +800,43 @@ fn a_signed_distance_grid_holds_the_single_signed_distances() {
     }
     assert!(values.iter().any(|&v| v < 0.0));
 }
+
+const DISTANCE_GOLDEN: &str = include_str!("../../tests/golden/distance.txt");
+
+#[wasm_bindgen_test]
+fn mesh_distances_match_the_golden_digest() {
+    for (name, obj) in MESHES {
+        let Ok(golden) = meshq_workload::find_distance_golden(DISTANCE_GOLDEN, name) else {
+            continue;
+        };
+        let (positions, _) = load(obj);
+        let corners: Vec<[f32; 3]> = positions
+            .chunks_exact(3)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect();
+        let (c, r, _) = meshq_workload::centre_radius(&corners);
+        let built = build(obj, &JsValue::UNDEFINED);
+        let field = |o: &JsValue, k: &str| Reflect::get(o, &k.into()).unwrap();
+        let xyz = |o: &JsValue| ["x", "y", "z"].map(|k| field(o, k).as_f64().unwrap() as f32);
+        let pairs: Vec<_> = meshq_workload::DISTANCE_PLACEMENTS
+            .iter()
+            .map(|&placement| {
+                let matrix = meshq_workload::placement_for(c.to_array(), r, placement);
+                let found = built
+                    .distance_to_mesh(&built, Some(floats_js(&matrix)), None, None, None)
+                    .unwrap();
+                (!found.is_null()).then(|| {
+                    (
+                        field(&found, "distance").as_f64().unwrap() as f32,
+                        xyz(&field(&found, "pointA")),
+                        xyz(&field(&found, "pointB")),
+                        field(&found, "triangleA").as_f64().unwrap() as u32,
+                        field(&found, "triangleB").as_f64().unwrap() as u32,
+                    )
+                })
+            })
+            .collect();
+        let digest = meshq_workload::DistanceDigest::of(&pairs);
+        assert_eq!(digest, golden, "{name}: mesh distances in WebAssembly");
+    }
+}

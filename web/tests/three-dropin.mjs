@@ -13,6 +13,7 @@ import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { mergeVertices } from 'three/addons/utils/BufferGeometryUtils.js';
 import { AVERAGE, CENTER, CONTAINED, INTERSECTED, NOT_INTERSECTED, SAH, acceleratedRaycast, computeBoundsTree, disposeBoundsTree } from 'meshq-wasm/three';
 import * as meshq from 'meshq-wasm';
+import { MeshBVH } from 'three-mesh-bvh';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const RAYS = Number(process.env.MESHQ_DROPIN_RAYS ?? 10000);
@@ -432,8 +433,32 @@ brute.material = material;
   const box = tree.getBoundingBox(new THREE.Box3());
   assert.ok(box.containsBox(new THREE.Box3().setFromBufferAttribute(position)), 'getBoundingBox');
   assert.throws(() => tree.refit(), /computeBoundsTree/);
-  assert.throws(() => tree.closestPointToGeometry(), /not supported/);
-  console.log(`bounds tree: raycast, raycastFirst (${hitsChecked} first hits), closestPointToPoint, getBoundingBox agree with three's brute force`);
+  // closestPointToGeometry against three-mesh-bvh's own, on a sphere placed near the bunny,
+  // into it, and far off (scaled and turned, so target2's frame differs from target1's).
+  const sphere = new THREE.SphereGeometry(0.02, 24, 16);
+  const size = box.getSize(new THREE.Vector3()).length();
+  const theirs = new MeshBVH(indexed);
+  const placements = [
+    new THREE.Vector3(box.max.x + 0.01, (box.min.y + box.max.y) / 2, 0),
+    box.getCenter(new THREE.Vector3()),
+    new THREE.Vector3(box.max.x + 0.5, box.max.y, box.max.z),
+  ];
+  for (const [k, at] of placements.entries()) {
+    const matrix = new THREE.Matrix4().compose(at, new THREE.Quaternion().setFromEuler(new THREE.Euler(0.3, 0.5, 0.1)), new THREE.Vector3(1.5, 1, 0.7));
+    const [ours1, ours2, want1, want2] = [{}, {}, {}, {}];
+    assert.equal(tree.closestPointToGeometry(sphere, matrix, ours1, ours2), ours1);
+    assert.equal(theirs.closestPointToGeometry(sphere, matrix, want1, want2), want1);
+    assert.ok(Math.abs(ours1.distance - want1.distance) <= 1e-5 * size, `closestPointToGeometry ${k}: ${ours1.distance} vs three-mesh-bvh ${want1.distance}`);
+    assert.ok(Math.abs(ours2.distance - want2.distance) <= 1e-5 * size, `closestPointToGeometry target2 ${k}: ${ours2.distance} vs ${want2.distance}`);
+    assert.ok(ours1.point.isVector3 && Number.isInteger(ours1.faceIndex) && Number.isInteger(ours2.faceIndex));
+    // target2's point is on the sphere in its own frame, and maps onto target1's distance.
+    const back = ours2.point.clone().applyMatrix4(matrix);
+    assert.ok(Math.abs(back.distanceTo(ours1.point) - ours1.distance) <= 1e-5 * size, `closestPointToGeometry frames ${k}`);
+    if (ours1.distance > 0) {
+      assert.equal(tree.closestPointToGeometry(sphere, matrix, {}, {}, 0, ours1.distance * 0.5), null, 'maxThreshold');
+    }
+  }
+  console.log(`bounds tree: raycast, raycastFirst (${hitsChecked} first hits), closestPointToPoint, getBoundingBox agree with three's brute force; closestPointToGeometry with three-mesh-bvh's`);
 }
 
 indexed.disposeBoundsTree();

@@ -23,6 +23,7 @@
 #[cfg(test)]
 extern crate std;
 
+pub mod distance_golden;
 pub mod golden;
 pub mod parity;
 pub mod remesh_golden;
@@ -32,6 +33,9 @@ pub mod winding_golden;
 use glam::Vec3;
 use meshq::math::{Aabb, Ray};
 
+pub use distance_golden::{
+    DISTANCE_PLACEMENTS, DistanceDigest, find_distance_golden, placement_for,
+};
 pub use golden::{GoldenEntry, GoldenError, find_golden};
 pub use parity::{ParityDigest, ParityReport, ParitySpec, ParityTarget, run_parity};
 pub use remesh_golden::{MeshDigest, RemeshGolden, find_remesh_golden};

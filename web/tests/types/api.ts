@@ -10,6 +10,7 @@ import init, {
   type BlobLayout,
   type ClosestPoint,
   type MeshBvhOptions,
+  type MeshDistance,
   type PairsResult,
   type SignedDistance,
   type SignedDistanceGrid,
@@ -69,6 +70,8 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.intersectsMesh(grid);
   const met: boolean = bvh.intersectsMesh(grid, null, 1_000_000);
   bvh.intersectingPairs(grid, null, null, 1_000_000);
+  const apart: MeshDistance | null = bvh.distanceToMesh(grid, null, 0.5, 0, 1_000_000);
+  const gap: number = (bvh.distanceToMesh(grid)?.pointA.x ?? 0) + (apart?.triangleB ?? 0);
   bvh.intersectionSegments(grid, null);
   bvh.intersectionSegments(grid, null, 1_000_000);
   bvh.selfIntersections();

@@ -29,6 +29,7 @@ export function dropIn(geometry: THREE.BufferGeometry, blob: Uint8Array): number
   const own = tree.raycast([0, 0, 1], [0, 0, -1]);
   const target = tree.closestPointToPoint(new THREE.Vector3(), {});
   const box = tree.getBoundingBox(new THREE.Box3());
+  const pair = tree.closestPointToGeometry(geometry, new THREE.Matrix4(), {}, null, 0, 10);
   const meets = tree.intersectsSphere(new THREE.Sphere()) || tree.intersectsBox(box, new THREE.Matrix4())
     || tree.intersectsGeometry(geometry, new THREE.Matrix4());
   const stopped = tree.shapecast({
@@ -39,5 +40,5 @@ export function dropIn(geometry: THREE.BufferGeometry, blob: Uint8Array): number
   // @ts-expect-error computeBoundsTree takes an options object
   geometry.computeBoundsTree('fast');
   return hits.length + (first?.distance ?? 0) + every.length + (own?.t ?? 0) + (target?.distance ?? 0)
-    + Number(meets) + Number(stopped);
+    + (pair?.faceIndex ?? 0) + Number(meets) + Number(stopped);
 }
