@@ -137,3 +137,109 @@ pub fn mesh_mesh(a: &[Tri64], b: &[Tri64]) -> f64 {
     }
     best
 }
+
+/// A shape swept by the oracle, in `f64`.
+#[derive(Clone, Copy, Debug)]
+pub enum Shape64 {
+    /// Centre and radius.
+    Sphere(DVec3, f64),
+    /// Segment ends and radius.
+    Capsule(DVec3, DVec3, f64),
+    /// Centre, three orthonormal axes and half extents.
+    Box(DVec3, [DVec3; 3], DVec3),
+}
+
+impl Shape64 {
+    /// The shape moved by `d`.
+    pub fn moved(&self, d: DVec3) -> Self {
+        match *self {
+            Self::Sphere(c, r) => Self::Sphere(c + d, r),
+            Self::Capsule(a, b, r) => Self::Capsule(a + d, b + d, r),
+            Self::Box(c, axes, h) => Self::Box(c + d, axes, h),
+        }
+    }
+
+    /// Its distance to triangle `t` (0 when they meet).
+    pub fn distance(&self, t: &Tri64) -> f64 {
+        match *self {
+            Self::Sphere(c, r) => (point_triangle_squared(c, t).sqrt() - r).max(0.0),
+            Self::Capsule(a, b, r) => (triangle_triangle(&[a, b, b], t) - r).max(0.0),
+            Self::Box(c, axes, h) => {
+                let inside = |p: DVec3| {
+                    let d = p - c;
+                    (0..3).all(|i| d.dot(axes[i]).abs() <= h[i])
+                };
+                if t.iter().any(|&p| inside(p)) {
+                    return 0.0;
+                }
+                let corner = |i: usize| {
+                    let s = |bit: usize| if i & bit != 0 { 1.0 } else { -1.0 };
+                    c + axes[0] * (s(1) * h.x) + axes[1] * (s(2) * h.y) + axes[2] * (s(4) * h.z)
+                };
+                let faces = [
+                    [0, 1, 3, 2],
+                    [4, 5, 7, 6],
+                    [0, 1, 5, 4],
+                    [2, 3, 7, 6],
+                    [0, 2, 6, 4],
+                    [1, 3, 7, 5],
+                ];
+                faces
+                    .iter()
+                    .flat_map(|f| [[f[0], f[1], f[2]], [f[0], f[2], f[3]]])
+                    .map(|[i, j, k]| triangle_triangle(&[corner(i), corner(j), corner(k)], t))
+                    .fold(f64::INFINITY, f64::min)
+            }
+        }
+    }
+
+    /// A box holding the shape.
+    fn bounds(&self) -> (DVec3, DVec3) {
+        match *self {
+            Self::Sphere(c, r) => (c - r, c + r),
+            Self::Capsule(a, b, r) => (a.min(b) - r, a.max(b) + r),
+            Self::Box(c, axes, h) => {
+                let reach = axes[0].abs() * h.x + axes[1].abs() * h.y + axes[2].abs() * h.z;
+                (c - reach, c + reach)
+            }
+        }
+    }
+}
+
+/// The distance from `shape` to the nearest of `mesh` (triangles whose boxes are farther than
+/// the best so far are skipped: exact).
+pub fn shape_mesh(shape: &Shape64, mesh: &[Tri64]) -> f64 {
+    let (lo, hi) = shape.bounds();
+    let mut best = f64::INFINITY;
+    for t in mesh {
+        let (tlo, thi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+        let gap = (tlo - hi).max(lo - thi).max(DVec3::ZERO);
+        if gap.length() >= best {
+            continue;
+        }
+        best = best.min(shape.distance(t));
+    }
+    best
+}
+
+/// The first time `t ∈ [0, 1]` at which `shape` moved by `t · motion` comes within `eps` of
+/// `mesh`, by steps no longer than the distance left (a shape moving at speed `|motion|`
+/// cannot close a gap faster): never past the first contact, and within `eps` of it.
+pub fn time_of_impact(shape: &Shape64, motion: DVec3, mesh: &[Tri64], eps: f64) -> Option<f64> {
+    let speed = motion.length();
+    let mut t = 0.0;
+    for _ in 0..1_000_000 {
+        let d = shape_mesh(&shape.moved(motion * t), mesh);
+        if d <= eps {
+            return Some(t);
+        }
+        if speed == 0.0 {
+            return None;
+        }
+        t += d / speed;
+        if t > 1.0 {
+            return None;
+        }
+    }
+    Some(t)
+}

@@ -38,6 +38,7 @@ mod remesh_topology;
 mod sorted_batches;
 mod spatial_splits;
 mod structure;
+mod sweeps;
 mod watertight;
 mod wide_structure;
 mod winding_numbers;

@@ -10,6 +10,7 @@ mod collide;
 mod mesh;
 mod remesh;
 mod structure;
+mod sweep;
 mod transform;
 
 pub use batch::{BatchBuffer, BatchError};
@@ -20,4 +21,5 @@ pub use collide::PairBudgetSpent;
 pub use mesh::{FlatSlice, MeshError};
 pub use remesh::{RemeshBuffer, RemeshError};
 pub use structure::StructureError;
+pub use sweep::SweepError;
 pub use transform::TransformError;

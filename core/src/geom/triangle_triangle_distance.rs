@@ -2,7 +2,7 @@ use glam::Vec3;
 
 use super::{
     TriangleTriangle, closest_point_triangle, closest_points_segment_segment,
-    intersect_triangle_triangle,
+    closest_points_segment_triangle, intersect_triangle_triangle,
 };
 use crate::math::{Triangle, dot};
 
@@ -30,8 +30,10 @@ pub struct TriangleTriangleClosest {
 ///
 /// Ties go to the first candidate in this order: `t1`'s corners `a, b, c` against `t2`,
 /// `t2`'s corners against `t1`, then `t1`'s edges `ab, bc, ca` each against `t2`'s edges in
-/// the same order. Degenerate triangles (segments and points) are measured as the union of
-/// their edges. A NaN corner gives a NaN distance.
+/// the same order. A degenerate triangle (a segment or a point) is measured as the union of its
+/// edges, each by
+/// [`closest_points_segment_triangle`](crate::geom::closest_points_segment_triangle) against a
+/// proper triangle, so one that pierces it is at 0. A NaN corner gives a NaN distance.
 ///
 /// ```
 /// use meshq::{geom::closest_points_triangle_triangle, math::{Triangle, Vec3}};
@@ -42,6 +44,13 @@ pub struct TriangleTriangleClosest {
 /// ```
 #[must_use]
 pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> TriangleTriangleClosest {
+    // A segment (or point) against a proper triangle may pierce its face, which no pair of
+    // features below sees: measure its edges as segments instead.
+    match (t1.is_degenerate(), t2.is_degenerate()) {
+        (true, false) => return degenerate_against(t1, t2, false),
+        (false, true) => return degenerate_against(t2, t1, true),
+        _ => {}
+    }
     // Triangles whose boxes are apart cannot meet: the plane tests are skipped for them.
     let meet = if t1.bounds().overlaps(&t2.bounds()) {
         intersect_triangle_triangle(t1, t2)
@@ -81,6 +90,22 @@ pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> Triangl
         // The overlap's nearest features are apart only by rounding: they touch.
         best.on_second = best.on_first;
         best.distance_squared = 0.0;
+    }
+    best
+}
+
+/// The edges of degenerate triangle `d` against proper triangle `t`, nearest first (ties to
+/// the first edge); `d_is_second` puts `d`'s points in `on_second`.
+fn degenerate_against(d: &Triangle, t: &Triangle, d_is_second: bool) -> TriangleTriangleClosest {
+    let mut best = closest_points_segment_triangle(d.a, d.b, t);
+    for (p, q) in [(d.b, d.c), (d.c, d.a)] {
+        let c = closest_points_segment_triangle(p, q, t);
+        if c.distance_squared < best.distance_squared {
+            best = c;
+        }
+    }
+    if d_is_second {
+        core::mem::swap(&mut best.on_first, &mut best.on_second);
     }
     best
 }

@@ -5,9 +5,9 @@
 use core::ops::ControlFlow;
 
 use super::MeshIndex;
-use crate::error::BatchError;
+use crate::error::{BatchError, SweepError};
 use crate::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle, Vec3};
-use crate::query::{MeshQuery, OverlapCount, RayHits, RayOptions, ShapeCast};
+use crate::query::{MeshQuery, OverlapCount, RayHits, RayOptions, ShapeCast, SweepHit, SweepShape};
 
 /// Runs `$query` with `$s` bound to the structure `$index` holds.
 macro_rules! on_structure {
@@ -49,6 +49,10 @@ impl MeshQuery for MeshIndex {
     #[inline]
     fn closest_point(&self, point: Vec3, max_distance: f32) -> Option<ClosestPoint> {
         on_structure!(self, s => s.closest_point(point, max_distance))
+    }
+
+    fn sweep(&self, shape: &SweepShape, motion: Vec3) -> Result<Option<SweepHit>, SweepError> {
+        on_structure!(self, s => s.sweep(shape, motion))
     }
 
     fn closest_points(

@@ -163,6 +163,30 @@ pub trait MeshQuery: Traverse + LeafTriangles {
         raycast_batch::raycast_any_batch(self, self, rays, options, keys, out)
     }
 
+    /// Where `shape` (a sphere, a capsule or an oriented box), moved by `motion` from where it
+    /// is, first touches a non-degenerate triangle: the fraction `t ∈ [0, 1]` of the motion
+    /// done, the contact point on the mesh, the unit normal from the mesh toward the shape and
+    /// the triangle; `None` when it touches nothing along the way. A shape touching the mesh
+    /// at the start gives `t = 0`; a zero motion asks whether it touches now.
+    ///
+    /// Exact up to [`SWEEP_TOLERANCE`](super::SWEEP_TOLERANCE) of the sweep's size (the
+    /// shape's extent plus the motion's length): the shape is within that distance of the
+    /// mesh at `t`, and does not touch it before. Of contacts at the same `t`, the lowest
+    /// triangle index wins, so every structure gives the same answer.
+    ///
+    /// # Errors
+    /// [`SweepError::InvalidShape`](crate::error::SweepError::InvalidShape) for a shape that is
+    /// not [valid](super::SweepShape::is_valid) and
+    /// [`SweepError::InvalidMotion`](crate::error::SweepError::InvalidMotion) for a motion that
+    /// is not finite.
+    fn sweep(
+        &self,
+        shape: &super::SweepShape,
+        motion: Vec3,
+    ) -> Result<Option<super::SweepHit>, crate::error::SweepError> {
+        super::sweep::sweep(self, self, shape, motion)
+    }
+
     /// Calls `report` with the index of every non-degenerate triangle that shares a point with
     /// `aabb` (exact triangle–box test; touching counts), in traversal order, until it returns
     /// `Break`. An empty or non-finite box reports nothing.

@@ -6,7 +6,7 @@
 //!   [`Visitor`] which boxes to enter and in what order, and when deferred work is no longer
 //!   worth doing.
 //! - The layer supplies the visitors — closest hit, any hit, every hit, closest point, box,
-//!   sphere, triangle and oriented-box overlap — with the leaf tests (four triangles at a time
+//!   sphere, triangle and oriented-box overlap, sweeps — with the leaf tests (four triangles at a time
 //!   in SIMD lanes where the target has them), the tie rule and the Morton-ordered batches.
 //! - [`Traverse::with`] pairs a structure with its triangles ([`LeafTriangles`]: the mesh, or
 //!   [`PackedTriangles`] in the structure's slot order), and the pair answers every query of
@@ -108,6 +108,7 @@ mod ray_packet;
 mod raycast_batch;
 mod shapecast;
 pub(crate) mod split_refs;
+mod sweep;
 pub(crate) mod traverse;
 
 pub(crate) use cell::Cell;
@@ -122,5 +123,6 @@ pub use ray_order::{sorts_ray_batch, sorts_ray_batches_of};
 pub use shapecast::{BoundsOverlap, ShapeCast};
 pub(crate) use split_refs::SplitRef;
 pub(crate) use split_refs::SplitRefs;
+pub use sweep::{SWEEP_TOLERANCE, SweepHit, SweepShape};
 pub(crate) use traverse::BatchHint;
 pub use traverse::{Traverse, Visitor, VisitorHints, With};
