@@ -20,6 +20,7 @@ mod remesh;
 mod sdf;
 mod structure;
 mod structure_arg;
+mod sweep;
 mod threads;
 mod winding;
 mod workload;
@@ -52,6 +53,8 @@ enum Command {
     Inside(inside::InsideArgs),
     /// Write a signed-distance volume of a mesh (NRRD).
     Sdf(sdf::SdfArgs),
+    /// Move spheres, capsules or boxes along segments from a file: where each first touches.
+    Sweep(sweep::SweepArgs),
     /// Remesh a mesh toward uniform, near-equilateral triangles on its surface.
     Remesh(remesh::RemeshArgs),
     /// Find where a mesh meets itself, or another mesh.
@@ -74,6 +77,7 @@ fn main() -> ExitCode {
         Command::Closest(args) => closest::run(args),
         Command::Inside(args) => inside::run(args),
         Command::Sdf(args) => sdf::run(args),
+        Command::Sweep(args) => sweep::run(args),
         Command::Remesh(args) => remesh::run(args),
         Command::Check(args) => check::run(args),
         Command::Distance(args) => distance::run(args),

@@ -1443,3 +1443,141 @@ fn distance_reports_the_brute_force_closest_pair() {
         "--max-pair-tests",
     );
 }
+
+#[test]
+fn sweep_records_are_the_library_answers_on_any_thread_count() {
+    use meshq::math::Obb;
+    use meshq::query::{MeshQuery, SweepShape};
+    let spot = asset("spot.obj");
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let bvh = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    // Shapes starting around the cow, moved through its middle.
+    let mut spheres = Vec::new();
+    let mut boxes = Vec::new();
+    let mut expected_spheres = Vec::new();
+    let mut expected_boxes = Vec::new();
+    for k in 0..40 {
+        let a = k as f32 * 0.7;
+        let start = Vec3::new(a.cos() * 1.5, 0.3 * (a * 1.3).sin(), a.sin() * 1.5);
+        let motion = -start * 2.0 + Vec3::new(0.0, 0.1, 0.0);
+        let r = 0.02 + 0.01 * (k % 5) as f32;
+        spheres.extend([start.x, start.y, start.z, r, motion.x, motion.y, motion.z]);
+        expected_spheres.push(
+            bvh.sweep(
+                &SweepShape::Sphere {
+                    center: start,
+                    radius: r,
+                },
+                motion,
+            )
+            .unwrap(),
+        );
+        let obb = Obb::new(start, [Vec3::X, Vec3::Y, Vec3::Z], Vec3::new(r, 2.0 * r, r));
+        boxes.extend(start.to_array());
+        boxes.extend([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]);
+        boxes.extend([r, 2.0 * r, r]);
+        boxes.extend(motion.to_array());
+        expected_boxes.push(bvh.sweep(&SweepShape::Box(obb), motion).unwrap());
+    }
+    let read = |path: &Path| {
+        let bytes = std::fs::read(path).unwrap();
+        bytes
+            .chunks_exact(32)
+            .map(|r| {
+                let f = |i: usize| f32::from_le_bytes(r[i..i + 4].try_into().unwrap());
+                let tri = u32::from_le_bytes(r[4..8].try_into().unwrap());
+                (f(0), tri, [f(8), f(12), f(16)], [f(20), f(24), f(28)])
+            })
+            .collect::<Vec<_>>()
+    };
+    for (shape, floats, expected) in [
+        ("sphere", &spheres, &expected_spheres),
+        ("box", &boxes, &expected_boxes),
+    ] {
+        let input = dir.path().join(format!("{shape}.bin"));
+        write_f32s(&input, floats.iter().copied());
+        let mut outputs = Vec::new();
+        for threads in ["1", "2"] {
+            let out = dir.path().join(format!("{shape}-{threads}.out"));
+            let json = ok(&[
+                &"sweep",
+                &spot,
+                &"--shape",
+                &shape,
+                &"--sweeps",
+                &input,
+                &"--out",
+                &out,
+                &"--threads",
+                &threads,
+                &"--json",
+            ]);
+            let summary: serde_json::Value = serde_json::from_str(&json).unwrap();
+            assert_eq!(summary["sweeps"], 40, "{summary}");
+            let hits = expected.iter().filter(|h| h.is_some()).count();
+            assert_eq!(summary["hits"], hits as u64, "{summary}");
+            assert!(hits >= 20, "{shape}: {hits} hits");
+            let records = read(&out);
+            for (k, (r, e)) in records.iter().zip(expected.iter()).enumerate() {
+                match e {
+                    Some(h) => {
+                        assert_eq!((r.0.to_bits(), r.1), (h.t.to_bits(), h.tri), "{shape} {k}");
+                        assert_eq!(
+                            (r.2, r.3),
+                            (h.point.to_array(), h.normal.to_array()),
+                            "{shape} {k}"
+                        );
+                    }
+                    None => {
+                        assert_eq!((r.0, r.1), (f32::INFINITY, u32::MAX), "{shape} {k}");
+                        assert!(r.2.iter().chain(&r.3).all(|x| x.is_nan()));
+                    }
+                }
+            }
+            outputs.push(std::fs::read(&out).unwrap());
+        }
+        assert_eq!(
+            outputs[0], outputs[1],
+            "{shape}: threads change the records"
+        );
+    }
+    // A bad record is an error naming it, and no output is left.
+    let bad = dir.path().join("bad.bin");
+    let mut floats = spheres.clone();
+    floats[7 * 3 + 3] = -1.0;
+    write_f32s(&bad, floats);
+    let out = dir.path().join("bad.out");
+    fails(
+        &[
+            &"sweep",
+            &spot,
+            &"--shape",
+            &"sphere",
+            &"--sweeps",
+            &bad,
+            &"--out",
+            &out,
+        ],
+        1,
+        "sweep 3",
+    );
+    assert!(!out.exists());
+    let short = dir.path().join("short.bin");
+    write_f32s(&short, spheres[..10].iter().copied());
+    fails(
+        &[
+            &"sweep",
+            &spot,
+            &"--shape",
+            &"sphere",
+            &"--sweeps",
+            &short,
+            &"--out",
+            &out,
+        ],
+        1,
+        "sweep",
+    );
+}
