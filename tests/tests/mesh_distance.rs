@@ -489,6 +489,28 @@ fn golden_pairs(name: &str) -> Vec<Option<meshq_workload::distance_golden::Diges
         .collect()
 }
 
+/// The golden sweeps of each bundled mesh, as digested pairs: (t, point, normal, triangle, 0).
+fn golden_sweeps(name: &str) -> Vec<Option<meshq_workload::distance_golden::DigestedPair>> {
+    use meshq::query::MeshQuery;
+    let mesh = bundled(name);
+    let v = valid(&mesh);
+    let bvh = MeshBvh::build(&v, &BuildConfig::default()).unwrap();
+    let (c, r, _) = meshq_workload::centre_radius(&mesh.0);
+    let hits: Vec<_> = meshq_workload::golden_sweeps(c.to_array(), r)
+        .map(|(shape, motion)| {
+            bvh.sweep(&shape, motion)
+                .unwrap()
+                .map(|h| (h.t, h.point.to_array(), h.normal.to_array(), h.tri, 0))
+        })
+        .collect();
+    let touching = hits.iter().flatten().count();
+    assert!(
+        touching >= 6,
+        "{name}: {touching} of the golden sweeps touch"
+    );
+    hits
+}
+
 #[test]
 fn the_golden_distance_file_holds_every_bundled_mesh() {
     // The WebAssembly tests check the same digests (wasm/tests/parity.rs); each pair is
@@ -500,15 +522,26 @@ fn the_golden_distance_file_holds_every_bundled_mesh() {
     );
     let recorded = std::fs::read_to_string(&path).unwrap_or_default();
     for name in ["spot", "fandisk", "cow"] {
-        let digest = meshq_workload::DistanceDigest::of(&golden_pairs(name));
-        file += &format!("{name} {digest}\n");
-        if std::env::var_os("MESHQ_BLESS_GOLDEN").is_none() {
-            let golden = meshq_workload::find_distance_golden(&recorded, name)
-                .unwrap_or_else(|e| panic!("{name}: {e}; bless with MESHQ_BLESS_GOLDEN=1"));
-            assert_eq!(
-                digest, golden,
-                "{name}: pairs changed; bless on purpose only"
-            );
+        let digests = [
+            (
+                name.to_string(),
+                meshq_workload::DistanceDigest::of(&golden_pairs(name)),
+            ),
+            (
+                format!("{name}-sweeps"),
+                meshq_workload::DistanceDigest::of(&golden_sweeps(name)),
+            ),
+        ];
+        for (line, digest) in digests {
+            file += &format!("{line} {digest}\n");
+            if std::env::var_os("MESHQ_BLESS_GOLDEN").is_none() {
+                let golden = meshq_workload::find_distance_golden(&recorded, &line)
+                    .unwrap_or_else(|e| panic!("{line}: {e}; bless with MESHQ_BLESS_GOLDEN=1"));
+                assert_eq!(
+                    digest, golden,
+                    "{line}: answers changed; bless on purpose only"
+                );
+            }
         }
     }
     if std::env::var_os("MESHQ_BLESS_GOLDEN").is_some() {

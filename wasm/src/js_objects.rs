@@ -17,6 +17,9 @@ export function meshq_closest_point(distance, px, py, pz, triangle, u, v, nx, ny
 export function meshq_mesh_distance(distance, ax, ay, az, bx, by, bz, triangleA, triangleB) {
   return { distance, pointA: { x: ax, y: ay, z: az }, pointB: { x: bx, y: by, z: bz }, triangleA, triangleB };
 }
+export function meshq_sweep_hit(t, px, py, pz, nx, ny, nz, triangle) {
+  return { t, point: { x: px, y: py, z: pz }, normal: { x: nx, y: ny, z: nz }, triangle };
+}
 export function meshq_signed_distance(distance, px, py, pz, triangle, u, v, nx, ny, nz, windingNumber) {
   return { distance, point: { x: px, y: py, z: pz }, triangle, u, v, normal: { x: nx, y: ny, z: nz }, windingNumber };
 }
@@ -66,6 +69,19 @@ extern "C" {
         bz: f32,
         triangle_a: u32,
         triangle_b: u32,
+    ) -> JsValue;
+
+    /// A `SweepHit`: `{ t, point: {x, y, z}, normal: {x, y, z}, triangle }`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn meshq_sweep_hit(
+        t: f32,
+        px: f32,
+        py: f32,
+        pz: f32,
+        nx: f32,
+        ny: f32,
+        nz: f32,
+        triangle: u32,
     ) -> JsValue;
 
     /// A `SignedDistance`: a `ClosestPoint` whose `distance` is negative inside, with the

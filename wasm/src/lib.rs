@@ -21,6 +21,7 @@ mod options;
 mod overlaps;
 mod remesh;
 mod storage;
+mod sweeps;
 mod typings;
 mod workload;
 

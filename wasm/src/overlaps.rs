@@ -20,6 +20,37 @@ fn any(query: impl FnOnce(&mut dyn FnMut(u32) -> ControlFlow<()>)) -> bool {
     found
 }
 
+/// `radius`: a finite number ≥ 0, or a `TypeError` / `RangeError` naming it.
+pub(crate) fn radius_of(radius: &JsValue) -> Result<f32, JsValue> {
+    let radius = finite(radius, "radius")?;
+    if radius < 0.0 {
+        return Err(range_error(&format!(
+            "radius must be a finite number >= 0, got {}",
+            JsNumber(f64::from(radius))
+        )));
+    }
+    Ok(radius)
+}
+
+/// The oriented box of `center` (`Vec3Like`), `axes` (9 numbers: three directions one after
+/// the other) and `halfExtents` (`Vec3Like`).
+pub(crate) fn obb_of(
+    center: &JsValue,
+    axes: &JsValue,
+    half_extents: &JsValue,
+) -> Result<Obb, JsValue> {
+    let values = finite_numbers(axes, "axes", Some(9))?;
+    let [x, y, z] = match values.as_slice() {
+        [a, b, c, d, e, f, g, h, i] => [[*a, *b, *c], [*d, *e, *f], [*g, *h, *i]],
+        _ => return Err(range_error("axes must hold 9 numbers (three directions)")),
+    };
+    Ok(Obb::new(
+        vector(center, "center")?,
+        [x, y, z].map(glam::Vec3::from_array),
+        vector(half_extents, "halfExtents")?,
+    ))
+}
+
 #[wasm_bindgen]
 impl MeshBvh {
     /// Whether a triangle of the mesh comes within `radius` (a finite number ≥ 0) of `center`
@@ -31,13 +62,7 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "number")] radius: &JsValue,
     ) -> Result<bool, JsValue> {
         let c = vector(center, "center")?;
-        let radius = finite(radius, "radius")?;
-        if radius < 0.0 {
-            return Err(range_error(&format!(
-                "radius must be a finite number >= 0, got {}",
-                JsNumber(f64::from(radius))
-            )));
-        }
+        let radius = radius_of(radius)?;
         Ok(any(|f| self.storage.scene.overlap_sphere(c, radius, f)))
     }
 
@@ -52,16 +77,7 @@ impl MeshBvh {
         #[wasm_bindgen(js_name = halfExtents, unchecked_param_type = "Vec3Like")]
         half_extents: &JsValue,
     ) -> Result<bool, JsValue> {
-        let values = finite_numbers(axes, "axes", Some(9))?;
-        let [x, y, z] = match values.as_slice() {
-            [a, b, c, d, e, f, g, h, i] => [[*a, *b, *c], [*d, *e, *f], [*g, *h, *i]],
-            _ => return Err(range_error("axes must hold 9 numbers (three directions)")),
-        };
-        let obb = Obb::new(
-            vector(center, "center")?,
-            [x, y, z].map(glam::Vec3::from_array),
-            vector(half_extents, "halfExtents")?,
-        );
+        let obb = obb_of(center, axes, half_extents)?;
         Ok(any(|f| self.storage.scene.overlap_obb(&obb, f)))
     }
 

@@ -65,6 +65,16 @@ export interface MeshDistance {
   triangleB: number;
 }
 
+/** Where a swept shape first touches the mesh (`MeshBvh.sweepSphere`, `sweepCapsule`,
+ *  `sweepBox`): `t` the fraction of the motion done at contact (0 to 1), `point` on the mesh,
+ *  `normal` a unit vector from the mesh toward the shape, and the triangle touched. */
+export interface SweepHit {
+  t: number;
+  point: XYZ;
+  normal: XYZ;
+  triangle: number;
+}
+
 /** A signed-distance volume (`MeshBvh.signedDistanceGrid`): `values` x fastest, then y, then
  *  z, negative inside; sample `(i, j, k)` lies at `origin + spacing·(i, j, k)`. */
 export interface SignedDistanceGrid {

@@ -840,3 +840,58 @@ fn mesh_distances_match_the_golden_digest() {
         assert_eq!(digest, golden, "{name}: mesh distances in WebAssembly");
     }
 }
+
+#[wasm_bindgen_test]
+fn sweeps_match_the_golden_digest() {
+    use meshq::query::SweepShape;
+    for (name, obj) in MESHES {
+        let Ok(golden) =
+            meshq_workload::find_distance_golden(DISTANCE_GOLDEN, &format!("{name}-sweeps"))
+        else {
+            continue;
+        };
+        let (positions, _) = load(obj);
+        let corners: Vec<[f32; 3]> = positions
+            .chunks_exact(3)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect();
+        let (c, r, _) = meshq_workload::centre_radius(&corners);
+        let built = build(obj, &JsValue::UNDEFINED);
+        let field = |o: &JsValue, k: &str| Reflect::get(o, &k.into()).unwrap();
+        let xyz = |o: &JsValue| ["x", "y", "z"].map(|k| field(o, k).as_f64().unwrap() as f32);
+        let js = |v: Vec3| floats_js(&v.to_array());
+        let hits: Vec<_> = meshq_workload::golden_sweeps(c.to_array(), r)
+            .map(|(shape, motion)| {
+                let found = match shape {
+                    SweepShape::Sphere { center, radius } => {
+                        built.sweep_sphere(&js(center), &JsValue::from(radius), &js(motion))
+                    }
+                    SweepShape::Capsule { a, b, radius } => {
+                        built.sweep_capsule(&js(a), &js(b), &JsValue::from(radius), &js(motion))
+                    }
+                    SweepShape::Box(obb) => {
+                        let axes: Vec<f32> = obb.axes.iter().flat_map(|a| a.to_array()).collect();
+                        built.sweep_box(
+                            &js(obb.center),
+                            &floats_js(&axes),
+                            &js(obb.half_extents),
+                            &js(motion),
+                        )
+                    }
+                }
+                .unwrap();
+                (!found.is_null()).then(|| {
+                    (
+                        field(&found, "t").as_f64().unwrap() as f32,
+                        xyz(&field(&found, "point")),
+                        xyz(&field(&found, "normal")),
+                        field(&found, "triangle").as_f64().unwrap() as u32,
+                        0,
+                    )
+                })
+            })
+            .collect();
+        let digest = meshq_workload::DistanceDigest::of(&hits);
+        assert_eq!(digest, golden, "{name}: sweeps in WebAssembly");
+    }
+}

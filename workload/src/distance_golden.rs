@@ -12,11 +12,14 @@
 //! moved by its centre `c` (see [`placement_for`]); the pairs are those of
 //! `meshq::collide::mesh_distance` with default limits, the mesh against itself so placed,
 //! over BVHs built with the default build config. `digest` ([`DistanceDigest`]) covers every
-//! pair's distance, points and triangles.
+//! pair's distance, points and triangles. A line `<mesh>-sweeps` digests the sweeps of
+//! [`golden_sweeps`] by `MeshQuery::sweep` likewise, each hit as `(t, point, normal,
+//! triangle, 0)` (its `placements` field counting the sweeps).
 
 use core::fmt;
 
 use crc::{CRC_64_XZ, Crc, NoTable};
+use glam::Vec3;
 
 use crate::golden::GoldenError;
 
@@ -42,6 +45,58 @@ pub fn placement_for(c: [f32; 3], r: f32, (quarter_turns, offset): (u8, f32)) ->
     [
         co, s, 0.0, 0.0, -s, co, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, tx, ty, 0.0, 1.0,
     ]
+}
+
+/// Sweeps of the golden file: `count` shapes (spheres, capsules and boxes in turn, sized by
+/// `r`) starting on a ring of radius `2r` around `c`, each moved by `3.5r` through near the
+/// centre. Directions come from a fixed table of small integers, so every coordinate is the
+/// same bits on every target.
+pub fn golden_sweeps(
+    c: [f32; 3],
+    r: f32,
+) -> impl Iterator<Item = (meshq::query::SweepShape, Vec3)> {
+    use meshq::math::Obb;
+    use meshq::query::SweepShape;
+    const DIRECTIONS: [[f32; 3]; 12] = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, -1.0],
+        [0.6, 0.8, 0.0],
+        [0.0, 0.6, -0.8],
+        [-0.8, 0.0, 0.6],
+        [0.48, -0.6, 0.64],
+        [-0.6, -0.48, -0.64],
+        [0.64, 0.48, -0.6],
+    ];
+    let centre = Vec3::from_array(c);
+    DIRECTIONS.into_iter().enumerate().map(move |(k, d)| {
+        let d = Vec3::from_array(d);
+        let start = centre + d * (2.0 * r);
+        // Aimed a little off the centre, so sweeps graze as well as hit square on.
+        let aim = centre + Vec3::new(d.y, d.z, d.x) * (0.1 * r);
+        let motion = (aim - start) * 1.75;
+        let size = r * 0.08;
+        let shape = match k % 3 {
+            0 => SweepShape::Sphere {
+                center: start,
+                radius: size,
+            },
+            1 => SweepShape::Capsule {
+                a: start - Vec3::new(d.z, d.x, d.y) * size,
+                b: start + Vec3::new(d.z, d.x, d.y) * size,
+                radius: size * 0.5,
+            },
+            _ => SweepShape::Box(Obb::new(
+                start,
+                [Vec3::X, Vec3::Y, Vec3::Z],
+                Vec3::new(size, size * 0.5, size * 0.25),
+            )),
+        };
+        (shape, motion)
+    })
 }
 
 /// Placement count and CRC-64/XZ digest of a run of closest pairs.

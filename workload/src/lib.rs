@@ -34,7 +34,7 @@ use glam::Vec3;
 use meshq::math::{Aabb, Ray};
 
 pub use distance_golden::{
-    DISTANCE_PLACEMENTS, DistanceDigest, find_distance_golden, placement_for,
+    DISTANCE_PLACEMENTS, DistanceDigest, find_distance_golden, golden_sweeps, placement_for,
 };
 pub use golden::{GoldenEntry, GoldenError, find_golden};
 pub use parity::{ParityDigest, ParityReport, ParitySpec, ParityTarget, run_parity};

@@ -11,6 +11,7 @@ import init, {
   type ClosestPoint,
   type MeshBvhOptions,
   type MeshDistance,
+  type SweepHit,
   type PairsResult,
   type SignedDistance,
   type SignedDistanceGrid,
@@ -72,6 +73,10 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.intersectingPairs(grid, null, null, 1_000_000);
   const apart: MeshDistance | null = bvh.distanceToMesh(grid, null, 0.5, 0, 1_000_000);
   const gap: number = (bvh.distanceToMesh(grid)?.pointA.x ?? 0) + (apart?.triangleB ?? 0);
+  const landed: SweepHit | null = bvh.sweepSphere([0, 1, 0], 0.1, [0, -2, 0]);
+  const slid = bvh.sweepCapsule([0, 1, 0], [0, 1.5, 0], 0.2, { x: 1, y: 0, z: 0 });
+  const pushed = bvh.sweepBox([0, 1, 0], [1, 0, 0, 0, 1, 0, 0, 0, 1], [0.1, 0.2, 0.3], [0, -1, 0]);
+  const when: number = (landed?.t ?? 0) + (slid?.normal.y ?? 0) + (pushed?.triangle ?? 0);
   bvh.intersectionSegments(grid, null);
   bvh.intersectionSegments(grid, null, 1_000_000);
   bvh.selfIntersections();
