@@ -19,10 +19,12 @@ use meshq::collide::{
     meshes_intersect, self_intersecting_pairs,
 };
 use meshq::owned::MeshBvh;
+use meshq::query::{MeshQuery, SweepShape};
 use meshq_tests::{LoadedMesh, load_mesh, load_obj};
 use parry3d::math::{Pose, Vector};
-use parry3d::query::{distance, intersection_test};
+use parry3d::query::{ShapeCastOptions, cast_shapes, distance, intersection_test};
 use parry3d::shape::TriMesh;
+use parry3d::shape::{Ball, Capsule, Cuboid};
 
 fn scene() -> LoadedMesh {
     let names = std::env::var("MESHQ_BENCH_MESHES").unwrap_or_else(|_| "stanford-bunny".into());
@@ -192,6 +194,128 @@ fn collide(c: &mut Criterion) {
     });
     group.bench_function("parry3d_distance", |b| {
         b.iter(|| black_box(parry_distance()))
+    });
+    group.finish();
+
+    // Sweeps: 1,000 spheres, capsules and boxes (a few percent of the mesh's size) moved from
+    // a ring around the mesh through near its middle, as parry3d's `cast_shapes` and meshq's
+    // `sweep`; the hits and times of impact are compared first.
+    let centre = [
+        (lo[0] + hi[0]) / 2.0,
+        (lo[1] + hi[1]) / 2.0,
+        (lo[2] + hi[2]) / 2.0,
+    ];
+    let size = diagonal * 0.02;
+    let sweeps: Vec<(u32, [f32; 3], [f32; 3])> = (0..1000u32)
+        .map(|k| {
+            let a = k as f32 * 0.618_034 * std::f32::consts::TAU;
+            let b = (k as f32 / 1000.0) * 2.0 - 1.0;
+            let r = (1.0 - b * b).sqrt();
+            let dir = [r * a.cos(), b, r * a.sin()];
+            let start = [0, 1, 2].map(|i| centre[i] + dir[i] * diagonal * 0.75);
+            let aim = [0, 1, 2].map(|i| centre[i] + dir[(i + 1) % 3] * diagonal * 0.05);
+            (k % 3, start, [0, 1, 2].map(|i| (aim[i] - start[i]) * 1.5))
+        })
+        .collect();
+    let ours_shape = |kind: u32, start: [f32; 3]| {
+        let c = glam::Vec3::from_array(start);
+        match kind {
+            0 => SweepShape::Sphere {
+                center: c,
+                radius: size,
+            },
+            1 => SweepShape::Capsule {
+                a: c - glam::Vec3::Y * size,
+                b: c + glam::Vec3::Y * size,
+                radius: size * 0.5,
+            },
+            _ => SweepShape::Box(meshq::math::Obb::new(
+                c,
+                [glam::Vec3::X, glam::Vec3::Y, glam::Vec3::Z],
+                glam::Vec3::new(size, size * 0.5, size * 0.25),
+            )),
+        }
+    };
+    let (ball, capsule, cuboid) = (
+        Ball::new(size),
+        Capsule::new_y(size, size * 0.5),
+        Cuboid::new(Vector::new(size, size * 0.5, size * 0.25)),
+    );
+    let parry_sweep = |kind: u32, start: [f32; 3], motion: [f32; 3]| {
+        let shape: &dyn parry3d::shape::Shape = match kind {
+            0 => &ball,
+            1 => &capsule,
+            _ => &cuboid,
+        };
+        cast_shapes(
+            &Pose::translation(start[0], start[1], start[2]),
+            Vector::from_array(motion),
+            shape,
+            &Pose::IDENTITY,
+            Vector::ZERO,
+            &parry_a,
+            ShapeCastOptions::with_max_time_of_impact(1.0),
+        )
+        .expect("parry3d casts shapes at meshes")
+    };
+    // The hits are compared both ways and the times one way: where parry3d's contact comes
+    // earlier than meshq's, meshq's own test must find the shape clear of the mesh at parry3d's
+    // time (a near miss parry3d counts as contact), else the bench stops.
+    let (mut same_hit, mut touching, mut later, mut early) = (0usize, 0usize, 0f32, 0usize);
+    for &(kind, start, motion) in &sweeps {
+        let m = glam::Vec3::from_array(motion);
+        let ours = bvh.sweep(&ours_shape(kind, start), m).expect("valid");
+        let theirs = parry_sweep(kind, start, motion);
+        touching += usize::from(ours.is_some());
+        same_hit += usize::from(ours.is_some() == theirs.is_some());
+        if let (Some(o), Some(t)) = (ours, theirs) {
+            if o.t > t.time_of_impact + 1e-4 {
+                let clear = bvh
+                    .sweep(
+                        &ours_shape(kind, start).moved(m * t.time_of_impact),
+                        glam::Vec3::ZERO,
+                    )
+                    .expect("valid")
+                    .is_none();
+                assert!(clear, "meshq's contact comes after one parry3d found");
+                early += 1;
+            }
+            later = later.max(t.time_of_impact - o.t);
+        }
+    }
+    eprintln!(
+        "{} / sweeps: {touching} of {} touch; hit or miss the same in parry3d for {same_hit}; \
+         parry3d's contact up to {later} of the motion later, and {early} earlier where the \
+         shape is still clear of the mesh",
+        scene.name,
+        sweeps.len()
+    );
+    assert!(
+        same_hit * 100 >= sweeps.len() * 98,
+        "the libraries disagree on {} sweeps",
+        sweeps.len() - same_hit
+    );
+    let mut group = c.benchmark_group(format!("sweep/{}/1000 shapes", scene.name));
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(2));
+    group.throughput(Throughput::Elements(sweeps.len() as u64));
+    group.bench_function("meshq_sweep", |b| {
+        b.iter(|| {
+            for &(kind, start, motion) in &sweeps {
+                black_box(
+                    bvh.sweep(&ours_shape(kind, start), glam::Vec3::from_array(motion))
+                        .ok(),
+                );
+            }
+        })
+    });
+    group.bench_function("parry3d_cast_shapes", |b| {
+        b.iter(|| {
+            for &(kind, start, motion) in &sweeps {
+                black_box(parry_sweep(kind, start, motion));
+            }
+        })
     });
     group.finish();
 
