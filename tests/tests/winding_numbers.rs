@@ -597,3 +597,109 @@ fn signed_distance_grids_hold_the_single_answers_and_their_band() {
     assert!(SampleGrid::cubic(bounds, 1, 0.1).is_none());
     assert!(SampleGrid::cubic(bounds, 8, f32::NAN).is_none());
 }
+
+/// Pseudo-normal signs: on the closed meshes, the sign the `f64` winding-number oracle gives,
+/// with the closest point's magnitude bit for bit; open, non-manifold and inconsistently
+/// oriented meshes refused, naming the edge.
+#[test]
+fn pseudo_normal_signs_agree_with_the_oracle_on_closed_meshes() {
+    use meshq::inside::{PseudoNormalError, PseudoNormals};
+    use meshq::owned::MeshPseudoNormals;
+    let mut signed_cases = 0;
+    for case in cases() {
+        let valid = MeshRef::new(&case.mesh.0, &case.mesh.1).validate().unwrap();
+        let normals = match MeshPseudoNormals::of(&valid) {
+            Ok(n) => n,
+            Err(e) => {
+                let closed =
+                    case.name.starts_with("spot (closed)") || case.name.starts_with("fandisk");
+                assert!(!closed, "{}: refused ({e})", case.name);
+                assert!(
+                    matches!(
+                        e,
+                        PseudoNormalError::OpenEdge { .. }
+                            | PseudoNormalError::NonManifoldEdge { .. }
+                    ),
+                    "{}: {e}",
+                    case.name
+                );
+                continue;
+            }
+        };
+        assert!(
+            !case.name.contains("open")
+                && !case.name.contains("hole")
+                && !case.name.contains("non-manifold"),
+            "{}: accepted",
+            case.name
+        );
+        let scene = prepared(&case.mesh);
+        let mut points = points_away(&scene, &case.mesh, 300, 1e-3);
+        points.extend(points_near(&case.mesh, case.mesh.1.len() / 100 + 1, 1e-4));
+        let (mut checked, mut negative) = (0, 0);
+        for &p in &points {
+            let signed = normals
+                .view()
+                .signed_distance(&scene, &valid, p, f32::INFINITY)
+                .unwrap();
+            let closest = scene.closest_point(p, f32::INFINITY).unwrap();
+            assert_eq!(signed.closest, closest);
+            assert_eq!(
+                signed.distance.abs().to_bits(),
+                closest.distance_from(p).to_bits()
+            );
+            let w = winding_number_f64(&case.mesh.0, &case.mesh.1, p);
+            if (w.abs() - 0.5).abs() > 0.01 {
+                checked += 1;
+                assert_eq!(
+                    signed.distance < 0.0,
+                    w.abs() >= 0.5,
+                    "{} at {p}: w {w}",
+                    case.name
+                );
+                negative += usize::from(signed.distance < 0.0);
+            }
+        }
+        assert!(
+            checked > points.len() * 9 / 10 && negative > 10,
+            "{}: {checked} checked, {negative} inside",
+            case.name
+        );
+    }
+    // One triangle flipped: its edges run the same way as their neighbours'.
+    let (positions, mut triangles) = hard_inputs::cuboid(1.0, 1.0, 1.0);
+    triangles[3].swap(1, 2);
+    let flipped = MeshRef::new(&positions, &triangles).validate().unwrap();
+    assert!(matches!(
+        MeshPseudoNormals::of(&flipped),
+        Err(PseudoNormalError::InconsistentOrientation { .. })
+    ));
+    // Caller buffers: too small is an error; the right size gives the owned answers.
+    let (positions, triangles) = hard_inputs::cuboid(1.0, 2.0, 3.0);
+    let cube = MeshRef::new(&positions, &triangles).validate().unwrap();
+    let (mut v, mut e, mut s) = (
+        vec![Vec3::ZERO; 8],
+        vec![[Vec3::ZERO; 3]; 12],
+        vec![(0u64, 0u32); 35],
+    );
+    assert_eq!(
+        PseudoNormals::build(&cube, &mut v, &mut e, &mut s).map(|_| ()),
+        Err(PseudoNormalError::BufferTooSmall)
+    );
+    let mut s = vec![(0u64, 0u32); 36];
+    let normals = PseudoNormals::build(&cube, &mut v, &mut e, &mut s).unwrap();
+    let bvh = MeshBvh::build(&cube, &BuildConfig::default()).unwrap();
+    let inside = normals
+        .signed_distance(&bvh, &cube, Vec3::new(0.5, 1.0, 0.2), f32::INFINITY)
+        .unwrap();
+    assert!((inside.distance + 0.2).abs() < 1e-6, "{}", inside.distance);
+    // Off a corner, the closest feature is the vertex: its pseudo-normal points out.
+    let corner = normals
+        .signed_distance(&bvh, &cube, Vec3::new(1.1, 2.1, 3.1), f32::INFINITY)
+        .unwrap();
+    assert!(corner.distance > 0.0);
+    let inside_corner = normals
+        .signed_distance(&bvh, &cube, Vec3::new(0.95, 1.96, 2.97), f32::INFINITY)
+        .unwrap();
+    assert!(inside_corner.distance < 0.0);
+}

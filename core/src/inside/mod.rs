@@ -14,6 +14,10 @@
 //! ([`signed_distance_grid`](WindingTree::signed_distance_grid) over a [`SampleGrid`]), with an
 //! optional narrow band.
 //!
+//! [`PseudoNormals`] sign distances the other way, by Bærentzen and Aanæs's angle-weighted
+//! pseudo-normal at the closest point: one closest-point search and no winding number, for
+//! closed, manifold, consistently oriented meshes only (building them checks that).
+//!
 //! ```
 //! use meshq::prelude::*;
 //! use meshq::inside::{WindingAccuracy, WindingNode, WindingTree};
@@ -35,6 +39,7 @@
 
 mod accuracy;
 mod expansion;
+mod pseudo_normals;
 mod sample_grid;
 mod signed_distance;
 mod winding_batch;
@@ -43,6 +48,7 @@ mod winding_walk;
 
 pub use accuracy::WindingAccuracy;
 pub use expansion::WindingNode;
+pub use pseudo_normals::{EdgeEntry, PseudoNormalError, PseudoNormals};
 pub use sample_grid::SampleGrid;
 pub use signed_distance::SignedDistance;
 pub use winding_tree::WindingTree;

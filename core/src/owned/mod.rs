@@ -25,6 +25,7 @@ mod mesh_cells;
 mod mesh_grid;
 mod mesh_index;
 mod mesh_index_queries;
+mod mesh_pseudo_normals;
 mod remeshed;
 mod sampled_distance;
 
@@ -34,5 +35,6 @@ pub use mesh_cells::{
     CellKind, GridCells, KdTreeCells, MeshCells, MeshGrid, MeshKdTree, MeshOctree, OctreeCells,
 };
 pub use mesh_index::MeshIndex;
+pub use mesh_pseudo_normals::MeshPseudoNormals;
 pub use remeshed::Remeshed;
 pub use sampled_distance::SampledDistance;
