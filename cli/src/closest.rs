@@ -7,6 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use meshq::inside::WindingAccuracy;
 use meshq::math::Vec3;
+use meshq::owned::MeshPseudoNormals;
 use meshq::query::MeshQuery;
 use serde::Serialize;
 
@@ -20,6 +21,15 @@ use crate::{output, progress, winding};
 
 /// Points read and queried per chunk (12 MB of input).
 const CHUNK: usize = 1 << 20;
+
+/// What `--signed` takes the sign from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Sign {
+    /// The generalized winding number: inside when |w| ≥ 1/2.
+    Winding,
+    /// The angle-weighted pseudo-normal at the closest point (Bærentzen and Aanæs).
+    PseudoNormal,
+}
 
 /// A distance limit: a number ≥ 0 (`inf` allowed).
 fn non_negative(text: &str) -> Result<f32, String> {
@@ -55,6 +65,11 @@ pub struct ClosestArgs {
     #[arg(long, value_name = "RATIO", default_value = "2", value_parser = accuracy_parser,
           requires = "signed", help = ACCURACY_HELP)]
     pub accuracy: WindingAccuracy,
+    /// How --signed tells inside: by the generalized winding number (any mesh), or by the
+    /// angle-weighted pseudo-normal at the closest point (closed, manifold, consistently
+    /// oriented meshes only, refused otherwise naming an edge; no winding numbers computed).
+    #[arg(long, value_enum, default_value_t = Sign::Winding, requires = "signed")]
+    pub sign: Sign,
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -86,13 +101,23 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
     let limit = args.max_distance.unwrap_or(f32::INFINITY);
     let mut verb = "";
     let summary = with_structure(&args.input, |mut s| {
-        let built = if args.signed {
+        let by_winding = args.signed && args.sign == Sign::Winding;
+        let built = if by_winding {
             winding::prepare(&mut s)?
         } else {
             None
         };
-        let tree = if args.signed {
+        let tree = if by_winding {
             Some(winding::tree(&s, &built)?)
+        } else {
+            None
+        };
+        let mesh = s.scene.mesh();
+        let pseudo = if args.signed && args.sign == Sign::PseudoNormal {
+            let normals = MeshPseudoNormals::of(&mesh).map_err(|e| {
+                anyhow::anyhow!("{}: --sign pseudo-normal: {e}", args.input.input.display())
+            })?;
+            Some(normals)
         } else {
             None
         };
@@ -143,9 +168,13 @@ pub fn run(args: &ClosestArgs) -> Result<()> {
                 found_count += u64::from(found.is_some());
                 let (d, tri) =
                     found.map_or((f32::INFINITY, u32::MAX), |c| (c.distance_from(p), c.tri));
-                // As WindingTree::signed_distance: inside when |w| ≥ 1/2.
-                let is_inside = match (found, args.signed) {
-                    (Some(_), true) => signs.next().is_some_and(|w| w.abs() >= 0.5),
+                // As WindingTree::signed_distance (inside when |w| ≥ 1/2) or
+                // PseudoNormals::signed_distance.
+                let is_inside = match (found, &pseudo) {
+                    (Some(c), Some(normals)) => {
+                        normals.view().inside_at(&mesh, p, c).unwrap_or(false)
+                    }
+                    (Some(_), None) if args.signed => signs.next().is_some_and(|w| w.abs() >= 0.5),
                     _ => false,
                 };
                 inside += u64::from(is_inside);

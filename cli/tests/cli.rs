@@ -1581,3 +1581,78 @@ fn sweep_records_are_the_library_answers_on_any_thread_count() {
         "sweep",
     );
 }
+
+#[test]
+fn pseudo_normal_signs_are_the_library_answers_and_refuse_open_meshes() {
+    use meshq::owned::MeshPseudoNormals;
+    let dir = tempfile::tempdir().unwrap();
+    let spot = asset("spot.obj");
+    let loaded = load_mesh("spot");
+    let mesh = loaded.valid();
+    let scene = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
+    let normals = MeshPseudoNormals::of(&mesh).unwrap();
+    let points = workload::closest_points(&loaded.positions, 2000, 9);
+    let points_path = dir.path().join("points.bin");
+    write_f32s(&points_path, points.iter().flat_map(|p| p.to_array()));
+    let out = dir.path().join("signed.bin");
+    let json = ok(&[
+        &"closest",
+        &spot,
+        &"--points",
+        &points_path,
+        &"--out",
+        &out,
+        &"--signed",
+        &"--sign",
+        &"pseudo-normal",
+        &"--json",
+    ]);
+    let summary: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let records = read_records(&out);
+    let mut inside = 0;
+    for (&(d, tri), &p) in records.iter().zip(&points) {
+        let want = normals
+            .view()
+            .signed_distance(&scene, &mesh, p, f32::INFINITY)
+            .unwrap();
+        assert_eq!(
+            (d.to_bits(), tri),
+            (want.distance.to_bits(), want.closest.tri),
+            "at {p}"
+        );
+        inside += u64::from(d < 0.0);
+    }
+    assert!(inside > 100, "{inside} inside");
+    assert_eq!(summary["inside"], inside, "{summary}");
+    // The bunny has holes: refused naming the edge; --sign needs --signed.
+    let bunny = asset("stanford-bunny.obj");
+    fails(
+        &[
+            &"closest",
+            &bunny,
+            &"--points",
+            &points_path,
+            &"--out",
+            &out,
+            &"--signed",
+            &"--sign",
+            &"pseudo-normal",
+        ],
+        1,
+        "borders no other triangle",
+    );
+    fails(
+        &[
+            &"closest",
+            &spot,
+            &"--points",
+            &points_path,
+            &"--out",
+            &out,
+            &"--sign",
+            &"pseudo-normal",
+        ],
+        2,
+        "--signed",
+    );
+}

@@ -240,13 +240,26 @@ impl<'a> PseudoNormals<'a> {
         max_distance: f32,
     ) -> Option<SignedDistance> {
         let closest = surface.closest_point(point, max_distance)?;
-        let n = self.normal_at(mesh, &closest)?;
-        let inside = dot(point - closest.point, n) < 0.0;
+        let inside = self.inside_at(mesh, point, &closest)?;
         Some(SignedDistance::new(
             point,
             closest,
             if inside { 1.0 } else { 0.0 },
         ))
+    }
+
+    /// Whether `point` is inside, given `closest`, its closest point on `mesh` (with the
+    /// feature): `(point − closest) · N < 0` for the pseudo-normal `N` there. `None` for a
+    /// triangle or vertex out of range.
+    #[must_use]
+    pub fn inside_at(
+        &self,
+        mesh: &ValidMesh<'_>,
+        point: Vec3,
+        closest: &ClosestPoint,
+    ) -> Option<bool> {
+        let n = self.normal_at(mesh, closest)?;
+        Some(dot(point - closest.point, n) < 0.0)
     }
 }
 
