@@ -101,6 +101,7 @@ pub fn build(
         scene,
         blob: None,
         winding: None,
+        pseudo: None,
     })
 }
 
@@ -152,5 +153,6 @@ pub fn from_blob(bytes: Vec<u8>) -> Result<Storage, JsError> {
         scene,
         blob: Some(bytes),
         winding: None,
+        pseudo: None,
     })
 }

@@ -4,6 +4,7 @@
 //! mesh beside it) and kept.
 
 use glam::Vec3;
+use meshq::MeshQuery;
 use meshq::bvh::BuildConfig;
 use meshq::inside::{SampleGrid, WindingAccuracy, WindingTree};
 use meshq::owned::{MeshBvh as OwnedBvh, MeshIndex};
@@ -32,7 +33,38 @@ fn accuracy(value: &JsValue) -> Result<WindingAccuracy, JsValue> {
     })
 }
 
+/// What a signed distance takes its sign from: `accuracy` a winding-number accuracy, or the
+/// string `'pseudo-normal'`.
+enum SignBy {
+    Winding(WindingAccuracy),
+    PseudoNormal,
+}
+
+/// `accuracy` of the signed-distance calls: as [`accuracy`], or `'pseudo-normal'`.
+fn sign_by(value: &JsValue) -> Result<SignBy, JsValue> {
+    match value.as_string().as_deref() {
+        Some("pseudo-normal") => Ok(SignBy::PseudoNormal),
+        Some(other) => Err(range_error(&format!(
+            "accuracy must be a number ≥ 1 or 'pseudo-normal', got '{other}'"
+        ))),
+        None => accuracy(value).map(SignBy::Winding),
+    }
+}
+
 impl Storage {
+    /// The mesh's pseudo-normals, made once; an `Error` naming the edge for a mesh that is
+    /// not closed, manifold and consistently oriented.
+    fn pseudo_normals(&mut self) -> Result<&meshq::owned::MeshPseudoNormals, JsValue> {
+        if self.pseudo.is_none() {
+            let made = meshq::owned::MeshPseudoNormals::of(&self.scene.mesh())
+                .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
+            self.pseudo = Some(made);
+        }
+        self.pseudo
+            .as_ref()
+            .ok_or_else(|| JsValue::from(JsError::new("pseudo-normals missing")))
+    }
+
     /// Makes the winding-number expansions, once.
     fn prepare_winding(&mut self) -> Result<(), JsValue> {
         let failed = |e: meshq::error::BuildError| JsValue::from(JsError::new(&e.to_string()));
@@ -118,27 +150,42 @@ impl MeshBvh {
     /// The signed distance from `point` (`Vec3Like`) to the mesh, negative inside: the closest
     /// surface point within `maxDistance` (omitted or `null`: any distance), exactly as
     /// `closestPoint` finds it, signed by the winding number (`accuracy` as for
-    /// `windingNumber`). Returns `{ distance, point, triangle, u, v, normal, windingNumber }`
-    /// (`SignedDistance`) or `null` when nothing lies within `maxDistance`.
+    /// `windingNumber`), or, with `accuracy` `'pseudo-normal'`, by the angle-weighted
+    /// pseudo-normal at the closest point (no winding number computed; for closed, manifold,
+    /// consistently oriented meshes: others throw an `Error` naming an open or non-manifold
+    /// edge; `windingNumber` is then 1 inside, 0 outside). Returns `{ distance, point,
+    /// triangle, u, v, normal, windingNumber }` (`SignedDistance`) or `null` when nothing lies
+    /// within `maxDistance`.
     #[wasm_bindgen(js_name = signedDistance, unchecked_return_type = "SignedDistance | null")]
     pub fn signed_distance(
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] point: &JsValue,
         #[wasm_bindgen(js_name = maxDistance, unchecked_param_type = "number | null")]
         max_distance_in: Option<JsValue>,
-        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | 'pseudo-normal' | null")]
+        accuracy_in: Option<JsValue>,
     ) -> Result<JsValue, JsValue> {
         let p = vector(point, "point")?;
         let limit = max_distance(&max_distance_in.unwrap_or(JsValue::UNDEFINED))?;
-        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
-        let tree = {
-            self.storage.prepare_winding()?;
-            self.storage.winding()?
+        let found = match sign_by(&accuracy_in.unwrap_or(JsValue::UNDEFINED))? {
+            SignBy::Winding(accuracy) => {
+                self.storage.prepare_winding()?;
+                self.storage.winding()?.signed_distance(p, limit, accuracy)
+            }
+            SignBy::PseudoNormal => {
+                self.storage.pseudo_normals()?;
+                let (scene, normals) = (&self.storage.scene, &self.storage.pseudo);
+                normals
+                    .as_ref()
+                    .and_then(|n| n.view().signed_distance(scene, &scene.mesh(), p, limit))
+            }
         };
-        let Some(s) = tree.signed_distance(p, limit, accuracy) else {
+        let Some(s) = found else {
             return Ok(JsValue::NULL);
         };
-        let n = tree
+        let n = self
+            .storage
+            .scene
             .mesh()
             .triangle(s.closest.tri)
             .and_then(|t| t.unit_normal())
@@ -188,8 +235,8 @@ impl MeshBvh {
     /// within `maxDistance` (omitted: any distance) into `distances[i]` (a `Float32Array`,
     /// negative inside) and the closest point's triangle into `triangles[i]` (a
     /// `Uint32Array`), each exactly `signedDistance`'s; a point that finds nothing writes
-    /// `MISS_DISTANCE` and `MISS_TRIANGLE`. `accuracy` as for `windingNumber`. Returns the
-    /// number of points found.
+    /// `MISS_DISTANCE` and `MISS_TRIANGLE`. `accuracy` as for `signedDistance` (a ratio, or
+    /// `'pseudo-normal'`). Returns the number of points found.
     #[wasm_bindgen(js_name = signedDistanceBatch)]
     pub fn signed_distance_batch(
         &mut self,
@@ -198,7 +245,8 @@ impl MeshBvh {
         max_distance_in: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] distances: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number | null")] accuracy_in: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "number | 'pseudo-normal' | null")]
+        accuracy_in: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let queries = batch_points(points)?;
         let n = queries.len();
@@ -206,26 +254,52 @@ impl MeshBvh {
         let distances = output_f32(distances, "distances", n, " (one per point)")?;
         let triangles = output_u32(triangles, "triangles", n, " (one per point)")?;
         crate::batch::outputs_apart(&[(&distances, "distances"), (&triangles, "triangles")])?;
-        let accuracy = accuracy(&accuracy_in.unwrap_or(JsValue::UNDEFINED))?;
-        let tree = {
-            self.storage.prepare_winding()?;
-            self.storage.winding()?
-        };
-        let mut answers = vec![None; n];
+        // Each answer: the signed distance and the closest point's triangle.
+        let mut answers: Vec<Option<(f32, u32)>> = vec![None; n];
         let mut keys = vec![0u64; n];
-        tree.signed_distances(
-            &self.storage.scene,
-            &queries,
-            limit,
-            accuracy,
-            &mut keys,
-            &mut answers,
-        )
-        .map_err(|e| JsValue::from(JsError::new(&e.to_string())))?;
+        let failed = |e: meshq::error::BatchError| JsValue::from(JsError::new(&e.to_string()));
+        match sign_by(&accuracy_in.unwrap_or(JsValue::UNDEFINED))? {
+            SignBy::Winding(accuracy) => {
+                let tree = {
+                    self.storage.prepare_winding()?;
+                    self.storage.winding()?
+                };
+                let mut signed = vec![None; n];
+                tree.signed_distances(
+                    &self.storage.scene,
+                    &queries,
+                    limit,
+                    accuracy,
+                    &mut keys,
+                    &mut signed,
+                )
+                .map_err(failed)?;
+                for (answer, s) in answers.iter_mut().zip(&signed) {
+                    *answer = s.map(|s| (s.distance, s.closest.tri));
+                }
+            }
+            SignBy::PseudoNormal => {
+                self.storage.pseudo_normals()?;
+                let scene = &self.storage.scene;
+                let mut closest = vec![None; n];
+                MeshQuery::closest_points(scene, &queries, limit, &mut keys, &mut closest)
+                    .map_err(failed)?;
+                let mesh = scene.mesh();
+                if let Some(normals) = &self.storage.pseudo {
+                    for ((answer, found), &p) in answers.iter_mut().zip(&closest).zip(&queries) {
+                        *answer = found.and_then(|c| {
+                            let inside = normals.view().inside_at(&mesh, p, &c)?;
+                            let d = c.distance_from(p);
+                            Some((if inside { -d } else { d }, c.tri))
+                        });
+                    }
+                }
+            }
+        }
         let (mut d, mut t) = (Vec::with_capacity(n), Vec::with_capacity(n));
         for a in &answers {
-            d.push(a.map_or(MISS_DISTANCE, |s| s.distance));
-            t.push(a.map_or(MISS_TRIANGLE, |s| s.closest.tri));
+            d.push(a.map_or(MISS_DISTANCE, |(distance, _)| distance));
+            t.push(a.map_or(MISS_TRIANGLE, |(_, tri)| tri));
         }
         distances.copy_from(&d);
         triangles.copy_from(&t);

@@ -16,6 +16,8 @@ pub struct Storage {
     /// For a k-d tree, octree or grid: a BVH of the same mesh with its winding-number
     /// expansions, made by the first inside query (a BVH prepares its own).
     pub winding: Option<meshq::owned::MeshBvh>,
+    /// The mesh's angle-weighted pseudo-normals, made by the first query signed by them.
+    pub pseudo: Option<meshq::owned::MeshPseudoNormals>,
 }
 
 /// The queries go through [`MeshQuery`]'s generic implementation for `MeshIndex` (one walk

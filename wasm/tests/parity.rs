@@ -895,3 +895,75 @@ fn sweeps_match_the_golden_digest() {
         assert_eq!(digest, golden, "{name}: sweeps in WebAssembly");
     }
 }
+
+#[wasm_bindgen_test]
+fn pseudo_normal_signs_match_the_winding_sign_away_from_the_surface() {
+    let spot = MESHES.iter().find(|(n, _)| *n == "spot").unwrap().1;
+    let mut built = build(spot, &JsValue::UNDEFINED);
+    let (positions, _) = load(spot);
+    let corners: Vec<[f32; 3]> = positions
+        .chunks_exact(3)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    let bounds = meshq_workload::centre_radius(&corners).2;
+    let points: Vec<Vec3> = meshq_workload::QueryPoints::new(bounds, 17)
+        .take(400)
+        .collect();
+    let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
+    let pseudo = JsValue::from_str("pseudo-normal");
+    let n = points.len() as u32;
+    let (d, t) = (
+        Float32Array::new_with_length(n),
+        Uint32Array::new_with_length(n),
+    );
+    built
+        .signed_distance_batch(
+            &floats_js(&flat),
+            &JsValue::NULL,
+            &d.clone().into(),
+            &t.clone().into(),
+            Some(pseudo.clone()),
+        )
+        .unwrap();
+    let (d, t) = (d.to_vec(), t.to_vec());
+    let mut checked = 0;
+    for (k, p) in points.iter().enumerate() {
+        let one = built
+            .signed_distance(&floats_js(&p.to_array()), None, Some(pseudo.clone()))
+            .unwrap();
+        let get = |o: &JsValue, f: &str| Reflect::get(o, &f.into()).unwrap().as_f64().unwrap();
+        assert_eq!(get(&one, "distance") as f32, d[k], "point {k}");
+        assert_eq!(get(&one, "triangle") as u32, t[k], "point {k}");
+        let by_winding = built
+            .signed_distance(&floats_js(&p.to_array()), None, None)
+            .unwrap();
+        let w = get(&by_winding, "distance") as f32;
+        // Away from the surface both signs are right, so they agree.
+        if w.abs() > 1e-3 {
+            checked += 1;
+            assert_eq!(d[k] < 0.0, w < 0.0, "point {k}: {} vs {w}", d[k]);
+            assert_eq!(d[k].abs(), w.abs(), "point {k}");
+        }
+    }
+    assert!(checked > 300, "{checked}");
+    // The bunny has holes: refused.
+    let bunny = MESHES
+        .iter()
+        .find(|(n, _)| *n == "stanford-bunny")
+        .unwrap()
+        .1;
+    let mut open = build(bunny, &JsValue::UNDEFINED);
+    assert!(
+        open.signed_distance(&floats_js(&[0.0, 0.0, 0.0]), None, Some(pseudo.clone()))
+            .is_err()
+    );
+    assert!(
+        built
+            .signed_distance(
+                &floats_js(&[0.0, 0.0, 0.0]),
+                None,
+                Some(JsValue::from_str("pseudo"))
+            )
+            .is_err()
+    );
+}

@@ -73,6 +73,8 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.intersectingPairs(grid, null, null, 1_000_000);
   const apart: MeshDistance | null = bvh.distanceToMesh(grid, null, 0.5, 0, 1_000_000);
   const gap: number = (bvh.distanceToMesh(grid)?.pointA.x ?? 0) + (apart?.triangleB ?? 0);
+  const byNormals: SignedDistance | null = bvh.signedDistance([0, 0, 0], null, 'pseudo-normal');
+  bvh.signedDistanceBatch(points, null, new Float32Array(10), new Uint32Array(10), 'pseudo-normal');
   const landed: SweepHit | null = bvh.sweepSphere([0, 1, 0], 0.1, [0, -2, 0]);
   const slid = bvh.sweepCapsule([0, 1, 0], [0, 1.5, 0], 0.2, { x: 1, y: 0, z: 0 });
   const pushed = bvh.sweepBox([0, 1, 0], [1, 0, 0, 0, 1, 0, 0, 0, 1], [0.1, 0.2, 0.3], [0, -1, 0]);
