@@ -167,9 +167,16 @@ def render_text_table(data):
 # --- mesh–mesh intersection -------------------------------------------------------------------
 
 def run_collide():
-    command = "cargo bench -p meshq-bench --bench collide"
-    sh(command)
-    return [command], {"means_ms": criterion_means("collide")}
+    # Everything on the bunny; the distance on the other bundled meshes too (their closest
+    # pairs sit in few leaves, where fixed costs show).
+    commands = ["cargo bench -p meshq-bench --bench collide"] + [
+        f"MESHQ_BENCH_MESHES={mesh} cargo bench -p meshq-bench --bench collide -- distance"
+        for mesh in ("fandisk", "spot")
+    ]
+    for command in commands:
+        sh(command)
+    means = {**criterion_means("collide"), **criterion_means("distance"), **criterion_means("sweep")}
+    return commands, {"means_ms": means}
 
 
 def duration(ms):
@@ -184,7 +191,7 @@ def duration(ms):
 def render_collide(data):
     rows = []
     for group, entries in sorted(data["means_ms"].items()):
-        case = group.removeprefix("collide_").replace("_", ", ")
+        case = group.removeprefix("collide_").removeprefix("distance_").removeprefix("sweep_").replace("_", ", ")
         if "meshq_intersects" in entries and "parry3d_intersection_test" in entries:
             m, p = entries["meshq_intersects"], entries["parry3d_intersection_test"]
             rows.append((f"{case}: yes/no", duration(m), duration(p), f"{p / m:.2f}×"))
@@ -192,9 +199,19 @@ def render_collide(data):
             rows.append((f"{case}: every pair", duration(entries["meshq_all_pairs"]), "—", ""))
         if "meshq_self_pairs" in entries:
             rows.append((f"{case}-intersection", duration(entries["meshq_self_pairs"]), "—", ""))
+        if "meshq_mesh_distance" in entries and "parry3d_distance" in entries:
+            m, p = entries["meshq_mesh_distance"], entries["parry3d_distance"]
+            rows.append((f"{case}: distance", duration(m), duration(p), f"{p / m:.2f}×"))
+        if "meshq_sweep" in entries and "parry3d_cast_shapes" in entries:
+            m, p = entries["meshq_sweep"], entries["parry3d_cast_shapes"]
+            rows.append((f"{case}: sweeps", duration(m), duration(p), f"{p / m:.2f}×"))
     return ("A mesh against a copy of itself in each placement: meshq's `meshes_intersect` "
-            "against parry3d's `intersection_test` (answers checked to agree first), criterion "
-            "means.\n\n" + table(["case", "meshq", "parry3d", "ratio"], rows))
+            "against parry3d's `intersection_test` (answers checked to agree first); "
+            "`mesh_distance` against parry3d's `distance` with the copy 0.01 of the diagonal "
+            "apart (distances checked to agree first); 1,000 sweeps of spheres, capsules and "
+            "boxes through the mesh, meshq's `sweep` against parry3d's `cast_shapes` (the same "
+            "hits, checked first). Criterion means.\n\n"
+            + table(["case", "meshq", "parry3d", "ratio"], rows))
 
 
 # --- Node: WebAssembly against three-mesh-bvh -------------------------------------------------
@@ -330,7 +347,7 @@ SECTIONS = {
     "native": ("Native: against obvhs, parry3d and the `bvh` crate", run_native, render_native),
     "embree": ("Native: against Embree 4", run_embree, render_embree),
     "structures": ("Native: the four structures", run_structures, render_text_table),
-    "collide": ("Mesh–mesh intersection against parry3d", run_collide, render_collide),
+    "collide": ("Mesh–mesh intersection, distance and sweeps against parry3d", run_collide, render_collide),
     "threads": ("Threads", run_threads, render_lines),
     "node": ("Node: WebAssembly against three-mesh-bvh", run_node, render_node),
     "remesh": ("Remeshing against gpytoolbox", run_remesh, render_remesh),
@@ -377,6 +394,12 @@ def summary_rows(results):
             if group.endswith("overlapping") and "meshq_intersects" in e and "parry3d_intersection_test" in e:
                 rows.append(("mesh–mesh yes/no, two overlapping bunnies", "parry3d `intersection_test`",
                              f"{e['parry3d_intersection_test'] / e['meshq_intersects']:.1f}×"))
+            if "stanford-bunny" in group and "meshq_mesh_distance" in e and "parry3d_distance" in e:
+                rows.append(("mesh–mesh distance, two bunnies 0.01 diagonal apart", "parry3d `distance`",
+                             f"{e['parry3d_distance'] / e['meshq_mesh_distance']:.1f}×"))
+            if "stanford-bunny" in group and "meshq_sweep" in e and "parry3d_cast_shapes" in e:
+                rows.append(("1,000 sphere, capsule and box sweeps at the bunny", "parry3d `cast_shapes`",
+                             f"{e['parry3d_cast_shapes'] / e['meshq_sweep']:.2f}×"))
     if "inside" in results:
         for r in results["inside"]["data"].get("rows", []):
             if r["mesh"] == "stanford-bunny" and r["equal_accuracy_ratio"]:

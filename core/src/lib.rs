@@ -118,6 +118,8 @@ pub mod prelude;
 pub mod query;
 pub mod remesh;
 mod structure_kind;
+#[cfg(test)]
+mod test_floats;
 pub mod wide;
 
 #[cfg(feature = "blob")]

@@ -1,8 +1,12 @@
 //! How much work a walk over triangle pairs may do: the cap that keeps mesh–mesh and
 //! self-intersection queries bounded when boxes cannot tell triangles apart.
 
+use core::ops::ControlFlow;
+
 use super::Found;
+use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::PairBudgetSpent;
+use crate::query::LeafTriangleIds;
 
 /// The most triangle pairs a mesh–mesh or self-intersection query may consider before it
 /// stops with [`PairBudgetSpent`]. (The sampled distance of a remeshed mesh,
@@ -78,6 +82,30 @@ impl Tally {
         }
         self.considered = next;
         true
+    }
+
+    /// The triangles of a pair of leaves, after taking their pairs from the budget: `Break`
+    /// when the budget refuses them (the walk stops), `Continue(None)` when a tree does not
+    /// hold a leaf's range (which validation rules out; the pair is skipped).
+    pub(crate) fn take_leaves<'t, A, B>(
+        &mut self,
+        a: &'t A,
+        b: &'t B,
+        leaf_a: &BvhNode,
+        leaf_b: &BvhNode,
+    ) -> ControlFlow<(), Option<(LeafTriangleIds<'t>, LeafTriangleIds<'t>)>>
+    where
+        A: TreeArrays + ?Sized,
+        B: TreeArrays + ?Sized,
+    {
+        let pairs = (leaf_a.count as usize).saturating_mul(leaf_b.count as usize);
+        if !self.take(pairs) {
+            return ControlFlow::Break(());
+        }
+        ControlFlow::Continue(
+            a.leaf_triangles(leaf_a.first as usize, leaf_a.count as usize)
+                .zip(b.leaf_triangles(leaf_b.first as usize, leaf_b.count as usize)),
+        )
     }
 
     /// The answer of a yes/no walk that tested `tested` pairs: yes when it `met` a pair (an

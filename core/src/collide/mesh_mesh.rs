@@ -37,14 +37,7 @@ where
         tree_b,
         b_to_a,
         |leaf_a: BvhNode, leaf_b: BvhNode| {
-            let pairs = (leaf_a.count as usize).saturating_mul(leaf_b.count as usize);
-            if !tally.take(pairs) {
-                return ControlFlow::Break(());
-            }
-            let (Some(ids_a), Some(ids_b)) = (
-                tree_a.leaf_triangles(leaf_a.first as usize, leaf_a.count as usize),
-                tree_b.leaf_triangles(leaf_b.first as usize, leaf_b.count as usize),
-            ) else {
+            let Some((ids_a, ids_b)) = tally.take_leaves(tree_a, tree_b, &leaf_a, &leaf_b)? else {
                 return ControlFlow::Continue(());
             };
             // `b`'s triangles outside, each placed once.

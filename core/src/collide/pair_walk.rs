@@ -121,15 +121,10 @@ where
     }
 
     fn leaves(&mut self, leaf_a: BvhNode, leaf_b: BvhNode) -> ControlFlow<()> {
-        let pairs = (leaf_a.count as usize).saturating_mul(leaf_b.count as usize);
-        if !self.tally.take(pairs) {
-            return ControlFlow::Break(());
-        }
-        let (tree_a, tree_b) = (self.a.structure(), self.b.structure());
-        let (Some(ids_a), Some(ids_b)) = (
-            tree_a.leaf_triangles(leaf_a.first as usize, leaf_a.count as usize),
-            tree_b.leaf_triangles(leaf_b.first as usize, leaf_b.count as usize),
-        ) else {
+        let Some((ids_a, ids_b)) =
+            self.tally
+                .take_leaves(self.a.structure(), self.b.structure(), &leaf_a, &leaf_b)?
+        else {
             return ControlFlow::Continue(());
         };
         let placed_leaf_b = self

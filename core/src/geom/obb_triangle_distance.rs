@@ -129,18 +129,7 @@ const BOX_EDGES: [(usize, usize); 12] = [
 mod tests {
     use super::*;
     use crate::geom::closest_points_triangle_triangle;
-
-    /// Deterministic xorshift floats in `[-1, 1)`.
-    fn floats(mut state: u64, n: usize) -> std::vec::Vec<f32> {
-        (0..n)
-            .map(|_| {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-            })
-            .collect()
-    }
+    use crate::test_floats::floats;
 
     /// Apart, the distance is that of the nearest of the box's twelve face triangles.
     #[test]

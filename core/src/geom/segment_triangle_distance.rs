@@ -73,18 +73,7 @@ pub fn closest_points_segment_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Deterministic xorshift floats in `[-1, 1)`.
-    fn floats(mut state: u64, n: usize) -> std::vec::Vec<f32> {
-        (0..n)
-            .map(|_| {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-            })
-            .collect()
-    }
+    use crate::test_floats::floats;
 
     /// Against dense sampling of the segment, each sample measured to the triangle: an upper
     /// bound within half a step of the true distance.

@@ -134,21 +134,10 @@ fn corner_to_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_floats::floats;
 
     fn tri(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> Triangle {
         Triangle::new(Vec3::from(a), Vec3::from(b), Vec3::from(c))
-    }
-
-    /// Deterministic xorshift floats in `[-1, 1)`.
-    fn floats(mut state: u64, n: usize) -> std::vec::Vec<f32> {
-        (0..n)
-            .map(|_| {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-            })
-            .collect()
     }
 
     /// The distance by dense sampling of both triangles in `f64`: an upper bound within

@@ -312,19 +312,8 @@ mod tests {
     use crate::math::PackedTriangle;
     use crate::mesh::MeshRef;
     use crate::query::closest_batch::closest_points_by;
+    use crate::test_floats::floats;
     use crate::wide::{WideBvh, WideNode};
-
-    /// Deterministic xorshift floats in `[-1, 1)`.
-    fn floats(mut state: u64, n: usize) -> Vec<f32> {
-        (0..n)
-            .map(|_| {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-            })
-            .collect()
-    }
 
     /// Both leaf tests, on the binary and the wide tree and on packed and indexed triangles,
     /// return the brute-force minimum over a soup of small triangles (every fifth one
