@@ -633,6 +633,11 @@ fn pseudo_normal_signs_agree_with_the_oracle_on_closed_meshes() {
             "{}: accepted",
             case.name
         );
+        if case.name.contains("crossing") {
+            // Closed and manifold, but crossing itself: between the surfaces the nearest one
+            // need not say the side (the winding number's case, not the pseudo-normal's).
+            continue;
+        }
         let scene = prepared(&case.mesh);
         let mut points = points_away(&scene, &case.mesh, 300, 1e-3);
         points.extend(points_near(&case.mesh, case.mesh.1.len() / 100 + 1, 1e-4));
@@ -665,7 +670,9 @@ fn pseudo_normal_signs_agree_with_the_oracle_on_closed_meshes() {
             "{}: {checked} checked, {negative} inside",
             case.name
         );
+        signed_cases += 1;
     }
+    assert_eq!(signed_cases, 2, "spot and fandisk signed");
     // One triangle flipped: its edges run the same way as their neighbours'.
     let (positions, mut triangles) = hard_inputs::cuboid(1.0, 1.0, 1.0);
     triangles[3].swap(1, 2);

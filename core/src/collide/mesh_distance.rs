@@ -72,7 +72,7 @@ impl Default for DistanceLimits {
 /// tree with [`PackedTriangles`](crate::query::PackedTriangles)). The walk is best first:
 /// of the two children of a split node, the nearer is walked first, and a pair of nodes
 /// whose boxes are farther apart than the best pair so far is dropped. No allocation: a
-/// fixed stack of about 2 KiB.
+/// fixed stack of about 5 KiB.
 ///
 /// # Errors
 /// [`PairBudgetSpent`] when the leaves the walk could not rule out held more triangle pairs

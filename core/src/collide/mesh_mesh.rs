@@ -88,7 +88,7 @@ where
 /// `a` and `b` are BVHs with their triangles (`bvh.with(&mesh)`, a blob's tree and mesh, or a
 /// tree with [`PackedTriangles`](crate::query::PackedTriangles)). Both trees are walked
 /// together from the roots, and the walk stops at the first meeting pair. No allocation: a
-/// fixed stack of about 1 KiB.
+/// fixed stack of about 5 KiB.
 ///
 /// # Errors
 /// [`PairBudgetSpent`] when the walk considered `budget`'s pairs without finding one that

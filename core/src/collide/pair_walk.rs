@@ -55,7 +55,7 @@ pub trait PairVisitor {
 ///
 /// A triangle that spatial splits put in several leaves can come up once per pair of leaves
 /// that holds it ([`WalkedTriangle::leaf`] tells them apart). No allocation: a fixed stack of
-/// about 2 KiB.
+/// about 5 KiB.
 ///
 /// Returns `Break` when the visitor stopped the walk and `Continue` when it went to its end.
 ///
