@@ -6,6 +6,7 @@
 
 pub(crate) mod aabb_lanes;
 pub(crate) mod clip_triangle_aabb;
+mod closest_pair;
 mod closest_point_plane;
 mod closest_point_segment;
 pub(crate) mod closest_point_triangle;
@@ -30,6 +31,7 @@ mod triangle_triangle;
 mod triangle_triangle_distance;
 
 pub(crate) use clip_triangle_aabb::clip_triangle_aabb;
+pub use closest_pair::ClosestPair;
 pub use closest_point_plane::closest_point_plane;
 pub use closest_point_segment::closest_point_segment;
 pub use closest_point_triangle::closest_point_triangle;
@@ -48,7 +50,7 @@ pub use triangle_aabb::overlap_triangle_aabb;
 pub use triangle_obb::overlap_triangle_obb;
 pub(crate) use triangle_triangle::onto_dominant_plane;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
-pub use triangle_triangle_distance::{TriangleTriangleClosest, closest_points_triangle_triangle};
+pub use triangle_triangle_distance::closest_points_triangle_triangle;
 
 pub(crate) use closest_point_triangle::closest_point_regions;
 pub(crate) use ray_aabb::SlabRay;

@@ -1,8 +1,7 @@
 use glam::Vec3;
 
 use super::{
-    TriangleTriangleClosest, closest_point_triangle, closest_points_segment_triangle,
-    overlap_triangle_obb,
+    ClosestPair, closest_point_triangle, closest_points_segment_triangle, overlap_triangle_obb,
 };
 use crate::math::{Obb, Triangle, dot};
 
@@ -31,9 +30,9 @@ pub(crate) fn closest_point_obb(p: Vec3, obb: &Obb) -> Vec3 {
 /// distance exactly 0, with the nearest candidate's points. A box that is not
 /// [valid](Obb::is_valid) or a NaN corner gives a NaN distance.
 #[must_use]
-pub fn closest_points_obb_triangle(obb: &Obb, tri: &Triangle) -> TriangleTriangleClosest {
+pub fn closest_points_obb_triangle(obb: &Obb, tri: &Triangle) -> ClosestPair {
     if !obb.is_valid() {
-        return TriangleTriangleClosest {
+        return ClosestPair {
             on_first: Vec3::NAN,
             on_second: Vec3::NAN,
             distance_squared: f32::NAN,
@@ -41,14 +40,14 @@ pub fn closest_points_obb_triangle(obb: &Obb, tri: &Triangle) -> TriangleTriangl
     }
     let pair = |on_first: Vec3, on_second: Vec3| {
         let gap = on_first - on_second;
-        TriangleTriangleClosest {
+        ClosestPair {
             on_first,
             on_second,
             distance_squared: dot(gap, gap),
         }
     };
     let mut best = pair(closest_point_obb(tri.a, obb), tri.a);
-    let mut consider = |c: TriangleTriangleClosest| {
+    let mut consider = |c: ClosestPair| {
         if c.distance_squared < best.distance_squared {
             best = c;
         }

@@ -1,7 +1,7 @@
 use glam::Vec3;
 
 use super::{
-    CullMode, TriangleTriangleClosest, closest_point_triangle, closest_points_segment_segment,
+    ClosestPair, CullMode, closest_point_triangle, closest_points_segment_segment,
     intersect_ray_triangle,
 };
 use crate::math::{Ray, Triangle, dot};
@@ -22,18 +22,14 @@ use crate::math::{Ray, Triangle, dot};
 /// assert_eq!((c.on_first, c.on_second, c.distance_squared), (Vec3::new(1.0, 1.0, 1.0), Vec3::new(1.0, 1.0, 0.0), 1.0));
 /// ```
 #[must_use]
-pub fn closest_points_segment_triangle(
-    p: Vec3,
-    q: Vec3,
-    tri: &Triangle,
-) -> TriangleTriangleClosest {
+pub fn closest_points_segment_triangle(p: Vec3, q: Vec3, tri: &Triangle) -> ClosestPair {
     let d = q - p;
     if d != Vec3::ZERO && !tri.is_degenerate() {
         let mut ray = Ray::new(p, d);
         ray.t_max = 1.0;
         if let Some(hit) = intersect_ray_triangle(&ray, tri, CullMode::None) {
             let x = tri.a * (1.0 - hit.u - hit.v) + tri.b * hit.u + tri.c * hit.v;
-            return TriangleTriangleClosest {
+            return ClosestPair {
                 on_first: x,
                 on_second: x,
                 distance_squared: 0.0,
@@ -42,7 +38,7 @@ pub fn closest_points_segment_triangle(
     }
     let end = |e: Vec3| {
         let c = closest_point_triangle(e, tri);
-        TriangleTriangleClosest {
+        ClosestPair {
             on_first: e,
             on_second: c.point,
             distance_squared: c.distance_squared,
@@ -52,7 +48,7 @@ pub fn closest_points_segment_triangle(
     if d == Vec3::ZERO {
         return best;
     }
-    let mut consider = |c: TriangleTriangleClosest| {
+    let mut consider = |c: ClosestPair| {
         if c.distance_squared < best.distance_squared {
             best = c;
         }
@@ -61,7 +57,7 @@ pub fn closest_points_segment_triangle(
     for (a, b) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
         let s = closest_points_segment_segment(p, q, a, b);
         let gap = s.on_first - s.on_second;
-        consider(TriangleTriangleClosest {
+        consider(ClosestPair {
             on_first: s.on_first,
             on_second: s.on_second,
             distance_squared: dot(gap, gap),

@@ -1,21 +1,10 @@
 use glam::Vec3;
 
 use super::{
-    TriangleTriangle, closest_point_triangle, closest_points_segment_segment,
+    ClosestPair, TriangleTriangle, closest_point_triangle, closest_points_segment_segment,
     closest_points_segment_triangle, intersect_triangle_triangle,
 };
 use crate::math::{Triangle, dot};
-
-/// The closest points between two triangles.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TriangleTriangleClosest {
-    /// The point of the first triangle nearest the second.
-    pub on_first: Vec3,
-    /// The point of the second triangle nearest the first (`== on_first` when they meet).
-    pub on_second: Vec3,
-    /// `|on_first − on_second|²`: exactly 0 when the triangles meet.
-    pub distance_squared: f32,
-}
 
 /// The closest points between triangles `t1` and `t2`.
 ///
@@ -43,7 +32,7 @@ pub struct TriangleTriangleClosest {
 /// assert_eq!((c.on_first, c.on_second, c.distance_squared), (Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0), 4.0));
 /// ```
 #[must_use]
-pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> TriangleTriangleClosest {
+pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> ClosestPair {
     // A segment (or point) against a proper triangle may pierce its face, which no pair of
     // features below sees: measure its edges as segments instead.
     match (t1.is_degenerate(), t2.is_degenerate()) {
@@ -58,14 +47,14 @@ pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> Triangl
         TriangleTriangle::Disjoint
     };
     if let TriangleTriangle::Segment { a, .. } = meet {
-        return TriangleTriangleClosest {
+        return ClosestPair {
             on_first: a,
             on_second: a,
             distance_squared: 0.0,
         };
     }
     let mut best = corner_to_triangle(t1.a, t2, false);
-    let mut consider = |c: TriangleTriangleClosest| {
+    let mut consider = |c: ClosestPair| {
         if c.distance_squared < best.distance_squared {
             best = c;
         }
@@ -79,7 +68,7 @@ pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> Triangl
     for (p1, q1) in edges(t1) {
         for (p2, q2) in edges(t2) {
             let s = closest_points_segment_segment(p1, q1, p2, q2);
-            consider(TriangleTriangleClosest {
+            consider(ClosestPair {
                 on_first: s.on_first,
                 on_second: s.on_second,
                 distance_squared: s.distance_squared,
@@ -96,7 +85,7 @@ pub fn closest_points_triangle_triangle(t1: &Triangle, t2: &Triangle) -> Triangl
 
 /// The edges of degenerate triangle `d` against proper triangle `t`, nearest first (ties to
 /// the first edge); `d_is_second` puts `d`'s points in `on_second`.
-fn degenerate_against(d: &Triangle, t: &Triangle, d_is_second: bool) -> TriangleTriangleClosest {
+fn degenerate_against(d: &Triangle, t: &Triangle, d_is_second: bool) -> ClosestPair {
     let mut best = closest_points_segment_triangle(d.a, d.b, t);
     for (p, q) in [(d.b, d.c), (d.c, d.a)] {
         let c = closest_points_segment_triangle(p, q, t);
@@ -112,11 +101,7 @@ fn degenerate_against(d: &Triangle, t: &Triangle, d_is_second: bool) -> Triangle
 
 /// `corner` against triangle `t`; `corner_on_second` says that the corner belongs to the
 /// second triangle, so the points land in the right fields.
-fn corner_to_triangle(
-    corner: Vec3,
-    t: &Triangle,
-    corner_on_second: bool,
-) -> TriangleTriangleClosest {
+fn corner_to_triangle(corner: Vec3, t: &Triangle, corner_on_second: bool) -> ClosestPair {
     let c = closest_point_triangle(corner, t);
     let d = corner - c.point;
     let (on_first, on_second) = if corner_on_second {
@@ -124,7 +109,7 @@ fn corner_to_triangle(
     } else {
         (corner, c.point)
     };
-    TriangleTriangleClosest {
+    ClosestPair {
         on_first,
         on_second,
         distance_squared: dot(d, d),

@@ -16,7 +16,7 @@ use glam::Vec3;
 use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor};
 use crate::error::SweepError;
 use crate::geom::{
-    TriangleTriangleClosest, closest_point_triangle, closest_points_obb_triangle,
+    ClosestPair, closest_point_triangle, closest_points_obb_triangle,
     closest_points_segment_triangle, intersect_ray_aabb,
 };
 use crate::math::{Aabb, Obb, Ray, Triangle, dot};
@@ -130,11 +130,11 @@ impl SweepShape {
     }
 
     /// The closest points of the shape's core (`on_first`) and `tri` (`on_second`).
-    fn core_closest(&self, tri: &Triangle) -> TriangleTriangleClosest {
+    fn core_closest(&self, tri: &Triangle) -> ClosestPair {
         match *self {
             Self::Sphere { center, .. } => {
                 let c = closest_point_triangle(center, tri);
-                TriangleTriangleClosest {
+                ClosestPair {
                     on_first: center,
                     on_second: c.point,
                     distance_squared: c.distance_squared,
@@ -199,7 +199,7 @@ fn time_of_impact(
 fn contact_normal(
     placed: &SweepShape,
     tri: &Triangle,
-    c: &TriangleTriangleClosest,
+    c: &ClosestPair,
     core: f32,
     motion: Vec3,
 ) -> Vec3 {
