@@ -92,6 +92,11 @@ pub fn run(args: &DistanceArgs) -> Result<()> {
     let (a, b) = (bvh_of(&data, &name)?, bvh_of(&other_data, &other_name)?);
     let build_seconds = start.elapsed().as_secs_f64();
     let (na, nb) = (a.mesh().triangle_count(), b.mesh().triangle_count());
+    for (count, mesh) in [(na, &name), (nb, &other_name)] {
+        if count == 0 {
+            bail!("{mesh} has no triangles: there is nothing to measure");
+        }
+    }
     let budget = args.max_pair_tests.map_or_else(
         || PairBudget::for_triangles(na, nb),
         |max_tests| PairBudget { max_tests },

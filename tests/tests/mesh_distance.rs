@@ -282,7 +282,19 @@ fn limits_bound_and_stop_the_walk() {
 /// through one spot, a placement beyond 10²⁰: bounded, and right or a typed error.
 #[test]
 fn degenerate_and_far_meshes_stay_bounded() {
-    let cases: [(&str, Mesh, Affine); 4] = [
+    let cases: [(&str, Mesh, Affine); 6] = [
+        // Copies scaled far up around the first: triangle normals and plane gaps of size
+        // 10²⁰ and beyond must not overflow into "nothing found".
+        (
+            "a sphere inside a copy 1e10 its size",
+            bundled("uv-sphere"),
+            placement(20.0, [1e10; 3], [0.0; 3]),
+        ),
+        (
+            "a sphere inside a copy 1e30 its size",
+            bundled("uv-sphere"),
+            placement(20.0, [1e30; 3], [0.0; 3]),
+        ),
         (
             "200k copies of one triangle",
             hard_inputs::same(200_000),

@@ -146,8 +146,17 @@ fn check(
 
 #[test]
 fn sweeps_touch_where_the_brute_force_does() {
-    for name in ["spot", "teapot", "uv-sphere"] {
-        let mesh = bundled(name);
+    for name in ["spot", "teapot", "uv-sphere", "uv-sphere ×1e12"] {
+        // The last one 10¹² times the size (far beyond where products of four lengths fit
+        // in `f32`), and its sweeps with it.
+        let mesh = match name.split_once(" ×") {
+            Some((base, factor)) => {
+                let k: f32 = factor.parse().unwrap();
+                let (p, t) = bundled(base);
+                (p.iter().map(|v| v.map(|x| x * k)).collect(), t)
+            }
+            None => bundled(name),
+        };
         let v = valid(&mesh);
         let tris: Vec<Tri64> = (0..v.triangle_count() as u32)
             .map(|t| widen(&v.triangle(t).unwrap()))

@@ -11,7 +11,7 @@ use super::{Affine, Found, PairBudget};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::PairBudgetSpent;
 use crate::geom::closest_points_triangle_triangle;
-use crate::math::{Aabb, Triangle, cross, dot};
+use crate::math::{Aabb, Triangle, cross, dot, unit_scale};
 use crate::query::{LeafTriangles, With};
 
 /// The closest pair of points of two meshes, as [`mesh_distance`] finds it.
@@ -139,16 +139,13 @@ where
     }))
 }
 
-/// What the walk multiplies coordinates by: 1, or 2⁻⁶⁴ when the two meshes' boxes reach
-/// beyond 2⁶⁰ on some axis (a placement that scales or moves far), where squared distances
-/// could overflow `f32`. A power of two keeps the order and ties of the distances.
+/// What the walk multiplies coordinates by: the power of two that brings the two meshes'
+/// reach (largest coordinate magnitude) into `[1, 2)`. The closest-point arithmetic multiplies
+/// up to four lengths together, which overflows `f32` for triangles beyond about 10⁹ and
+/// underflows for tiny ones; at unit size it does neither. A power of two keeps the order and
+/// ties of the distances, and is undone exactly.
 fn scale_for(bounds: &Aabb) -> f32 {
-    let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
-    if reach > 1_152_921_504_606_846_976.0 {
-        1.0 / 18_446_744_073_709_551_616.0
-    } else {
-        1.0
-    }
+    unit_scale(bounds.min.abs().max(bounds.max.abs()).max_element())
 }
 
 /// The squared gap between the plane of `t` and the nearest corner of `other` when all of
@@ -157,11 +154,15 @@ fn scale_for(bounds: &Aabb) -> f32 {
 /// nearly parallel triangles that boxes cannot tell apart. 0 for a degenerate `t`.
 #[inline(always)]
 fn plane_gap_squared(t: &Triangle, other: &Triangle) -> f32 {
+    // The normal is brought to unit length through its largest component first, so neither
+    // its square nor the gap's overflows on large or far triangles.
     let n = cross(t.b - t.a, t.c - t.a);
-    let nn = dot(n, n);
-    if !(nn > 0.0) {
+    let largest = n.abs().max_element();
+    if !(largest > 0.0) || !largest.is_finite() {
         return 0.0;
     }
+    let n = n / largest;
+    let n = n / libm::sqrtf(dot(n, n));
     let h = dot(n, t.a);
     let [x, y, z] = [other.a, other.b, other.c].map(|p| dot(n, p) - h);
     let (lo, hi) = (x.min(y).min(z), x.max(y).max(z));
@@ -172,7 +173,7 @@ fn plane_gap_squared(t: &Triangle, other: &Triangle) -> f32 {
     } else {
         0.0
     };
-    gap * gap / nn
+    gap * gap
 }
 
 /// How much closer (relatively, in squared distance) a pair of nodes must be able to come

@@ -216,14 +216,7 @@ pub(super) fn leaf_triangles<'m>(
 /// or flat-to-a-point box): multiplying by it is exact, and it brings the mesh to a size near 1,
 /// where the moments (up to the fourth power of a length) neither overflow nor underflow.
 pub(super) fn unit_scale(bounds: crate::math::Aabb) -> f32 {
-    let extent = (bounds.max - bounds.min).max_element();
-    if !(extent > 0.0 && extent.is_finite()) {
-        return 1.0;
-    }
-    // The biased exponent e puts extent in [2^(e−127), 2^(e−126)); 2^(127−e) is its inverse's
-    // power of two, kept within the normal range.
-    let biased = (extent.to_bits() >> 23) & 0xff;
-    f32::from_bits(254u32.saturating_sub(biased).clamp(1, 254) << 23)
+    crate::math::unit_scale((bounds.max - bounds.min).max_element())
 }
 
 /// `|v|` through `libm`.

@@ -39,3 +39,18 @@ pub fn min_f32(a: f32, b: f32) -> f32 {
 pub fn max_f32(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
+
+/// The power of two `s` that brings `length` into `[1, 2)` (`length · s`), within the normal
+/// range; 1 for zero, subnormal, negative or non-finite `length`. Multiplying by it is exact,
+/// keeps every order and tie, and brings a shape to a size where products of up to four
+/// lengths neither overflow nor underflow `f32`.
+#[must_use]
+pub(crate) fn unit_scale(length: f32) -> f32 {
+    if !(length > 0.0 && length.is_finite()) {
+        return 1.0;
+    }
+    // The biased exponent e puts length in [2^(e−127), 2^(e−126)); 2^(127−e) is its inverse's
+    // power of two, kept within the normal range.
+    let biased = (length.to_bits() >> 23) & 0xff;
+    f32::from_bits(254u32.saturating_sub(biased).clamp(1, 254) << 23)
+}

@@ -19,7 +19,7 @@ use crate::geom::{
     ClosestPair, closest_point_triangle, closest_points_obb_triangle,
     closest_points_segment_triangle, intersect_ray_aabb,
 };
-use crate::math::{Aabb, Obb, Ray, Triangle, dot};
+use crate::math::{Aabb, Obb, Ray, Triangle, dot, unit_scale};
 
 /// A convex shape a sweep moves, at its place at the start of the motion.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,6 +112,22 @@ impl SweepShape {
         }
     }
 
+    /// The shape with every length multiplied by `s` (a power of two, so exactly).
+    fn scaled(&self, s: f32) -> Self {
+        match *self {
+            Self::Sphere { center, radius } => Self::Sphere {
+                center: center * s,
+                radius: radius * s,
+            },
+            Self::Capsule { a, b, radius } => Self::Capsule {
+                a: a * s,
+                b: b * s,
+                radius: radius * s,
+            },
+            Self::Box(obb) => Self::Box(Obb::new(obb.center * s, obb.axes, obb.half_extents * s)),
+        }
+    }
+
     /// The shape's centre (a capsule's segment midpoint).
     fn center(&self) -> Vec3 {
         match *self {
@@ -149,6 +165,44 @@ impl SweepShape {
 /// The first contact of `shape` moving by `motion` with triangle `tri`, advancing from `t`
 /// (at or before the first contact) up to `limit`: `(t, point on tri, normal)`.
 fn time_of_impact(
+    shape: &SweepShape,
+    motion: Vec3,
+    tri: &Triangle,
+    t: f32,
+    limit: f32,
+    tolerance: f32,
+) -> Option<(f32, Vec3, Vec3)> {
+    // Worked at unit size: the closest-point arithmetic multiplies up to four lengths, which
+    // overflows `f32` on triangles beyond about 10⁹. A power of two changes no `t`, and the
+    // point is scaled back exactly.
+    let b = shape.bounds();
+    let reach = [
+        tri.a,
+        tri.b,
+        tri.c,
+        b.min,
+        b.max,
+        b.min + motion,
+        b.max + motion,
+    ]
+    .iter()
+    .map(|p| p.abs().max_element())
+    .fold(0.0f32, f32::max);
+    let s = unit_scale(reach);
+    let tri_s = Triangle::new(tri.a * s, tri.b * s, tri.c * s);
+    let (at, point, normal) = advance(
+        &shape.scaled(s),
+        motion * s,
+        &tri_s,
+        t,
+        limit,
+        tolerance * s,
+    )?;
+    Some((at, point / s, normal))
+}
+
+/// [`time_of_impact`] at the caller's scale.
+fn advance(
     shape: &SweepShape,
     motion: Vec3,
     tri: &Triangle,
