@@ -299,3 +299,83 @@ fn points_beyond_squared_distance_overflow_are_answered() {
         assert_eq!(*o, structures[0].closest_point(*p, f32::INFINITY), "{p}");
     }
 }
+
+/// Meshes of any size within the coordinate limit — triangles from 1e-11 to 1e14 across,
+/// whose products of four lengths leave `f32` — answer as at unit size: scaled by a power of
+/// two, every structure gives the unit answer scaled (same triangle, same point bits times the
+/// scale), and scaled by 1e14 (not a power of two) the nearest triangle by an f64 scan.
+#[test]
+fn meshes_of_any_size_answer_as_at_unit_size() {
+    use meshq::mesh::MeshRef;
+    use meshq::owned::{MeshIndex, StructureKind};
+    let kinds = [
+        StructureKind::Bvh,
+        StructureKind::KdTree,
+        StructureKind::Octree,
+        StructureKind::Grid,
+    ];
+    for name in ["spot", "fandisk"] {
+        let mut loaded = load_mesh(name);
+        // First to unit size by a power of two (exact), so every scale below fits the limit.
+        let largest = loaded
+            .positions
+            .iter()
+            .flatten()
+            .fold(0f32, |m, x| m.max(x.abs()));
+        let to_unit = 2f32.powi(-(largest.log2().ceil() as i32));
+        for p in &mut loaded.positions {
+            *p = p.map(|x| x * to_unit);
+        }
+        let unit = MeshBvh::build(&loaded.valid(), &BuildConfig::default()).unwrap();
+        let points = workload::closest_points(&loaded.positions, 300, 0x5CA1E);
+        for k in [-36, 40, 49] {
+            let s = 2f32.powi(k);
+            let scaled: Vec<[f32; 3]> = loaded.positions.iter().map(|p| p.map(|x| x * s)).collect();
+            let mesh = MeshRef::new(&scaled, &loaded.triangles).validate().unwrap();
+            for kind in kinds {
+                let index = MeshIndex::build(&mesh, kind).unwrap();
+                for &p in &points {
+                    let want = unit.closest_point(p, f32::INFINITY).unwrap();
+                    let got = index.closest_point(p * s, f32::INFINITY).unwrap();
+                    assert_eq!(
+                        (got.tri, got.point),
+                        (want.tri, want.point * s),
+                        "{name} at 2^{k}, {kind:?}, {p}"
+                    );
+                }
+            }
+        }
+        let big: Vec<[f32; 3]> = loaded
+            .positions
+            .iter()
+            .map(|p| p.map(|x| x * 1e14))
+            .collect();
+        let mesh = MeshRef::new(&big, &loaded.triangles).validate().unwrap();
+        let index = MeshIndex::build(&mesh, StructureKind::Bvh).unwrap();
+        for &p in &points {
+            let p = p * 1e14;
+            let got = index.closest_point(p, f32::INFINITY).unwrap();
+            let p64 = p.to_array().map(f64::from);
+            let dist = |t: &[u32; 3]| {
+                let [a, b, c] = t.map(|v| big[v as usize].map(f64::from));
+                distance_f64(p64, a, b, c)
+            };
+            let nearest = loaded
+                .triangles
+                .iter()
+                .map(dist)
+                .fold(f64::INFINITY, f64::min);
+            let chosen = dist(&loaded.triangles[got.tri as usize]);
+            let scale = 1e14 * 1e-6;
+            assert!(
+                chosen <= nearest + scale,
+                "{name} ×1e14 at {p}: {chosen} vs {nearest}"
+            );
+            let reported = f64::from(got.distance_from(p));
+            assert!(
+                (reported - nearest).abs() <= scale,
+                "{name} ×1e14 at {p}: {reported} vs {nearest}"
+            );
+        }
+    }
+}

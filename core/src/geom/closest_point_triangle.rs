@@ -1,7 +1,7 @@
 use glam::{Vec2, Vec3};
 
 use super::closest_point_segment;
-use crate::math::{ClosestPoint, Triangle, TriangleFeature, cross, dot};
+use crate::math::{ClosestPoint, Triangle, TriangleFeature, cross, dot, unit_scale_of_squares};
 
 /// The point of triangle `tri` closest to `p`, with its barycentrics and feature.
 ///
@@ -62,9 +62,61 @@ pub fn closest_point_triangle_2d(
 /// Inlined into the hot scalar loops where code size is free; on bare metal one copy is
 /// shared, for the firmware's flash budget. (Inlining never changes a result: no operation is
 /// fused or reordered.)
+///
+/// Works at any size: where the walk's products of four lengths would overflow or underflow
+/// `f32` (see [`in_range`]), it runs on the triangle and point scaled by a power of two and
+/// scales the point back, which rounds nothing, so the answer is the one an `f32` with an
+/// unbounded exponent would give.
 #[cfg_attr(not(target_os = "none"), inline(always))]
 #[cfg_attr(target_os = "none", inline(never))]
 pub(crate) fn closest_point_regions(
+    p: Vec3,
+    a: Vec3,
+    b: Vec3,
+    c: Vec3,
+) -> (Vec3, f32, f32, TriangleFeature) {
+    regions::<true>(p, a, b, c)
+}
+
+/// Whether the walk's products stay within `f32` for a triangle whose longest edge squared is
+/// `longest` and a point at squared distance `reach` from its first corner: every product of
+/// two of its dot products is at most about `longest · (reach + longest)` and its sliver
+/// normal's square `longest²`, so both are kept well inside `[2⁻¹⁰⁰, 2¹¹²]`. A zero `longest`
+/// (every corner at one point) never reaches a product. NaN counts as in range: the walk then
+/// gives what it gives, as before.
+#[inline(always)]
+pub(crate) fn in_range(longest: f32, reach: f32) -> bool {
+    !(longest > MAX_SQUARED
+        || (longest < MIN_SQUARED && longest > 0.0)
+        || reach > MAX_REACH_SQUARED)
+}
+
+/// Largest longest-edge-squared the walk takes as it is (2⁵⁰).
+pub(crate) const MAX_SQUARED: f32 = 1_125_899_906_842_624.0;
+/// Smallest nonzero longest-edge-squared the walk takes as it is (2⁻⁵⁰).
+pub(crate) const MIN_SQUARED: f32 = 1.0 / 1_125_899_906_842_624.0;
+/// Largest squared distance from the first corner the walk takes as it is (2⁶⁰).
+pub(crate) const MAX_REACH_SQUARED: f32 = 1_152_921_504_606_846_976.0;
+
+/// The walk on `p, a, b, c` scaled by the power of two that brings its products near 1, with
+/// the point scaled back.
+#[inline(never)]
+fn rescaled(
+    p: Vec3,
+    a: Vec3,
+    b: Vec3,
+    c: Vec3,
+    longest: f32,
+    reach: f32,
+) -> (Vec3, f32, f32, TriangleFeature) {
+    let s = unit_scale_of_squares(longest, reach.max(longest));
+    let (q, u, v, feature) = regions::<false>(p * s, a * s, b * s, c * s);
+    (q * (1.0 / s), u, v, feature)
+}
+
+/// The walk itself; `CHECKED` sends a triangle out of [`in_range`] to [`rescaled`].
+#[inline(always)]
+fn regions<const CHECKED: bool>(
     p: Vec3,
     a: Vec3,
     b: Vec3,
@@ -98,7 +150,14 @@ pub(crate) fn closest_point_regions(
     let e = d4 - d3;
     let f = d5 - d6;
     // `d1 − d3`, `d2 − d6` and `e + f` are the edges' squared lengths.
-    let n = sliver_normal(cross(ab, ac), (d1 - d3).max(d2 - d6).max(e + f), ab, ac);
+    let longest = (d1 - d3).max(d2 - d6).max(e + f);
+    if CHECKED {
+        let reach = dot(ap, ap);
+        if !in_range(longest, reach) {
+            return rescaled(p, a, b, c, longest, reach);
+        }
+    }
+    let n = sliver_normal(cross(ab, ac), longest, ab, ac);
     let vc = match n {
         Some(n) => dot(n, cross(ab, ap)),
         None => d1 * d4 - d3 * d2,
@@ -273,6 +332,88 @@ mod tests {
             assert_eq!(c.distance_squared, (p - q).length_squared(), "{p}");
             let back = t.point_at(c.u, c.v);
             assert!((back - q).length() < 1e-6, "barycentrics of {p}");
+        }
+    }
+
+    /// The walk at any size gives the unit-size answer scaled: a power of two rounds nothing,
+    /// so triangles of 1e-12 to 1e15 (whose products of four lengths leave `f32`) and points
+    /// up to 1e30 away answer exactly as at unit size. The unit-size answers are checked
+    /// against an `f64` projection, so a walk that overflowed at every size would still fail.
+    #[test]
+    fn any_size_answers_as_unit_size() {
+        let v = crate::test_floats::floats(0x5ca1e, 12 * 4_000);
+        let mut rescaled = 0;
+        for (i, x) in v.chunks_exact(12).enumerate() {
+            let at = |k: usize| Vec3::new(x[k], x[k + 1], x[k + 2]);
+            // Every third triangle a sliver; every fifth point far away.
+            let c = if i % 3 == 0 {
+                at(0) + (at(3) - at(0)) * 0.7 + at(6) * 1e-3
+            } else {
+                at(6)
+            };
+            let t = Triangle::new(at(0), at(3), c);
+            let p = at(9) * if i % 5 == 0 { 1e6 } else { 2.0 };
+            if t.is_degenerate() {
+                continue;
+            }
+            let unit = closest_point_triangle(p, &t);
+            let f64_distance = f64_point_triangle(p, &t);
+            let got = f64::from(unit.distance_squared).sqrt();
+            assert!(
+                (got - f64_distance).abs() <= 1e-5 * (f64_distance + 1.0),
+                "{t:?} {p}"
+            );
+            for k in [-40, -20, 20, 40, 48] {
+                let s = 2f32.powi(k);
+                let scaled = Triangle::new(t.a * s, t.b * s, t.c * s);
+                let got = closest_point_triangle(p * s, &scaled);
+                assert_eq!(got.point, unit.point * s, "{t:?} {p} at 2^{k}");
+                assert_eq!((got.u, got.v, got.feature), (unit.u, unit.v, unit.feature));
+                rescaled += 1;
+            }
+        }
+        assert!(rescaled > 15_000);
+        // A point 1e30 from a unit triangle: the nearest corner, at a squared distance past f32.
+        let t = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+        let far = closest_point_triangle(Vec3::new(-1e30, -1e30, 0.0), &t);
+        assert_eq!(
+            (far.point, far.feature),
+            (Vec3::ZERO, TriangleFeature::Vertex(0))
+        );
+    }
+
+    /// The distance from `p` to `t` in `f64`, by projection onto the plane when the foot is
+    /// inside and the nearest edge otherwise.
+    fn f64_point_triangle(p: Vec3, t: &Triangle) -> f64 {
+        type V = [f64; 3];
+        let w = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
+        let sub = |a: V, b: V| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let add = |a: V, b: V, s: f64| [a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s];
+        let dot = |a: V, b: V| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let cross = |a: V, b: V| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let (p, a, b, c) = (w(p), w(t.a), w(t.b), w(t.c));
+        let segment = |a: V, b: V| {
+            let ab = sub(b, a);
+            let s = (dot(sub(p, a), ab) / dot(ab, ab)).clamp(0.0, 1.0);
+            let d = sub(p, add(a, ab, s));
+            dot(d, d).sqrt()
+        };
+        let n = cross(sub(b, a), sub(c, a));
+        let h = dot(sub(p, a), n) / dot(n, n);
+        let foot = add(p, n, -h);
+        let inside = [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|&(s, e)| dot(cross(sub(e, s), sub(foot, s)), n) >= 0.0);
+        if inside {
+            h.abs() * dot(n, n).sqrt()
+        } else {
+            segment(a, b).min(segment(b, c)).min(segment(c, a))
         }
     }
 

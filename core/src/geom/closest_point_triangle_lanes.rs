@@ -9,8 +9,11 @@
 
 use glam::{Vec3, Vec4};
 
-use super::closest_point_triangle::SLIVER;
+use super::closest_point_triangle::{
+    MAX_REACH_SQUARED, MAX_SQUARED, MIN_SQUARED, SLIVER, closest_point_regions,
+};
 use super::triangle_lanes::{Lanes3, TriangleLanes};
+use crate::math::dot;
 
 impl TriangleLanes {
     /// Per lane, the squared distance from `p` to the closest point of that lane's triangle
@@ -46,6 +49,13 @@ impl TriangleLanes {
         let mut on_face = a.add_scaled(ab, vb * inv).add_scaled(ac, vc * inv);
         let plain = ab.cross(ac);
         let longest = (d1 - d3).max(d2 - d6).max(e + f);
+        let reach = ap.dot(ap);
+        // Lanes whose products would leave `f32` (the walk's `in_range`): the scalar walk,
+        // which rescales them, answers those at the end.
+        let wild = (longest.cmpgt(Vec4::splat(MAX_SQUARED))
+            | (longest.cmplt(Vec4::splat(MIN_SQUARED)) & longest.cmpgt(zero))
+            | reach.cmpgt(Vec4::splat(MAX_REACH_SQUARED)))
+        .bitmask();
         let bound = longest * Vec4::splat(SLIVER);
         let sliver = plain.dot(plain).cmplt(bound * bound);
         if sliver.any() {
@@ -87,15 +97,41 @@ impl TriangleLanes {
         let d = Vec4::select(in_c, cp.dot(cp), d);
         let d = Vec4::select(in_ab, to_edge.dot(to_edge), d);
         let d = Vec4::select(in_b, bp.dot(bp), d);
-        Vec4::select(in_a, ap.dot(ap), d)
+        let d = Vec4::select(in_a, reach, d);
+        if wild == 0 {
+            return d;
+        }
+        self.rescaled_lanes(wild, p, d)
+    }
+
+    /// `d` with each lane set in `wild` replaced by the scalar walk's squared distance.
+    #[cold]
+    #[inline(never)]
+    fn rescaled_lanes(&self, wild: u32, p: Lanes3, d: Vec4) -> Vec4 {
+        let lane = |rows: &Lanes3, i: usize| {
+            let [x, y, z] = rows
+                .rows
+                .map(|r| r.to_array().get(i).copied().unwrap_or(0.0));
+            Vec3::new(x, y, z)
+        };
+        let mut out = d.to_array();
+        for (i, slot) in out.iter_mut().enumerate() {
+            if wild & (1 << i) != 0 {
+                let p = lane(&p, i);
+                let (q, ..) =
+                    closest_point_regions(p, lane(&self.a, i), lane(&self.b, i), lane(&self.c, i));
+                let to = p - q;
+                *slot = dot(to, to);
+            }
+        }
+        Vec4::from_array(out)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::closest_point_regions;
-    use crate::math::{Triangle, dot};
+    use crate::math::Triangle;
 
     /// A small deterministic generator (xorshift), so the test needs no dependency.
     struct Rng(u64);
@@ -124,7 +160,8 @@ mod tests {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let mut checked = 0;
         for round in 0..50_000 {
-            let scale = [1e-6, 1.0, 1e6][round % 3];
+            // Sizes where the walk's products leave `f32` too (it rescales those lanes).
+            let scale = [1e-6, 1.0, 1e6, 1e-14, 1e12][round % 5];
             let mut tris = [Triangle::new(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO); 4];
             for t in &mut tris {
                 let a = rng.vec(scale);

@@ -26,7 +26,7 @@ pub(crate) use packed_triangle::PackedTriangle;
 pub use plane::Plane;
 pub use ray::Ray;
 pub use scalar::{cross, dot};
-pub(crate) use scalar::{max_f32, min_f32, unit_scale};
+pub(crate) use scalar::{max_f32, min_f32, unit_scale, unit_scale_of_squares};
 pub use triangle::Triangle;
 
 pub use glam::{Vec2, Vec3};

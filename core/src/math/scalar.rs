@@ -54,3 +54,19 @@ pub(crate) fn unit_scale(length: f32) -> f32 {
     let biased = (length.to_bits() >> 23) & 0xff;
     f32::from_bits(254u32.saturating_sub(biased).clamp(1, 254) << 23)
 }
+
+/// The power of two `s` that brings the product `a · b` of two squared lengths (a length to
+/// the fourth) near 1 (`a · b · s⁴` in `[1, 32)`), with `s` and `1 / s` normal; 1 when either is
+/// zero, subnormal, negative or NaN. `b` may be `+inf` (a squared length past `f32`): it then
+/// counts as 2¹²⁸. Used to rescale a computation whose products of four lengths would leave
+/// the range of `f32` — exactly, since multiplying by a power of two rounds nothing.
+#[must_use]
+pub(crate) fn unit_scale_of_squares(a: f32, b: f32) -> f32 {
+    if !(a.is_normal() && a > 0.0 && b >= f32::MIN_POSITIVE) {
+        return 1.0;
+    }
+    // Unbiased exponents: a in [2^ea, 2^(ea+1)), b likewise (+inf reads as 2^128).
+    let exponent = |x: f32| ((x.to_bits() >> 23) & 0xff) as i32 - 127;
+    let quarter = (exponent(a) + exponent(b)).div_euclid(4);
+    f32::from_bits(((127 - quarter).clamp(2, 252) as u32) << 23)
+}
