@@ -30,10 +30,13 @@ fn main() {
         panic!("enable exactly one of --features bunny, spot or remesh");
     };
 
-    // `--features octree` places the mesh's octree blob in flash instead of its BVH blob, and
-    // `--features spatial` its BVH blob built with spatial splits.
+    // `--features octree` places the mesh's octree blob in flash instead of its BVH blob,
+    // `--features spatial` its BVH blob built with spatial splits, and `--features winding`
+    // its BVH blob with the winding-number expansions.
     let (suffix, bake_flag) = if env::var_os("CARGO_FEATURE_OCTREE").is_some() {
         ("-octree", " --structure octree")
+    } else if env::var_os("CARGO_FEATURE_WINDING").is_some() {
+        ("-winding", " --winding")
     } else if env::var_os("CARGO_FEATURE_SPATIAL").is_some() {
         ("-spatial", " --spatial-splits")
     } else {

@@ -46,6 +46,11 @@ pub struct BakeArgs {
     /// cell structures) for the fastest queries in place, instead of positions and indices.
     #[arg(long)]
     pub packed: bool,
+    /// Store the winding-number expansions too (BVH only; 112 bytes per node), so that
+    /// `meshq inside`, `meshq sdf`, `meshq closest --signed` and in-place readers (firmware, a
+    /// `BlobView`) answer containment and signed distance without working them out.
+    #[arg(long)]
+    pub winding: bool,
     /// Threads building a BVH: 1 (the default), N, or 0 for one per core. The blob is the
     /// same, byte for byte, whatever the count.
     #[arg(long, value_name = "N", default_value_t = 1,
@@ -68,6 +73,8 @@ struct Summary {
     /// BVH: levels; k-d tree and octree: the deepest leaf (root 0); grid: 0.
     depth: u32,
     mesh_layout: &'static str,
+    /// Whether the winding-number expansions are stored.
+    winding: bool,
     build_seconds: f64,
     encode_seconds: f64,
     bytes: usize,
@@ -86,6 +93,9 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     if spatial.is_some() && args.structure != StructureKind::Bvh {
         anyhow::bail!("--spatial-splits applies to a BVH");
     }
+    if args.winding && args.structure != StructureKind::Bvh {
+        anyhow::bail!("--winding applies to a BVH (the expansions are per BVH node)");
+    }
     let threads = Threads::new(args.threads)?;
     let n = mesh.triangle_count();
     let kind = args.structure;
@@ -93,7 +103,13 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     let start = Instant::now();
     let scene = match kind {
         StructureKind::Bvh => {
-            MeshIndex::Bvh(threads.build_bvh(&mesh, &config, spatial.as_ref())?)
+            let bvh = threads.build_bvh(&mesh, &config, spatial.as_ref())?;
+            MeshIndex::Bvh(if args.winding {
+                spinner.set_message("working out the winding-number expansions");
+                bvh.with_winding_numbers()?
+            } else {
+                bvh
+            })
         }
         other => MeshIndex::build(&mesh, other)?,
     };
@@ -133,6 +149,7 @@ pub fn run(args: &BakeArgs) -> Result<()> {
         references,
         depth,
         mesh_layout: layout.name(),
+        winding: args.winding,
         build_seconds,
         encode_seconds,
         bytes: len,
@@ -143,14 +160,19 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     }
     say!("baked {} -> {}", args.mesh.display(), args.output.display());
     say!(
-        "  {}: {} triangles, {} vertices, {} nodes, {} references, depth {}, mesh {}",
+        "  {}: {} triangles, {} vertices, {} nodes, {} references, depth {}, mesh {}{}",
         summary.structure,
         summary.triangles,
         summary.vertices,
         summary.nodes,
         summary.references,
         summary.depth,
-        summary.mesh_layout
+        summary.mesh_layout,
+        if args.winding {
+            ", winding-number expansions"
+        } else {
+            ""
+        }
     );
     say!(
         "  build {:.1} ms, encode {:.1} ms, {} bytes ({:.1} bytes/triangle)",

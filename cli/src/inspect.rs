@@ -83,6 +83,8 @@ struct Bytes {
     split_refs: usize,
     /// The collapse roles (version 5: two bits per node; 0 before).
     collapse_plan: usize,
+    /// The winding-number expansions (version 6: 112 bytes per node when stored; 0 otherwise).
+    winding: usize,
     mesh: usize,
     per_triangle: f64,
 }
@@ -126,6 +128,9 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
     let order = 4 * h.reference_count as usize;
     let split_refs = meshq::advanced::SPLIT_REF_BYTES * h.split_ref_count as usize;
     let collapse_plan = tree.collapse_roles().map_or(0, |r| r.bytes().len());
+    let winding = tree
+        .winding_nodes()
+        .map_or(0, |w| 112 * meshq::inside::WindingNodes::count(&w));
     let leaf_sizes = (0..LEAF_HISTOGRAM_LEN)
         .filter_map(|k| {
             let n = *stats.leaf_sizes.get(k)?;
@@ -162,8 +167,11 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
             order,
             split_refs,
             collapse_plan,
+            winding,
             // Everything else, with the varint lengths of the sequences.
-            mesh: total.saturating_sub(h.header_len + nodes + order + split_refs + collapse_plan),
+            mesh: total.saturating_sub(
+                h.header_len + nodes + order + split_refs + collapse_plan + winding,
+            ),
             per_triangle: if h.triangle_count > 0 {
                 total as f64 / f64::from(h.triangle_count)
             } else {
@@ -224,7 +232,7 @@ fn print(r: &Report) -> Result<()> {
     say!("  leaf sizes (triangles: leaves) {}", sizes.join(", "));
     let b = &r.bytes;
     say!(
-        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, {}{}mesh {}",
+        "  {} bytes ({:.1} per triangle): header {}, nodes {}, order {}, {}{}{}mesh {}",
         b.total,
         b.per_triangle,
         b.header,
@@ -237,6 +245,11 @@ fn print(r: &Report) -> Result<()> {
         },
         if b.collapse_plan > 0 {
             format!("collapse plan {}, ", b.collapse_plan)
+        } else {
+            String::new()
+        },
+        if b.winding > 0 {
+            format!("winding-number expansions {}, ", b.winding)
         } else {
             String::new()
         },

@@ -1144,6 +1144,37 @@ fn inside_and_signed_closest_give_the_library_answers_on_every_input() {
     write_f32s(&points_path, points.iter().flat_map(|p| p.to_array()));
     let blob = dir.path().join("spot.meshq");
     ok(&[&"bake", &mesh_path, &"-o", &blob]);
+    // With the expansions stored: format version 6, 112 bytes per node, the same answers.
+    let stored = dir.path().join("spot-winding.meshq");
+    ok(&[
+        &"bake",
+        &mesh_path,
+        &"-o",
+        &stored,
+        &"--winding",
+        &"--packed",
+    ]);
+    let report: serde_json::Value =
+        serde_json::from_str(&ok(&[&"inspect", &stored, &"--json"])).unwrap();
+    assert_eq!(report["format_version"], 6, "{report}");
+    assert_eq!(
+        report["bytes"]["winding"],
+        112 * report["nodes"].as_u64().unwrap(),
+        "{report}"
+    );
+    fails(
+        &[
+            &"bake",
+            &mesh_path,
+            &"-o",
+            &stored,
+            &"--winding",
+            &"--structure",
+            &"octree",
+        ],
+        1,
+        "--winding applies to a BVH",
+    );
     for accuracy in ["2", "3", "exact"] {
         let wanted = match accuracy {
             "exact" => WindingAccuracy::EXACT,
@@ -1170,6 +1201,7 @@ fn inside_and_signed_closest_give_the_library_answers_on_every_input() {
         // A blob, an octree, two threads: the same records, byte for byte.
         for extra in [
             vec![blob.as_os_str()],
+            vec![stored.as_os_str()],
             vec![
                 mesh_path.as_os_str(),
                 "--structure".as_ref(),

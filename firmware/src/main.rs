@@ -8,6 +8,10 @@
 //! Exit status (through semihosting, so QEMU exits with it): 0 when the digest matches, 1 on a
 //! digest mismatch, 2 when the blob is refused, 3 when the golden file has no usable line for
 //! the mesh, 4 when the blob holds another mesh than the golden line describes.
+//!
+//! With `--features winding` it then answers containment and signed distance from the
+//! winding-number expansions stored in the blob, against `tests/golden/winding.txt` (exit 1 on
+//! a mismatch, 2 for a blob without expansions or an unindexed mesh, 3 without a golden line).
 
 #![no_std]
 #![no_main]
@@ -20,6 +24,8 @@ mod panic_free;
 mod remesh_run;
 mod report;
 mod stack;
+#[cfg(feature = "winding")]
+mod winding_run;
 
 use cortex_m_rt::entry;
 #[cfg(not(feature = "remesh"))]
@@ -106,5 +112,21 @@ fn run() -> i32 {
         stack::measured(|| run_parity(&golden.spec, bounds, &mut InPlace(view)));
     report::parity(&got, &golden.report);
     report::stack(validation_stack, query_stack, printing_stack);
-    if got == golden.report { 0 } else { 1 }
+    if got != golden.report {
+        return 1;
+    }
+    #[cfg(feature = "winding")]
+    {
+        let (outcome, winding_stack) = stack::measured(|| winding_run::run(view, MESH));
+        match outcome {
+            Ok((got, golden)) => {
+                report::winding(&got, &golden, winding_stack);
+                if got != golden {
+                    return 1;
+                }
+            }
+            Err(unusable) => return report::winding_unusable(&unusable),
+        }
+    }
+    0
 }

@@ -131,3 +131,46 @@ pub fn mesh_refused(error: &MeshError) {
 pub fn remesh_failed(error: &RemeshError) {
     println!("remeshing failed: {error}");
 }
+
+#[cfg(feature = "winding")]
+pub fn winding(
+    got: &meshq_workload::WindingDigest,
+    golden: &meshq_workload::WindingDigest,
+    stack: u32,
+) {
+    println!(
+        "winding numbers of {} points from the blob's expansions: {} inside, digest 0x{:016x}, \
+         signed distances 0x{:016x}",
+        got.points, got.inside, got.digest, got.signed
+    );
+    println!(
+        "golden: {} inside, digest 0x{:016x}, signed distances 0x{:016x}",
+        golden.inside, golden.digest, golden.signed
+    );
+    println!("stack high-water mark (bytes): inside queries {stack}");
+    if got == golden {
+        println!("WINDING PARITY OK");
+    } else {
+        println!("WINDING PARITY MISMATCH");
+    }
+}
+
+/// Reports why the winding check could not run; returns the exit status.
+#[cfg(feature = "winding")]
+pub fn winding_unusable(why: &crate::winding_run::Unusable) -> i32 {
+    use crate::winding_run::Unusable;
+    match why {
+        Unusable::NoExpansions => {
+            println!("the blob holds no winding-number expansions (bake with --winding)");
+            2
+        }
+        Unusable::NotIndexed => {
+            println!("the blob's mesh is not stored indexed");
+            2
+        }
+        Unusable::Golden(error) => {
+            println!("winding golden file: {error}");
+            3
+        }
+    }
+}

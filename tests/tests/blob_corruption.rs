@@ -14,9 +14,27 @@ fn every_single_byte_corruption_and_truncation_is_handled() {
     let (positions, triangles) = meshq_tests::spot_patch();
     let mesh = MeshRef::new(&positions, &triangles).validate().unwrap();
     assert!((40..200).contains(&triangles.len()), "{}", triangles.len());
-    for layout in [MeshLayout::Indexed, MeshLayout::Packed] {
-        let bytes = bake(&mesh, &BuildConfig::default(), layout).unwrap();
-        assert!((1_000..16_000).contains(&bytes.len()), "{}", bytes.len());
+    // The last: with the winding-number expansions (format version 6), checked at load by
+    // working them out again.
+    for (layout, winding) in [
+        (MeshLayout::Indexed, false),
+        (MeshLayout::Packed, false),
+        (MeshLayout::Indexed, true),
+    ] {
+        let bytes = if winding {
+            MeshBvh::build(&mesh, &BuildConfig::default())
+                .and_then(MeshBvh::with_winding_numbers)
+                .unwrap()
+                .to_blob(layout)
+                .unwrap()
+        } else {
+            bake(&mesh, &BuildConfig::default(), layout).unwrap()
+        };
+        assert!((1_000..40_000).contains(&bytes.len()), "{}", bytes.len());
+        assert_eq!(
+            BlobView::parse(&bytes).unwrap().winding_tree().is_some(),
+            winding
+        );
         let reference = meshq_tests::suite::exercise(&BlobView::parse(&bytes).unwrap());
         assert!(reference > 0);
 
@@ -78,6 +96,12 @@ fn every_single_byte_corruption_and_truncation_is_handled() {
         for section in ["header", "nodes", "triangle order", mesh_section] {
             assert!(sections.contains(section), "{layout:?}: {sections:?}");
         }
+        if winding {
+            assert!(
+                sections.contains("winding-number expansions"),
+                "{sections:?}"
+            );
+        }
         let mut longer = bytes.clone();
         longer.push(0);
         assert!(matches!(
@@ -101,18 +125,18 @@ fn foreign_versions_and_mismatched_meshes_are_refused_with_clear_errors() {
     let mut future = bytes.clone();
     // A BVH blob with its collapse roles: version 5.
     assert_eq!(future[4], 5, "the version varint follows the magic");
-    future[4] = 6;
-    meshq::advanced::reseal(&mut future).unwrap_err(); // the header of version 6 is not read at all
+    future[4] = 7;
+    meshq::advanced::reseal(&mut future).unwrap_err(); // the header of version 7 is not read at all
     let err = BlobView::parse(&future).unwrap_err();
     assert_eq!(
         err,
         BlobError::UnsupportedVersion {
-            found: 6,
+            found: 7,
             oldest: 1,
-            newest: 5
+            newest: 6
         }
     );
-    assert!(err.to_string().contains("versions 1 to 5"), "{err}");
+    assert!(err.to_string().contains("versions 1 to 6"), "{err}");
     let mut past = bytes.clone();
     past[4] = 0;
     assert!(matches!(

@@ -54,8 +54,8 @@ fn views_answer_like_brute_force_and_the_in_memory_bvh() {
                 _ => BlobView::parse(&bytes).unwrap(),
             };
             let h = view.header();
-            // `MeshBvh::to_blob` stores the collapse roles: version 5.
-            assert_eq!((h.version, FORMAT_VERSION), (5, 5));
+            // `MeshBvh::to_blob` stores the collapse roles: version 5 (6 adds expansions).
+            assert_eq!((h.version, FORMAT_VERSION), (5, 6));
             assert_eq!(h.kind, StructureKind::Bvh);
             assert_eq!(h.mesh, layout);
             assert_eq!(h.triangle_count as usize, mesh.triangle_count());
@@ -302,6 +302,8 @@ struct WholeBlob {
     order: Vec<Fixed>,
     split_refs: Vec<[u8; 32]>,
     roles: Vec<u8>,
+    /// Version 6: the 28 floats of each node's winding-number expansion.
+    winding: Vec<[f32; 28]>,
     section: SectionMirror,
 }
 
@@ -346,7 +348,10 @@ fn a_blob_is_one_postcard_message() {
         (BuildConfig::default(), 0, MeshLayout::Omitted),
         (BuildConfig::fast(), 1, MeshLayout::Indexed),
     ] {
-        let owned = MeshBvh::build(&mesh, &config).unwrap();
+        // With its winding-number expansions: the newest version, every section present.
+        let owned = MeshBvh::build(&mesh, &config)
+            .and_then(MeshBvh::with_winding_numbers)
+            .unwrap();
         let bvh = checked_bvh(&owned, &mesh).unwrap();
         let bytes = owned.to_blob(layout).unwrap();
         let whole: WholeBlob = postcard::from_bytes(&bytes).unwrap();
@@ -408,6 +413,30 @@ fn a_blob_is_one_postcard_message() {
         // decodes them in full).
         assert_eq!(whole.roles.len(), whole.nodes.len().div_ceil(4));
         assert_eq!(whole.roles[0] & 3, 1);
+        // Each expansion's fields in order: centre, radius, normal, area, first, second.
+        let expansions: Vec<[f32; 28]> = owned
+            .winding()
+            .unwrap()
+            .nodes()
+            .iter()
+            .map(|n| {
+                let mut words = [0.0; 28];
+                let fields = n.centre.iter().chain([&n.radius]).chain(&n.normal);
+                let fields = fields.chain([&n.area]).chain(&n.first).chain(&n.second);
+                for (w, x) in words.iter_mut().zip(fields) {
+                    *w = *x;
+                }
+                words
+            })
+            .collect();
+        assert_eq!(whole.winding.len(), whole.nodes.len());
+        assert!(
+            whole
+                .winding
+                .iter()
+                .map(|w| w.map(f32::to_bits))
+                .eq(expansions.iter().map(|w| w.map(f32::to_bits)))
+        );
         match (layout, whole.section) {
             (MeshLayout::Indexed, SectionMirror::Indexed(p, t)) => {
                 assert_eq!(p, mesh.positions());

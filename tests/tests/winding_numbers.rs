@@ -501,7 +501,21 @@ fn the_golden_winding_file_holds_every_bundled_mesh() {
                 "{name} at {p}: {w} vs {e}"
             );
         }
-        let digest = meshq_workload::WindingDigest::of(&numbers);
+        // Signed distances, each the closest point's distance with the number's sign.
+        let signed: Vec<f32> = points
+            .iter()
+            .zip(&numbers)
+            .map(|(&p, &w)| {
+                let s = tree
+                    .signed_distance(p, f32::INFINITY, WindingAccuracy::DEFAULT)
+                    .unwrap();
+                let closest = scene.closest_point(p, f32::INFINITY).unwrap();
+                assert_eq!(s.distance.abs(), closest.distance_from(p), "{name} at {p}");
+                assert_eq!(s.distance < 0.0, w.abs() >= 0.5, "{name} at {p}");
+                s.distance
+            })
+            .collect();
+        let digest = meshq_workload::WindingDigest::of(&numbers, &signed);
         file += &format!("{name} {digest}\n");
         if std::env::var_os("MESHQ_BLESS_GOLDEN").is_none() {
             let golden = meshq_workload::find_winding_golden(&recorded, name)
@@ -709,4 +723,114 @@ fn pseudo_normal_signs_agree_with_the_oracle_on_closed_meshes() {
         .signed_distance(&bvh, &cube, Vec3::new(0.95, 1.96, 2.97), f32::INFINITY)
         .unwrap();
     assert!(inside_corner.distance < 0.0);
+}
+
+/// Expansions stored in a blob (format version 6) answer in place — winding numbers,
+/// containment, signed distances, single and batched — exactly as the tree built in memory,
+/// for every mesh layout, on closed, open and self-crossing meshes; a loaded `MeshBvh` keeps
+/// them; a blob without them has none; a blob whose expansions were altered is refused by
+/// every loader.
+#[test]
+fn expansions_stored_in_blobs_answer_in_place() {
+    use meshq::blob::{BlobView, MeshLayout};
+    use meshq::error::BlobError;
+    let accuracy = WindingAccuracy::DEFAULT;
+    for (name, mesh) in [
+        ("spot", bundled("spot")),
+        ("spot with a hole", spot_with_a_hole()),
+        ("two crossing spots", two_crossing_spots()),
+    ] {
+        let scene = prepared(&mesh);
+        let tree = scene.winding().unwrap();
+        let valid = MeshRef::new(&mesh.0, &mesh.1).validate().unwrap();
+        let points = probe_points(&scene, &mesh);
+        let mut want = vec![0.0f32; points.len()];
+        let mut keys = vec![0u64; points.len()];
+        tree.winding_numbers(&points, accuracy, &mut keys, &mut want)
+            .unwrap();
+        for layout in [MeshLayout::Indexed, MeshLayout::Packed, MeshLayout::Omitted] {
+            let bytes = scene.to_blob(layout).unwrap();
+            let view = match layout {
+                MeshLayout::Omitted => BlobView::parse_with_mesh(&bytes, valid).unwrap(),
+                _ => BlobView::parse(&bytes).unwrap(),
+            };
+            assert_eq!(view.header().version, 6, "{name} {layout:?}");
+            let stored = view.winding_tree().unwrap();
+            assert_eq!(stored.scale(), tree.scale());
+            let mut got = vec![0.0f32; points.len()];
+            stored
+                .winding_numbers(&points, accuracy, &mut keys, &mut got)
+                .unwrap();
+            let bits = |v: &[f32]| v.iter().map(|w| w.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&got), bits(&want), "{name} {layout:?}: batch");
+            for (k, &p) in points.iter().enumerate().step_by(7) {
+                let w = stored.winding_number(p, accuracy);
+                assert_eq!(w.to_bits(), want[k].to_bits(), "{name} {layout:?} at {p}");
+                assert_eq!(stored.contains(p, accuracy), tree.contains(p, accuracy));
+                assert_eq!(
+                    stored.signed_distance(p, f32::INFINITY, accuracy),
+                    tree.signed_distance(p, f32::INFINITY, accuracy),
+                    "{name} {layout:?} at {p}"
+                );
+            }
+            // Loaded into memory, the expansions come along, the same bits.
+            let loaded = match layout {
+                MeshLayout::Omitted => MeshBvh::from_blob_with_mesh(&bytes, &valid),
+                _ => MeshBvh::from_blob(&bytes),
+            }
+            .unwrap();
+            let again = loaded.winding().unwrap();
+            assert!(
+                again
+                    .nodes()
+                    .iter()
+                    .zip(tree.nodes())
+                    .all(|(a, b)| format!("{a:?}") == format!("{b:?}"))
+                    && again.nodes().len() == tree.nodes().len()
+            );
+        }
+        // Without expansions: version 5, and no winding tree from the view.
+        let plain = MeshBvh::build(&valid, &BuildConfig::default()).unwrap();
+        let bytes = plain.to_blob(MeshLayout::Indexed).unwrap();
+        let view = BlobView::parse(&bytes).unwrap();
+        assert_eq!(view.header().version, 5);
+        assert!(view.winding_tree().is_none());
+        assert!(MeshBvh::from_blob(&bytes).unwrap().winding().is_none());
+
+        // One bit of one stored expansion changed (the last node's last float, just before
+        // the omitted mesh's tag byte), the checksum made right again: refused.
+        let mut bytes = scene.to_blob(MeshLayout::Omitted).unwrap();
+        let at = bytes.len() - 1 - 4;
+        bytes[at] ^= 1;
+        meshq::advanced::reseal(&mut bytes).unwrap();
+        assert_eq!(
+            BlobView::parse_with_mesh(&bytes, valid).unwrap_err(),
+            BlobError::BadWindingNodes,
+            "{name}"
+        );
+        assert_eq!(
+            MeshBvh::from_blob_with_mesh(&bytes, &valid).unwrap_err(),
+            BlobError::BadWindingNodes
+        );
+        let mut bytes = scene.to_blob(MeshLayout::Indexed).unwrap();
+        // In an indexed blob the mesh comes after the expansions: find the last node's record
+        // by its bytes and change its radius.
+        let last = tree.nodes().last().unwrap();
+        let record: Vec<u8> = last.centre.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let at = bytes
+            .windows(record.len())
+            .rposition(|w| w == record.as_slice())
+            .unwrap()
+            + 12;
+        bytes[at] ^= 1;
+        meshq::advanced::reseal(&mut bytes).unwrap();
+        assert_eq!(
+            BlobView::parse(&bytes).unwrap_err(),
+            BlobError::BadWindingNodes
+        );
+        assert_eq!(
+            MeshBvh::from_blob(&bytes).unwrap_err(),
+            BlobError::BadWindingNodes
+        );
+    }
 }

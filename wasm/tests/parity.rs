@@ -129,13 +129,13 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         .iter()
         .flat_map(|m| presets.iter().map(move |p| (m, p)))
     {
-        let built = build(obj, options);
+        let mut built = build(obj, options);
         let golden = find_golden(GOLDEN, name).unwrap();
         assert_eq!(built.triangle_count(), golden.triangles, "{name}");
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&built));
         assert_eq!(report, golden.report, "{name}: built in WebAssembly");
 
-        let blob = built.to_blob(None).unwrap();
+        let blob = built.to_blob(None, None).unwrap();
         let (bytes, checksum) = golden_blob(&format!("{name}{suffix}"));
         let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
         assert_eq!(
@@ -144,7 +144,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
             "{name}{suffix}: blob bytes"
         );
 
-        let loaded = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
+        let mut loaded = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded));
         assert_eq!(report, golden.report, "{name}: loaded from the blob");
 
@@ -199,14 +199,14 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&compact));
         assert_eq!(report, golden.report, "{name}: eight-wide nodes");
         assert_eq!(
-            compact.to_blob(None).unwrap(),
+            compact.to_blob(None, None).unwrap(),
             blob,
             "{name}: eight-wide blob"
         );
-        assert_eq!(loaded.to_blob(None).unwrap(), blob);
+        assert_eq!(loaded.to_blob(None, None).unwrap(), blob);
 
         // A packed blob (corners in leaf order, no indexed mesh) answers the same.
-        let packed = built.to_blob(Some("packed".into())).unwrap();
+        let packed = built.to_blob(Some("packed".into()), None).unwrap();
         let loaded_packed = MeshBvh::from_blob(&bytes_js(&packed)).unwrap();
         let report = run_parity(&golden.spec, golden.bounds(), &mut Wasm(&loaded_packed));
         assert_eq!(report, golden.report, "{name}: loaded from the packed blob");
@@ -226,7 +226,7 @@ fn every_mesh_matches_the_golden_digest_and_blob() {
                 );
             }
         }
-        let omitted = built.to_blob(Some("omitted".into())).unwrap();
+        let omitted = built.to_blob(Some("omitted".into()), None).unwrap();
         assert!(
             MeshBvh::from_blob(&bytes_js(&omitted)).is_err(),
             "{name}: no mesh"
@@ -242,12 +242,12 @@ fn every_structure_matches_the_golden_digest_and_blob() {
         let golden = find_golden(GOLDEN, name).unwrap();
         let bounds = golden.bounds();
         for kind in ["kdtree", "octree", "grid"] {
-            let built = build(obj, &option("structure", kind));
+            let mut built = build(obj, &option("structure", kind));
             assert_eq!(built.structure(), kind);
             let report = run_parity(&golden.spec, bounds, &mut Wasm(&built));
             assert_eq!(report, golden.report, "{name}: {kind} built in WebAssembly");
 
-            let blob = built.to_blob(None).unwrap();
+            let blob = built.to_blob(None, None).unwrap();
             let header = meshq::advanced::BlobHeader::read(&blob).unwrap();
             assert_eq!(
                 (blob.len(), header.checksum),
@@ -257,7 +257,7 @@ fn every_structure_matches_the_golden_digest_and_blob() {
             for layout in [None, Some(JsValue::from("packed"))] {
                 let bytes = match &layout {
                     None => blob.clone(),
-                    Some(_) => built.to_blob(layout.clone()).unwrap(),
+                    Some(_) => built.to_blob(layout.clone(), None).unwrap(),
                 };
                 let loaded = MeshBvh::from_blob(&bytes_js(&bytes)).unwrap();
                 assert_eq!(loaded.structure(), kind);
@@ -753,10 +753,44 @@ fn winding_numbers_match_the_golden_digest() {
                 .winding_number_batch(&floats_js(&flat), &numbers.clone().into(), None)
                 .unwrap();
             let numbers = numbers.to_vec();
-            let digest = meshq_workload::WindingDigest::of(&numbers);
+            let distances = Float32Array::new_with_length(points.len() as u32);
+            let triangles = Uint32Array::new_with_length(points.len() as u32);
+            built
+                .signed_distance_batch(
+                    &floats_js(&flat),
+                    &JsValue::UNDEFINED,
+                    &distances.clone().into(),
+                    &triangles.into(),
+                    None,
+                )
+                .unwrap();
+            let digest = meshq_workload::WindingDigest::of(&numbers, &distances.to_vec());
             let golden = meshq_workload::find_winding_golden(WINDING_GOLDEN, name).unwrap();
             assert_eq!(digest, golden, "{name}: winding numbers in WebAssembly");
             assert_eq!(inside, golden.inside, "{name}");
+            // Stored in a blob (a BVH only) and loaded again: the same numbers, no build.
+            if options.is_undefined() {
+                let blob = built.to_blob(None, Some(JsValue::TRUE)).unwrap();
+                assert_eq!(meshq::advanced::BlobHeader::read(&blob).unwrap().version, 6);
+                let mut loaded = MeshBvh::from_blob(&bytes_js(&blob)).unwrap();
+                let again = Float32Array::new_with_length(points.len() as u32);
+                loaded
+                    .winding_number_batch(&floats_js(&flat), &again.clone().into(), None)
+                    .unwrap();
+                assert!(
+                    again
+                        .to_vec()
+                        .iter()
+                        .map(|w| w.to_bits())
+                        .eq(numbers.iter().map(|w| w.to_bits())),
+                    "{name}: from a blob"
+                );
+                assert_eq!(
+                    loaded.to_blob(None, Some(JsValue::TRUE)).unwrap(),
+                    blob,
+                    "{name}: kept as loaded"
+                );
+            }
             for (k, p) in points.iter().enumerate().step_by(97) {
                 let one = built
                     .winding_number(&floats_js(&p.to_array()), None)

@@ -109,6 +109,23 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   splitBack.free();
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
+  // With the winding-number expansions (format version 6, 112 bytes per node): a load keeps
+  // them and answers as the built mesh; without asking, a fresh BVH's blob holds none.
+  {
+    const fresh = MeshBvh.build(positions, indices);
+    const plain = fresh.toBlob();
+    const withWinding = fresh.toBlob(null, true);
+    assert.equal(withWinding[4], 6, 'format version 6');
+    assert.ok(withWinding.length > plain.length);
+    const loaded = MeshBvh.fromBlob(withWinding);
+    for (const p of [[0.25, 0.5, 0.1], [3, 3, 3], above]) {
+      assert.equal(loaded.windingNumber(p), fresh.windingNumber(p));
+      assert.deepEqual(loaded.signedDistance(p), fresh.signedDistance(p));
+    }
+    assert.deepEqual(loaded.toBlob(null, true), withWinding, 'kept as loaded');
+    fresh.free();
+    loaded.free();
+  }
   // Built or loaded, a BVH walks eight-wide nodes (256 bytes each); four-wide ones are 128
   // bytes each, compact ones half of those; each the same blob and answers; twice is once. The
   // planned eight-wide tree can take fewer bytes in all than the four-wide one (here 26,880
@@ -208,6 +225,8 @@ const cases = [
   [() => MeshBvh.build(positions, indices, { spatialSplits: true, structure: 'grid' }), TypeError, /options.spatialSplits applies to the BVH/],
   [() => bvh.toBlob(5), TypeError, /layout must be a string/],
   [() => bvh.toBlob('zip'), RangeError, /layout must be one of "indexed", "packed", "omitted"/],
+  [() => bvh.toBlob(null, 'yes'), TypeError, /winding must be a boolean, got/],
+  [() => MeshBvh.build(positions, indices, { structure: 'octree' }).toBlob(null, true), TypeError, /winding applies to a BVH/],
   [() => bvh.levelBoxes(), TypeError, /level must be a whole number/],
   [() => bvh.levelBoxes('1'), TypeError, /level must be a number/],
   [() => bvh.levelBoxes(-1), RangeError, /level must be a whole number/],

@@ -152,7 +152,7 @@ impl fmt::Display for DistanceDigest {
 /// [`GoldenError::MeshMissing`] when no line names `mesh`, [`GoldenError::Malformed`] for a
 /// line that names it without both fields.
 pub fn find_distance_golden(text: &str, mesh: &str) -> Result<DistanceDigest, GoldenError> {
-    for (number, line) in text.lines().enumerate() {
+    for (number, line) in crate::golden::numbered_lines(text) {
         let mut fields = line.split_ascii_whitespace();
         let Some(name) = fields.next() else { continue };
         if name.starts_with('#') || name != mesh {
@@ -170,12 +170,12 @@ pub fn find_distance_golden(text: &str, mesh: &str) -> Result<DistanceDigest, Go
             match parsed {
                 Some(("placements", v)) => placements = u32::try_from(v).ok(),
                 Some(("digest", v)) => digest = Some(v),
-                _ => return Err(GoldenError::Malformed { line: number + 1 }),
+                _ => return Err(GoldenError::Malformed { line: number }),
             }
         }
         return match (placements, digest) {
             (Some(placements), Some(digest)) => Ok(DistanceDigest { placements, digest }),
-            _ => Err(GoldenError::Malformed { line: number + 1 }),
+            _ => Err(GoldenError::Malformed { line: number }),
         };
     }
     Err(GoldenError::MeshMissing)

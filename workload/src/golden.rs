@@ -170,15 +170,37 @@ fn parse_fields<'a>(
 /// [`GoldenError::MeshMissing`] when no line names it, [`GoldenError::Malformed`] when its line
 /// does not parse.
 pub fn find_golden<'a>(text: &'a str, mesh: &str) -> Result<GoldenEntry<'a>, GoldenError> {
-    for (number, line) in text.lines().enumerate() {
+    for (number, line) in numbered_lines(text) {
         let mut fields = line.split_ascii_whitespace();
         let Some(name) = fields.next() else { continue };
         if name.starts_with('#') || name != mesh {
             continue;
         }
-        return parse_fields(name, fields).ok_or(GoldenError::Malformed { line: number + 1 });
+        return parse_fields(name, fields).ok_or(GoldenError::Malformed { line: number });
     }
     Err(GoldenError::MeshMissing)
+}
+
+/// The lines of `text` with their numbers from 1, without the `\n` or `\r\n` that ends them
+/// (as `str::lines`, which, shared by two callers and so not inlined, keeps a slice-index panic
+/// path the firmware's panic-free proof refuses; this finds line ends byte by byte).
+pub(crate) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    let mut rest = text;
+    let mut number = 0;
+    core::iter::from_fn(move || {
+        if rest.is_empty() {
+            return None;
+        }
+        let end = rest.bytes().position(|b| b == b'\n').unwrap_or(rest.len());
+        let line = rest.get(..end).unwrap_or_default();
+        rest = rest.get(end + 1..).unwrap_or_default();
+        number += 1;
+        let line = match line.as_bytes().last() {
+            Some(b'\r') => line.get(..line.len() - 1).unwrap_or_default(),
+            _ => line,
+        };
+        Some((number, line))
+    })
 }
 
 /// Writes the entry as one golden-file line (without the newline), which [`find_golden`]

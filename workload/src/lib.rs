@@ -40,7 +40,7 @@ pub use golden::{GoldenEntry, GoldenError, find_golden};
 pub use parity::{ParityDigest, ParityReport, ParitySpec, ParityTarget, run_parity};
 pub use remesh_golden::{MeshDigest, RemeshGolden, find_remesh_golden};
 pub use rng::SplitMix64;
-pub use winding_golden::{WINDING_SEED, WindingDigest, find_winding_golden};
+pub use winding_golden::{WINDING_SEED, WindingDigest, WindingDigester, find_winding_golden};
 
 /// Bounding-box centre `c`, half-diagonal `r` and the box of a point set.
 #[must_use]

@@ -88,13 +88,13 @@ pub struct RemeshGolden<'a> {
 // build and costs it flash.
 #[inline]
 pub fn find_remesh_golden<'a>(text: &'a str, mesh: &str) -> Result<RemeshGolden<'a>, GoldenError> {
-    for (number, line) in text.lines().enumerate() {
+    for (number, line) in crate::golden::numbered_lines(text) {
         let mut fields = line.split_ascii_whitespace();
         let Some(name) = fields.next() else { continue };
         if name.starts_with('#') || name != mesh {
             continue;
         }
-        return parse(name, fields).ok_or(GoldenError::Malformed { line: number + 1 });
+        return parse(name, fields).ok_or(GoldenError::Malformed { line: number });
     }
     Err(GoldenError::MeshMissing)
 }

@@ -6,14 +6,15 @@ use serde::ser::{Serialize, SerializeTupleVariant, Serializer};
 use super::checksum::mesh_checksum;
 use super::format::{
     BASE_VERSION, CHECKSUM_BYTES, FixedU32, HeaderCounts, HeaderSeal, MAGIC, MeshLayout,
-    NodeRecord, PLANNED_VERSION, SPATIAL_VERSION, TriangleRecord,
+    NodeRecord, PLANNED_VERSION, SPATIAL_VERSION, TriangleRecord, WINDING_VERSION, WindingRecord,
 };
-use super::source::BlobSource;
+use super::source::{BlobSource, BvhSections};
 use super::structure_config::WireConfig;
 use crate::advanced::CollapseRoles;
 use crate::bvh::{BuildConfig, Bvh};
 use crate::cells::TwoWordNode;
 use crate::error::{BlobError, BlobSection};
+use crate::inside::WindingNode;
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::SplitRefs;
@@ -33,6 +34,23 @@ pub struct EncodeOptions<'r> {
     /// planning it. `None` (the default) writes the blob at an older version, whose loaders plan
     /// the collapse themselves. Queries answer the same either way.
     pub collapse_roles: Option<CollapseRoles<'r>>,
+    /// The tree's winding-number expansions, one per node, exactly as
+    /// [`WindingTree::build`](crate::inside::WindingTree::build) wrote them for this tree and
+    /// mesh (checked), stored (format version 6) so that a view answers winding numbers,
+    /// containment and signed distance in place
+    /// ([`BlobView::winding_tree`](super::BlobView::winding_tree)). 112 bytes per node.
+    /// `None` (the default) writes no expansions.
+    pub winding: Option<&'r [WindingNode]>,
+}
+
+impl<'r> EncodeOptions<'r> {
+    /// The optional BVH sections these options ask for.
+    const fn sections(&self) -> BvhSections<'r> {
+        BvhSections {
+            collapse_roles: self.collapse_roles,
+            winding: self.winding,
+        }
+    }
 }
 
 /// The exact number of bytes [`encode_into`] writes for this tree, mesh and options.
@@ -45,7 +63,7 @@ pub fn encoded_len(
     options: &EncodeOptions,
 ) -> Result<usize, BlobError> {
     structure_encoded_len(
-        &BlobSource::Bvh(bvh, options.config, options.collapse_roles),
+        &BlobSource::Bvh(bvh, options.config, options.sections()),
         mesh,
         options.mesh,
     )
@@ -63,7 +81,7 @@ pub fn encode_into(
     out: &mut [u8],
 ) -> Result<usize, BlobError> {
     encode_structure_into(
-        &BlobSource::Bvh(bvh, options.config, options.collapse_roles),
+        &BlobSource::Bvh(bvh, options.config, options.sections()),
         mesh,
         options.mesh,
         out,
@@ -218,7 +236,8 @@ fn header(
 /// The version a blob of `source` is written at: the oldest that holds it.
 fn version_of(source: &BlobSource<'_>, mesh: &ValidMesh<'_>) -> u16 {
     match source {
-        BlobSource::Bvh(_, _, Some(_)) => PLANNED_VERSION,
+        BlobSource::Bvh(_, _, sections) if sections.winding.is_some() => WINDING_VERSION,
+        BlobSource::Bvh(_, _, sections) if sections.collapse_roles.is_some() => PLANNED_VERSION,
         _ if spatial_table(source, mesh).is_some() => SPATIAL_VERSION,
         _ => BASE_VERSION,
     }
@@ -250,11 +269,18 @@ impl Serialize for Payload<'_, '_> {
         use serde::ser::SerializeTuple;
         let version = version_of(self.source, self.mesh);
         let splits = version >= SPATIAL_VERSION;
-        let roles = match self.source {
-            BlobSource::Bvh(_, _, Some(roles)) => Some(roles.bytes()),
-            _ => None,
+        let (roles, winding) = match self.source {
+            BlobSource::Bvh(_, _, sections) => {
+                (sections.collapse_roles.map(|r| r.bytes()), sections.winding)
+            }
+            _ => (None, None),
         };
-        let mut t = s.serialize_tuple(3 + usize::from(splits) + usize::from(roles.is_some()))?;
+        // Version 5 holds the roles; version 6 holds both sections, each possibly empty.
+        let planned = version >= PLANNED_VERSION;
+        let expansions = version >= WINDING_VERSION;
+        let mut t = s.serialize_tuple(
+            3 + usize::from(splits) + usize::from(planned) + usize::from(expansions),
+        )?;
         match self.source {
             BlobSource::Bvh(bvh, ..) => {
                 t.serialize_element(&Seq(bvh.nodes().iter().map(NodeRecord::from)))?;
@@ -271,8 +297,12 @@ impl Serialize for Payload<'_, '_> {
             let table = spatial_table(self.source, self.mesh).unwrap_or(SplitRefs::NONE);
             t.serialize_element(&Seq(table.iter().map(|r| r.to_le_bytes())))?;
         }
-        if let Some(roles) = roles {
-            t.serialize_element(&Seq(roles.iter()))?;
+        if planned {
+            t.serialize_element(&Seq(roles.unwrap_or_default().iter()))?;
+        }
+        if expansions {
+            let nodes = winding.unwrap_or_default();
+            t.serialize_element(&Seq(nodes.iter().map(WindingRecord)))?;
         }
         t.serialize_element(&MeshSection {
             order,

@@ -13,7 +13,9 @@ pub use crate::structure_kind::StructureKind;
 /// The first four bytes of every blob.
 pub const MAGIC: [u8; 4] = *b"MSHQ";
 
-/// The newest format version this build writes and reads. Version 5 added a BVH's collapse
+/// The newest format version this build writes and reads. Version 6 added a BVH's
+/// winding-number expansions (one [`WindingNode`](crate::inside::WindingNode) per node, so that
+/// winding numbers, containment and signed distance run from the blob in place). Version 5 added a BVH's collapse
 /// plan (the role of every node in its eight-wide collapse, so that a loader need not plan it
 /// again), and its BVH header always counts leaf slots and split references; version 4 BVHs
 /// built with spatial splits (more leaf slots than triangles, and the table of split
@@ -21,8 +23,8 @@ pub const MAGIC: [u8; 4] = *b"MSHQ";
 /// version 2); version 2 the split strategy to the config. Blobs are written at the oldest
 /// version that can hold what they are given: version 5 for a BVH with its collapse roles,
 /// version 4 for a BVH with spatial splits without them, version 3 otherwise, byte for byte as
-/// before versions 4 and 5 existed. Version 1 and 2 blobs (always a BVH) are still read.
-pub const FORMAT_VERSION: u16 = 5;
+/// before versions 4 and 5 existed; version 6 only for a BVH with its expansions. Version 1 and 2 blobs (always a BVH) are still read.
+pub const FORMAT_VERSION: u16 = 6;
 
 /// The first version whose BVH header counts slots and split references (version 4: spatial
 /// splits), and whose payload has the split references after the order.
@@ -30,6 +32,10 @@ pub(crate) const SPATIAL_VERSION: u16 = 4;
 
 /// The first version whose BVH payload holds the collapse roles, after the split references.
 pub(crate) const PLANNED_VERSION: u16 = 5;
+
+/// The first version whose BVH payload has the winding-number expansions, after the collapse
+/// roles; in it both are sequences that may be empty.
+pub(crate) const WINDING_VERSION: u16 = 6;
 
 /// The version of blobs that need nothing newer: every blob but a BVH with spatial splits or
 /// collapse roles.
@@ -56,6 +62,8 @@ pub(crate) const PACKED_BYTES: usize = 36;
 /// Bytes of one word of a cell structure's arrays (node halves, cell offsets, references).
 #[cfg(feature = "blob-cells")]
 pub(crate) const WORD_BYTES: usize = 4;
+/// Bytes of one winding-number expansion: its 28 `f32`s in field order.
+pub(crate) const WINDING_BYTES: usize = 112;
 /// Bytes of the trailing header checksum.
 pub(crate) const CHECKSUM_BYTES: usize = 4;
 
@@ -316,4 +324,45 @@ pub(crate) fn u32x3_from_bytes(b: &[u8; 12]) -> [u32; 3] {
         u32::from_le_bytes([b0, b1, b2, b3]),
         u32::from_le_bytes([c0, c1, c2, c3]),
     ]
+}
+
+/// Decodes a winding-number expansion from its 112 bytes: 28 little-endian `f32`s, in the
+/// order of [`WindingNode`](crate::inside::WindingNode)'s fields.
+#[cfg(feature = "blob-winding")]
+#[inline]
+pub(crate) fn winding_from_bytes(b: &[u8; WINDING_BYTES]) -> crate::inside::WindingNode {
+    let (words, _) = b.as_chunks::<4>();
+    let at = |i: usize| words.get(i).map_or(0.0, |w| f32::from_le_bytes(*w));
+    crate::inside::WindingNode {
+        centre: [at(0), at(1), at(2)],
+        radius: at(3),
+        normal: [at(4), at(5), at(6)],
+        area: at(7),
+        first: core::array::from_fn(|i| at(8 + i)),
+        second: core::array::from_fn(|i| at(15 + i)),
+    }
+}
+
+/// A winding-number expansion as written: its 28 `f32`s in the order [`winding_from_bytes`]
+/// reads them (a tuple: no length).
+pub(crate) struct WindingRecord<'n>(pub &'n crate::inside::WindingNode);
+
+impl Serialize for WindingRecord<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeTuple;
+        let n = self.0;
+        let mut t = s.serialize_tuple(WINDING_BYTES / 4)?;
+        for x in n
+            .centre
+            .iter()
+            .chain([&n.radius])
+            .chain(&n.normal)
+            .chain([&n.area])
+            .chain(&n.first)
+            .chain(&n.second)
+        {
+            t.serialize_element(x)?;
+        }
+        t.end()
+    }
 }

@@ -21,7 +21,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! # Format (version 5)
+//! # Format (version 6)
 //!
 //! One [postcard](https://docs.rs/postcard) message, fields back to back. *varint* is postcard's
 //! LEB128-style unsigned varint; *fixed* integers are little-endian of the stated width; every
@@ -31,7 +31,7 @@
 //! | field | encoding | meaning |
 //! |---|---|---|
 //! | magic | 4 bytes | `MSHQ` |
-//! | version | varint `u16` | 5 ([`FORMAT_VERSION`](crate::advanced::FORMAT_VERSION)) for a BVH with its collapse roles (what [`MeshBvh::to_blob`](crate::MeshBvh::to_blob) and the tools write), 4 for a BVH with spatial splits without them, 3 for every other blob; read before anything else |
+//! | version | varint `u16` | 6 ([`FORMAT_VERSION`](crate::advanced::FORMAT_VERSION)) for a BVH with its winding-number expansions, 5 for a BVH with its collapse roles only (what [`MeshBvh::to_blob`](crate::MeshBvh::to_blob) and the tools write by default), 4 for a BVH with spatial splits without them, 3 for every other blob; read before anything else |
 //! | kind | varint `u32` | [`StructureKind`] tag: 0 BVH, 1 k-d tree, 2 octree, 3 grid |
 //! | mesh | varint `u32` | [`MeshLayout`] tag: 0 indexed, 1 packed, 2 omitted |
 //! | triangle_count, vertex_count, node_count, depth | varint `u32` each | counts of the mesh and structure (node_count: a grid's cells; depth: see [`BlobHeader::depth`]) |
@@ -43,7 +43,8 @@
 //! | nodes | BVH: sequence of 32-byte records; others: sequence of fixed `u32` | BVH: [`BvhNode`](crate::bvh::BvhNode) (min `f32`×3, first fixed `u32`, max `f32`×3, count fixed `u32`); k-d tree and octree: two words per node ([`KdNode`](crate::kdtree::KdNode), [`OctreeNode`](crate::octree::OctreeNode) `a`, `b`); grid: the cell offsets (cells + 1) |
 //! | order | sequence of fixed `u32` | leaf slot → input triangle index: a BVH's order (one per triangle; with spatial splits, the header's slot count), the references of the others (header `config`'s count) |
 //! | split references | versions 4 and 5: sequence of 32-byte records | a BVH with spatial splits: [`SplitRef`](crate::query::SplitRef)s sorted by triangle then slot (triangle and slot fixed `u32`, the leaf's box `f32`×6); empty without spatial splits |
-//! | collapse roles | version 5: sequence of bytes, one per four nodes | a BVH's eight-wide collapse ([`CollapseRoles`](crate::advanced::CollapseRoles)): node `i`'s role in bits `2 (i mod 4)` and up of byte `i / 4`: 0 none, 1 starts a wide node, 2 a leaf merged from its subtree |
+//! | collapse roles | versions 5 and 6: sequence of bytes, one per four nodes (version 6: or none) | a BVH's eight-wide collapse ([`CollapseRoles`](crate::advanced::CollapseRoles)): node `i`'s role in bits `2 (i mod 4)` and up of byte `i / 4`: 0 none, 1 starts a wide node, 2 a leaf merged from its subtree |
+//! | winding expansions | version 6: sequence of 112-byte records, one per node, or none | a BVH's winding-number expansions ([`WindingNode`](crate::inside::WindingNode): its 28 `f32`s in field order: centre ×3, radius, normal ×3, area, first ×7, second ×13), read with the `blob-winding` feature; a load works them out again from the tree and mesh and refuses any that differ by a bit ([`BlobError::BadWindingNodes`](crate::error::BlobError::BadWindingNodes)) |
 //! | mesh section | varint tag (= mesh), then by layout | indexed: positions (sequence of `f32`×3) and triangles (sequence of fixed `u32`×3); packed: sequence of 36-byte corner triples, one per order entry; omitted: nothing |
 //!
 //! The config by kind: BVH: split tag (0 SAH, 1 centre), then varint `u32` × 3 (bins,
@@ -62,7 +63,12 @@
 //! record increments [`FORMAT_VERSION`](crate::advanced::FORMAT_VERSION); a reader refuses versions outside
 //! [`OLDEST_READABLE_VERSION`](crate::advanced::OLDEST_READABLE_VERSION)`..=`[`NEWEST_READABLE_VERSION`](crate::advanced::NEWEST_READABLE_VERSION) with
 //! [`BlobError::UnsupportedVersion`](crate::error::BlobError::UnsupportedVersion), never guessing.
-//! Blobs are written at the oldest version that holds them. Version 5 added a BVH's collapse
+//! Blobs are written at the oldest version that holds them. Version 6 added a BVH's
+//! winding-number expansions ([`EncodeOptions::winding`]; [`MeshBvh::to_blob`](crate::MeshBvh::to_blob)
+//! stores them once [prepared](crate::MeshBvh::with_winding_numbers)), so that
+//! `BlobView::winding_tree` answers containment and signed distance in place; in it the
+//! collapse roles may be absent too. Without the `blob-winding` feature the expansions are
+//! skipped (their count checked, their bytes not kept). Version 5 added a BVH's collapse
 //! roles, so that loaders collapse its tree eight-wide with one checked walk instead of planning
 //! it ([`EncodeOptions::collapse_roles`]; every BVH blob [`MeshBvh::to_blob`](crate::MeshBvh::to_blob)
 //! writes). Version 4 added BVHs built with spatial splits (read with the `blob-spatial`
@@ -95,6 +101,8 @@ mod structure;
 mod structure_config;
 mod tree;
 mod view;
+#[cfg(feature = "blob-winding")]
+mod winding;
 
 #[cfg(feature = "alloc")]
 pub(crate) use boxes_deferred::BoxesUnchecked;
@@ -104,10 +112,12 @@ pub use encode::{
 pub use format::{MeshLayout, StructureKind};
 pub(crate) use header::BlobHeader;
 pub use mesh::BlobMesh;
-pub use source::BlobSource;
+pub use source::{BlobSource, BvhSections};
 pub use structure::BlobStructure;
 pub use structure_config::StructureConfig;
 pub use tree::BlobTree;
 pub use view::BlobView;
 #[cfg(feature = "alloc")]
 pub(crate) use view::same_bounds;
+#[cfg(feature = "blob-winding")]
+pub use winding::{BlobWindingNodes, BlobWindingTree};

@@ -73,7 +73,23 @@ impl<'a> Reader<'a> {
         expected: u32,
         section: BlobSection,
     ) -> Result<&'a [[u8; N]], BlobError> {
-        let (records, _) = self.record_bytes(expected, N, section)?.as_chunks::<N>();
+        let (records, _) = self
+            .record_bytes(expected, N, false, section)?
+            .as_chunks::<N>();
+        Ok(records)
+    }
+
+    /// [`records`](Self::records), where an `optional` sequence may also be empty.
+    #[inline(always)]
+    pub(crate) fn records_maybe<const N: usize>(
+        &mut self,
+        expected: u32,
+        optional: bool,
+        section: BlobSection,
+    ) -> Result<&'a [[u8; N]], BlobError> {
+        let (records, _) = self
+            .record_bytes(expected, N, optional, section)?
+            .as_chunks::<N>();
         Ok(records)
     }
 
@@ -84,10 +100,11 @@ impl<'a> Reader<'a> {
         &mut self,
         expected: u32,
         size: usize,
+        optional: bool,
         section: BlobSection,
     ) -> Result<&'a [u8], BlobError> {
         let found: u32 = self.value(section)?;
-        if found != expected {
+        if found != expected && !(optional && found == 0) {
             return Err(BlobError::CountMismatch {
                 section,
                 expected: expected.into(),

@@ -5,6 +5,7 @@ use crate::advanced::CollapseRoles;
 use crate::bvh::{BuildConfig, Bvh};
 use crate::error::BlobError;
 use crate::grid::{Grid, GridConfig};
+use crate::inside::{WindingNode, WindingTree};
 use crate::kdtree::{KdConfig, KdNode, KdTree};
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
@@ -15,16 +16,25 @@ use crate::structure_kind::StructureKind;
 /// [`encode_structure_into`](super::encode_structure_into) writes it.
 #[derive(Clone, Copy, Debug)]
 pub enum BlobSource<'q> {
-    /// A BVH, with the roles of its nodes in its eight-wide collapse to store (format version
-    /// 5, see [`EncodeOptions::collapse_roles`](super::EncodeOptions::collapse_roles)) or
-    /// `None`.
-    Bvh(&'q Bvh<'q>, BuildConfig, Option<CollapseRoles<'q>>),
+    /// A BVH, with the optional sections to store beside it.
+    Bvh(&'q Bvh<'q>, BuildConfig, BvhSections<'q>),
     /// A k-d tree.
     KdTree(&'q KdTree<&'q [KdNode], &'q [u32]>, KdConfig),
     /// An octree.
     Octree(&'q Octree<&'q [OctreeNode], &'q [u32]>, OctreeConfig),
     /// A uniform grid (its resolution is recorded with the config).
     Grid(&'q Grid<&'q [u32]>, GridConfig),
+}
+
+/// What a BVH blob may hold besides the tree and mesh.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BvhSections<'q> {
+    /// The roles of the tree's nodes in its eight-wide collapse (format version 5, see
+    /// [`EncodeOptions::collapse_roles`](super::EncodeOptions::collapse_roles)), or `None`.
+    pub collapse_roles: Option<CollapseRoles<'q>>,
+    /// The winding-number expansions (format version 6, see
+    /// [`EncodeOptions::winding`](super::EncodeOptions::winding)), or `None`.
+    pub winding: Option<&'q [WindingNode]>,
 }
 
 impl BlobSource<'_> {
@@ -97,10 +107,15 @@ impl BlobSource<'_> {
     pub(super) fn check(&self, mesh: &ValidMesh<'_>) -> Result<(), BlobError> {
         let n = mesh.triangle_count();
         match self {
-            Self::Bvh(b, _, roles) => {
+            Self::Bvh(b, _, sections) => {
                 b.check(mesh)?;
-                if let Some(roles) = roles {
+                if let Some(roles) = sections.collapse_roles {
                     roles.check(*b).map_err(|()| BlobError::BadCollapsePlan)?;
+                }
+                if let Some(nodes) = sections.winding
+                    && !WindingTree::expansions_match(*b, mesh, &nodes)
+                {
+                    return Err(BlobError::BadWindingNodes);
                 }
                 super::split_check::check_slots(*b, b.order().iter().copied(), n)?;
                 crate::bvh::split_coverage::check_split_coverage(*b, mesh)?;

@@ -1,6 +1,6 @@
 //! The tree of a blob, read in place from its bytes.
 
-use super::format::{NODE_BYTES, ORDER_BYTES, node_from_bytes};
+use super::format::{NODE_BYTES, ORDER_BYTES, WINDING_BYTES, node_from_bytes};
 use crate::advanced::CollapseRoles;
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::query::LeafTriangleIds;
@@ -22,8 +22,12 @@ pub struct BlobTree<'a> {
     /// without the feature, where no blob read has any.
     #[cfg(feature = "blob-spatial")]
     pub(super) splits: &'a [[u8; SPLIT_REF_BYTES]],
-    /// The collapse roles (version 5; empty before).
+    /// The collapse roles (version 5 or 6; empty before, or when not stored).
     pub(super) roles: &'a [u8],
+    /// The winding-number expansions (version 6, when stored and read with the
+    /// `blob-winding` feature; empty otherwise).
+    #[cfg_attr(not(feature = "blob-winding"), allow(dead_code))]
+    pub(super) winding: &'a [[u8; WINDING_BYTES]],
 }
 
 impl<'a> BlobTree<'a> {

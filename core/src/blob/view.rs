@@ -6,7 +6,7 @@ use super::checksum::mesh_checksum;
 use super::encode::blob_checksum;
 use super::format::{
     MeshLayout, NODE_BYTES, ORDER_BYTES, PACKED_BYTES, PLANNED_VERSION, POSITION_BYTES,
-    SPATIAL_VERSION, TRIANGLE_BYTES,
+    SPATIAL_VERSION, TRIANGLE_BYTES, WINDING_BYTES, WINDING_VERSION,
 };
 use super::mesh::{check_indexed, check_packed};
 #[cfg(feature = "blob-cells")]
@@ -229,6 +229,12 @@ fn cut(bytes: &[u8], header: BlobHeader) -> Result<Sections<'_>, BlobError> {
             #[cfg(feature = "blob-spatial")]
             splits,
             roles: role_bytes(&header, &mut r)?,
+            // Cut either way (the counts must hold); kept only where they are read.
+            winding: if cfg!(feature = "blob-winding") {
+                winding_records(&header, &mut r)?
+            } else {
+                winding_records(&header, &mut r).map(|_| &[][..])?
+            },
         })
     } else {
         cell_arrays(&header, &mut r)?
@@ -278,14 +284,32 @@ fn split_records<'a>(
 }
 
 /// A BVH's collapse roles, after the split references from version 5 on: one byte per four
-/// nodes ([`CollapseRoles`](crate::advanced::CollapseRoles)). Empty before version 5.
+/// nodes ([`CollapseRoles`](crate::advanced::CollapseRoles)); in version 6 possibly none.
+/// Empty before version 5.
 #[inline(always)]
 fn role_bytes<'a>(header: &BlobHeader, r: &mut Reader<'a>) -> Result<&'a [u8], BlobError> {
     if header.version >= PLANNED_VERSION {
         let len = CollapseRoles::len_for(header.node_count as usize);
         let len = u32::try_from(len).map_err(|_| BlobError::TooLarge)?;
-        Ok(r.records::<1>(len, BlobSection::CollapsePlan)?
-            .as_flattened())
+        let optional = header.version >= WINDING_VERSION;
+        Ok(
+            r.records_maybe::<1>(len, optional, BlobSection::CollapsePlan)?
+                .as_flattened(),
+        )
+    } else {
+        Ok(&[])
+    }
+}
+
+/// A BVH's winding-number expansions, after the collapse roles in version 6: none, or one
+/// 112-byte record per node. Empty before version 6.
+#[inline(always)]
+fn winding_records<'a>(
+    header: &BlobHeader,
+    r: &mut Reader<'a>,
+) -> Result<&'a [[u8; WINDING_BYTES]], BlobError> {
+    if header.version >= WINDING_VERSION {
+        r.records_maybe::<WINDING_BYTES>(header.node_count, true, BlobSection::WindingNodes)
     } else {
         Ok(&[])
     }
@@ -370,6 +394,10 @@ fn check_structure<'a>(
             }
             let root = tree.node(0).map_or(Aabb::EMPTY, |n| n.aabb());
             same_bounds(&root, &header.bounds)?;
+            #[cfg(feature = "blob-winding")]
+            if let Some(mesh) = mesh {
+                super::winding::check_winding(&tree, mesh)?;
+            }
             (BlobStructure::Bvh(tree), tree.depth)
         }
         #[cfg(feature = "blob-cells")]

@@ -29,6 +29,8 @@ pub enum BlobSection {
     SplitRefs,
     /// A BVH's collapse roles (version 5).
     CollapsePlan,
+    /// A BVH's winding-number expansions (version 6).
+    WindingNodes,
 }
 
 impl fmt::Display for BlobSection {
@@ -44,6 +46,7 @@ impl fmt::Display for BlobSection {
             Self::References => "references",
             Self::SplitRefs => "split references",
             Self::CollapsePlan => "collapse plan",
+            Self::WindingNodes => "winding-number expansions",
         })
     }
 }
@@ -150,6 +153,11 @@ pub enum BlobError {
     /// (see [`CollapseRoles::check`](crate::advanced::CollapseRoles::check)). No encoder writes
     /// that. Fix: bake again.
     BadCollapsePlan,
+    /// A BVH's winding-number expansions (version 6) are not the ones
+    /// [`WindingTree::build`](crate::inside::WindingTree::build) works out for its tree and
+    /// mesh, bit for bit (the load works them out again to compare). No encoder writes that.
+    /// Fix: bake again.
+    BadWindingNodes,
     /// A k-d tree, octree or grid cell that triangle `tri` touches does not list it, so
     /// queries would miss it there, or (a packed blob, which stores corners per reference)
     /// lists it with other corners (a triangle outside the header's bounds is
@@ -242,6 +250,9 @@ impl fmt::Display for BlobError {
             Self::BadCollapsePlan => {
                 f.write_str("the collapse plan does not describe an eight-wide collapse of the tree")
             }
+            Self::BadWindingNodes => f.write_str(
+                "the winding-number expansions are not the ones the tree and mesh give",
+            ),
             Self::UnlistedTriangle { tri } => {
                 write!(f, "triangle {tri} touches a cell that does not list it")
             }

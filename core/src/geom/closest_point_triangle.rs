@@ -59,23 +59,22 @@ pub fn closest_point_triangle_2d(
 
 /// The Voronoi-region walk for a non-degenerate triangle. Returns `(point, u, v, feature)`.
 ///
-/// Inlined into the hot scalar loops where code size is free; on bare metal one copy is
-/// shared, for the firmware's flash budget. (Inlining never changes a result: no operation is
+/// Inlined into the hot scalar loops where code size is free; on bare metal one copy of the walk
+/// is shared, for the firmware's flash budget. (Inlining never changes a result: no operation is
 /// fused or reordered.)
 ///
 /// Works at any size: where the walk's products of four lengths would overflow or underflow
 /// `f32` (see [`in_range`]), it runs on the triangle and point scaled by a power of two and
 /// scales the point back, which rounds nothing, so the answer is the one an `f32` with an
 /// unbounded exponent would give.
-#[cfg_attr(not(target_os = "none"), inline(always))]
-#[cfg_attr(target_os = "none", inline(never))]
+#[inline(always)]
 pub(crate) fn closest_point_regions(
     p: Vec3,
     a: Vec3,
     b: Vec3,
     c: Vec3,
 ) -> (Vec3, f32, f32, TriangleFeature) {
-    regions::<true>(p, a, b, c)
+    regions(p, a, b, c, true)
 }
 
 /// Whether the walk's products stay within `f32` for a triangle whose longest edge squared is
@@ -110,18 +109,15 @@ fn rescaled(
     reach: f32,
 ) -> (Vec3, f32, f32, TriangleFeature) {
     let s = unit_scale_of_squares(longest, reach.max(longest));
-    let (q, u, v, feature) = regions::<false>(p * s, a * s, b * s, c * s);
+    let (q, u, v, feature) = regions(p * s, a * s, b * s, c * s, false);
     (q * (1.0 / s), u, v, feature)
 }
 
-/// The walk itself; `CHECKED` sends a triangle out of [`in_range`] to [`rescaled`].
-#[inline(always)]
-fn regions<const CHECKED: bool>(
-    p: Vec3,
-    a: Vec3,
-    b: Vec3,
-    c: Vec3,
-) -> (Vec3, f32, f32, TriangleFeature) {
+/// The walk itself; `checked` sends a triangle out of [`in_range`] to [`rescaled`], which runs
+/// the walk once more, unchecked (a flag, not a type parameter: bare metal keeps one copy).
+#[cfg_attr(not(target_os = "none"), inline(always))]
+#[cfg_attr(target_os = "none", inline(never))]
+fn regions(p: Vec3, a: Vec3, b: Vec3, c: Vec3, checked: bool) -> (Vec3, f32, f32, TriangleFeature) {
     let ab = b - a;
     let ac = c - a;
     let ap = p - a;
@@ -151,7 +147,7 @@ fn regions<const CHECKED: bool>(
     let f = d5 - d6;
     // `d1 − d3`, `d2 − d6` and `e + f` are the edges' squared lengths.
     let longest = (d1 - d3).max(d2 - d6).max(e + f);
-    if CHECKED {
+    if checked {
         let reach = dot(ap, ap);
         if !in_range(longest, reach) {
             return rescaled(p, a, b, c, longest, reach);

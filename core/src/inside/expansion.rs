@@ -3,10 +3,9 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::bvh::{Bvh, BvhNode};
+use crate::bvh::{BvhNode, TreeArrays};
 use crate::math::{Triangle, dot};
-use crate::mesh::ValidMesh;
-use crate::query::SplitRefs;
+use crate::query::{LeafTriangles, SplitRefs};
 
 /// What a BVH node's triangles look like from far away: the winding number's expansion to
 /// second order about an area-weighted centre (Barill et al. 2018), in the form its evaluation
@@ -192,30 +191,30 @@ pub(super) fn counts_here(splits: &SplitRefs<'_>, slot: usize, tri: u32) -> bool
 }
 
 /// The triangles a leaf counts, by slot order, their corners multiplied by `scale` (a power of
-/// two: exactly).
-pub(super) fn leaf_triangles<'m>(
-    bvh: &Bvh<'m>,
-    mesh: ValidMesh<'m>,
+/// two: exactly), from any tree and triangle source (a tree in slices and its mesh, or a
+/// blob's tree and triangles read in place).
+pub(super) fn leaf_triangles<'m, T: TreeArrays + ?Sized, S: LeafTriangles + ?Sized>(
+    tree: &'m T,
+    triangles: &'m S,
     node: &BvhNode,
     scale: f32,
 ) -> impl Iterator<Item = Triangle> + Clone + 'm {
     let (first, count) = (node.first as usize, node.count as usize);
-    let order = bvh.order();
-    let splits = bvh.split_refs();
-    order
-        .get(first..first.saturating_add(count))
-        .unwrap_or_default()
-        .iter()
-        .enumerate()
-        .filter(move |&(k, &tri)| counts_here(&splits, first + k, tri))
-        .filter_map(move |(_, &tri)| mesh.triangle(tri))
+    let splits = tree.split_refs();
+    tree.leaf_triangles(first, count)
+        .into_iter()
+        .flatten()
+        .filter(move |&(slot, tri)| counts_here(&splits, slot, tri))
+        .filter_map(move |(slot, tri)| triangles.corners(slot, tri))
         .map(move |t| Triangle::new(t.a * scale, t.b * scale, t.c * scale))
 }
 
-/// The power of two nearest above `1 / extent` for the largest side of `bounds` (1 for an empty
-/// or flat-to-a-point box): multiplying by it is exact, and it brings the mesh to a size near 1,
-/// where the moments (up to the fourth power of a length) neither overflow nor underflow.
-pub(super) fn unit_scale(bounds: crate::math::Aabb) -> f32 {
+/// The power of two nearest above `1 / extent` for the largest side of the root box of `tree`
+/// (1 for an empty tree or one flat to a point): multiplying by it is exact, and it brings the
+/// mesh to a size near 1, where the moments (up to the fourth power of a length) neither
+/// overflow nor underflow.
+pub(super) fn unit_scale<T: TreeArrays + ?Sized>(tree: &T) -> f32 {
+    let bounds = tree.node(0).map_or(crate::math::Aabb::EMPTY, |n| n.aabb());
     crate::math::unit_scale((bounds.max - bounds.min).max_element())
 }
 

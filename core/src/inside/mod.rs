@@ -39,10 +39,12 @@
 
 mod accuracy;
 mod expansion;
+mod expansion_build;
 mod pseudo_normals;
 mod sample_grid;
 mod signed_distance;
 mod winding_batch;
+mod winding_nodes;
 mod winding_tree;
 mod winding_walk;
 
@@ -51,4 +53,5 @@ pub use expansion::WindingNode;
 pub use pseudo_normals::{EdgeEntry, PseudoNormalError, PseudoNormals};
 pub use sample_grid::SampleGrid;
 pub use signed_distance::SignedDistance;
+pub use winding_nodes::WindingNodes;
 pub use winding_tree::WindingTree;

@@ -2,9 +2,10 @@
 
 use glam::Vec3;
 
-use super::{WindingAccuracy, WindingTree};
+use super::{WindingAccuracy, WindingNodes, WindingTree};
+use crate::bvh::TreeArrays;
 use crate::math::ClosestPoint;
-use crate::query::{MeshQuery, Traverse};
+use crate::query::{LeafTriangles, MeshQuery, Traverse};
 
 /// A signed distance to a mesh ([`WindingTree::signed_distance`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,7 +37,7 @@ impl SignedDistance {
     }
 }
 
-impl WindingTree<'_> {
+impl<T: TreeArrays, S: LeafTriangles, E: WindingNodes> WindingTree<'_, T, S, E> {
     /// The distance from `point` to the mesh, negative inside: the closest point within
     /// `max_distance` ([`MeshQuery::closest_point`] on this tree, same point and bits), signed
     /// by the generalized winding number (inside when `|w| ≥ 1/2`), so the sign holds on open,
@@ -49,8 +50,10 @@ impl WindingTree<'_> {
         max_distance: f32,
         accuracy: WindingAccuracy,
     ) -> Option<SignedDistance> {
-        let mesh = self.mesh();
-        let closest = self.bvh().with(&mesh).closest_point(point, max_distance)?;
+        let closest = self
+            .tree()
+            .with(self.triangles())
+            .closest_point(point, max_distance)?;
         Some(SignedDistance::new(
             point,
             closest,

@@ -4,12 +4,14 @@
 use glam::Vec3;
 
 use super::winding_walk::{GROUPS, PACKET};
-use super::{SampleGrid, SignedDistance, WindingAccuracy, WindingTree};
+use super::{SampleGrid, SignedDistance, WindingAccuracy, WindingNodes, WindingTree};
+use crate::bvh::TreeArrays;
 use crate::error::BatchError;
+use crate::query::LeafTriangles;
 use crate::query::batch_order::{morton_order, query_index};
 use crate::query::{MeshQuery, closest_point_seeded};
 
-impl WindingTree<'_> {
+impl<T: TreeArrays, S: LeafTriangles, E: WindingNodes> WindingTree<'_, T, S, E> {
     /// [`WindingTree::winding_number`] of each point into `out[i]`, bit for bit. `keys` is
     /// scratch, one `u64` per point: the points are taken in Morton order, neighbours sharing
     /// one walk of the tree. Elements of `out` past `points.len()` are left alone.
@@ -101,7 +103,7 @@ fn grouped(lanes: [Vec3; PACKET]) -> [[Vec3; 4]; GROUPS] {
     groups
 }
 
-impl WindingTree<'_> {
+impl<T: TreeArrays, S: LeafTriangles, E: WindingNodes> WindingTree<'_, T, S, E> {
     /// The signed distance at every sample of `grid` into `out[index]` (x fastest; see
     /// [`SampleGrid`]), negative inside; samples farther than `band` from the surface get
     /// `±band` with their side's sign (`f32::INFINITY`: no band, every sample exact). Each

@@ -1,18 +1,19 @@
 //! [`WindingTree`]: a BVH with its expansions, answering winding numbers and containment.
 
+use core::marker::PhantomData;
+
 use glam::Vec3;
 
-use super::WindingAccuracy;
-use super::expansion::{
-    Moments, WindingNode, leaf_moments, leaf_triangles, merged_moments, unit_scale,
-};
-use crate::bvh::{Bvh, MAX_DEPTH};
+use super::expansion::{WindingNode, unit_scale};
+use super::expansion_build::for_each_expansion;
+use super::{WindingAccuracy, WindingNodes};
+use crate::bvh::{Bvh, TreeArrays};
 use crate::error::{BufferKind, BuildError};
-use crate::math::dot;
 use crate::mesh::ValidMesh;
+use crate::query::LeafTriangles;
 
-/// A BVH, its mesh and one [`WindingNode`] per tree node: the fast winding number of Barill et
-/// al. (2018) over memory the caller owns.
+/// A BVH, its triangles and one [`WindingNode`] per tree node: the fast winding number of
+/// Barill et al. (2018) over memory the caller owns.
 ///
 /// The generalized winding number of a point is the signed solid angle the mesh subtends there,
 /// over `4π`: 1 inside a closed mesh whose triangles face outwards, 0 outside, −1 inside one
@@ -20,13 +21,20 @@ use crate::mesh::ValidMesh;
 /// also on open, non-manifold and self-intersecting meshes. Far nodes are summed by their
 /// expansions ([`WindingAccuracy`]), near triangles exactly; the order of the sum is fixed, so
 /// every target gives the same bits.
+///
+/// The tree, triangles and expansions may live anywhere: `T` is the tree ([`Bvh`] in slices by
+/// default, or a blob's tree read in place), `S` its triangles (the mesh, or a blob's), `E` the
+/// expansions (a slice, or a blob's records). Made by [`WindingTree::build`],
+/// [`WindingTree::from_parts`] or [`BlobView::winding_tree`](crate::blob::BlobView::winding_tree);
+/// every kind answers with the same bits.
 #[derive(Clone, Copy, Debug)]
-pub struct WindingTree<'a> {
-    bvh: Bvh<'a>,
-    mesh: ValidMesh<'a>,
-    nodes: &'a [WindingNode],
+pub struct WindingTree<'a, T = Bvh<'a>, S = ValidMesh<'a>, E = &'a [WindingNode]> {
+    tree: T,
+    triangles: S,
+    nodes: E,
     /// The power of two the expansions' coordinates are multiplied by (see [`WindingNode`]).
     scale: f32,
+    life: PhantomData<&'a ()>,
 }
 
 impl<'a> WindingTree<'a> {
@@ -49,63 +57,15 @@ impl<'a> WindingTree<'a> {
             needed: count,
             got,
         })?;
-        let scale = unit_scale(bvh.bounds());
-        // Post order on fixed stacks: a node's full moments exist only until its parent
-        // merges them, so at most one per level waits (the tree is at most MAX_DEPTH deep).
-        let tree = bvh.nodes();
-        let mut work = [(0u32, false); 2 * MAX_DEPTH as usize + 2];
-        let mut done = [Moments::default(); MAX_DEPTH as usize + 2];
-        let (mut wp, mut dp) = (usize::from(count > 0), 0usize);
-        while wp > 0 {
-            wp -= 1;
-            let (index, merge) = work.get(wp).copied().unwrap_or_default();
-            let Some(node) = tree.get(index as usize) else {
-                continue;
-            };
-            let moments = if node.is_leaf() {
-                leaf_moments(leaf_triangles(&bvh, mesh, node, scale))
-            } else if !merge {
-                // Again after both children, which run left first.
-                for next in [
-                    (index, true),
-                    (node.first.wrapping_add(1), false),
-                    (node.first, false),
-                ] {
-                    if let Some(slot) = work.get_mut(wp) {
-                        *slot = next;
-                        wp += 1;
-                    }
-                }
-                continue;
-            } else {
-                dp = dp.saturating_sub(2);
-                let child = |k: usize| done.get(k).copied().unwrap_or_default();
-                let mut merged = merged_moments(&child(dp), &child(dp + 1));
-                // The children's balls bound the node loosely, more so each level up; the
-                // corners themselves give the radius the far test wants small.
-                merged.radius = merged.radius.min(subtree_radius(
-                    &bvh,
-                    mesh,
-                    index as usize,
-                    scale,
-                    merged.centre,
-                ));
-                merged
-            };
-            if let Some(slot) = nodes.get_mut(index as usize) {
-                *slot = WindingNode::of(&moments, moments.radius);
+        let scale = unit_scale(&bvh);
+        for_each_expansion(&bvh, &mesh, scale, |index, node| {
+            if let Some(slot) = nodes.get_mut(index) {
+                *slot = node;
             }
-            if let Some(slot) = done.get_mut(dp) {
-                *slot = moments;
-                dp += 1;
-            }
-        }
-        Ok(Self {
-            bvh,
-            mesh,
-            nodes,
-            scale,
-        })
+            true
+        });
+        let nodes: &'a [WindingNode] = nodes;
+        Ok(Self::over(bvh, mesh, nodes))
     }
 
     /// A view over expansions [`WindingTree::build`] wrote earlier for the same `bvh` and
@@ -125,19 +85,80 @@ impl<'a> WindingTree<'a> {
             needed: count,
             got: nodes.len(),
         })?;
-        let scale = unit_scale(bvh.bounds());
-        Ok(Self {
-            bvh,
-            mesh,
-            nodes,
-            scale,
-        })
+        Ok(Self::over(bvh, mesh, nodes))
     }
 
     /// The expansions, one per tree node, root first.
     #[must_use]
     pub const fn nodes(&self) -> &'a [WindingNode] {
         self.nodes
+    }
+
+    /// The tree.
+    #[must_use]
+    pub const fn bvh(&self) -> Bvh<'a> {
+        self.tree
+    }
+
+    /// The mesh.
+    #[must_use]
+    pub const fn mesh(&self) -> ValidMesh<'a> {
+        self.triangles
+    }
+}
+
+impl<'a, T: TreeArrays, S: LeafTriangles, E: WindingNodes> WindingTree<'a, T, S, E> {
+    /// The tree, triangles and expansions as given, with the scale worked out from the tree's
+    /// root box (the one [`WindingTree::build`] uses).
+    pub(crate) fn over(tree: T, triangles: S, nodes: E) -> Self {
+        let scale = unit_scale(&tree);
+        Self {
+            tree,
+            triangles,
+            nodes,
+            scale,
+            life: PhantomData,
+        }
+    }
+
+    /// Whether `nodes` are exactly the expansions [`WindingTree::build`] works out for `tree`
+    /// and `triangles`, bit for bit (how a blob's stored expansions are checked at load): one
+    /// bottom-up pass, `O(triangles × depth)`, no allocation.
+    #[cfg(feature = "blob")]
+    pub(crate) fn expansions_match(tree: &T, triangles: &S, nodes: &E) -> bool {
+        let bits = |n: &WindingNode| {
+            let [c0, c1, c2] = n.centre;
+            let [n0, n1, n2] = n.normal;
+            let head = [c0, c1, c2, n.radius, n0, n1, n2, n.area];
+            head.into_iter()
+                .chain(n.first)
+                .chain(n.second)
+                .map(f32::to_bits)
+        };
+        nodes.count() == tree.node_count()
+            && for_each_expansion(tree, triangles, unit_scale(tree), |index, built| {
+                nodes
+                    .expansion(index)
+                    .is_some_and(|stored| bits(&stored).eq(bits(&built)))
+            })
+    }
+
+    /// The expansions, wherever they are stored.
+    #[must_use]
+    pub const fn expansions(&self) -> &E {
+        &self.nodes
+    }
+
+    /// The tree, wherever it is stored.
+    #[must_use]
+    pub const fn tree(&self) -> &T {
+        &self.tree
+    }
+
+    /// The triangles, wherever they are stored.
+    #[must_use]
+    pub const fn triangles(&self) -> &S {
+        &self.triangles
     }
 
     /// The power of two the mesh's coordinates are multiplied by in the expansions: the one
@@ -147,18 +168,6 @@ impl<'a> WindingTree<'a> {
     #[must_use]
     pub const fn scale(&self) -> f32 {
         self.scale
-    }
-
-    /// The tree.
-    #[must_use]
-    pub const fn bvh(&self) -> Bvh<'a> {
-        self.bvh
-    }
-
-    /// The mesh.
-    #[must_use]
-    pub const fn mesh(&self) -> ValidMesh<'a> {
-        self.mesh
     }
 
     /// The generalized winding number of the mesh at `point` (see the type): a node whose
@@ -179,45 +188,4 @@ impl<'a> WindingTree<'a> {
     pub fn contains(&self, point: Vec3, accuracy: WindingAccuracy) -> bool {
         self.winding_number(point, accuracy).abs() >= 0.5
     }
-}
-
-/// The largest distance from `centre` to a corner of a triangle node `index` counts (scaled by
-/// `scale`): the triangles of a subtree fill the order slots from its leftmost leaf's first to
-/// its rightmost leaf's last.
-fn subtree_radius(
-    bvh: &Bvh<'_>,
-    mesh: ValidMesh<'_>,
-    index: usize,
-    scale: f32,
-    centre: Vec3,
-) -> f32 {
-    let nodes = bvh.nodes();
-    let leaf_at = |mut i: usize, right: bool| {
-        for _ in 0..=MAX_DEPTH {
-            match nodes.get(i) {
-                Some(n) if n.is_leaf() => return Some(*n),
-                Some(n) => i = n.first as usize + usize::from(right),
-                None => return None,
-            }
-        }
-        None
-    };
-    let (Some(low), Some(high)) = (leaf_at(index, false), leaf_at(index, true)) else {
-        return f32::INFINITY;
-    };
-    let span = crate::bvh::BvhNode {
-        first: low.first,
-        count: (high.first + high.count).saturating_sub(low.first),
-        ..low
-    };
-    // The largest square, then one root: the root is monotonic and correctly rounded, so
-    // this is the largest root, bit for bit.
-    let mut farthest = 0.0f32;
-    for t in leaf_triangles(bvh, mesh, &span, scale) {
-        for corner in [t.a, t.b, t.c] {
-            let d = corner - centre;
-            farthest = farthest.max(dot(d, d));
-        }
-    }
-    libm::sqrtf(farthest)
 }

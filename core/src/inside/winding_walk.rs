@@ -12,9 +12,10 @@
 use glam::{BVec4A, Vec3, Vec4};
 
 use super::expansion::{WindingNode, leaf_triangles};
-use super::{WindingAccuracy, WindingTree};
-use crate::bvh::MAX_DEPTH;
+use super::{WindingAccuracy, WindingNodes, WindingTree};
+use crate::bvh::{MAX_DEPTH, TreeArrays};
 use crate::geom::solid_angle_triangle;
+use crate::query::LeafTriangles;
 
 /// Groups of four lanes per packet of a batch.
 pub(super) const GROUPS: usize = 2;
@@ -33,7 +34,7 @@ struct Lanes {
     z: Vec4,
 }
 
-impl WindingTree<'_> {
+impl<T: TreeArrays, S: LeafTriangles, E: WindingNodes> WindingTree<'_, T, S, E> {
     /// The winding number of each of `points` (see [`WindingTree::winding_number`]): `4·G`
     /// points, `G` ≤ 8.
     pub(super) fn winding_lanes<const G: usize>(
@@ -71,16 +72,19 @@ impl WindingTree<'_> {
             let [x, y, z] = coords.map(Vec4::from_array);
             *out = Lanes { x, y, z };
         }
-        let (tree, expansions) = (self.bvh().nodes(), self.nodes());
+        let (tree, expansions) = (self.tree(), self.expansions());
         let mut stack = [(0u32, live); MAX_DEPTH as usize + 1];
-        let mut sp = usize::from(live != 0 && !expansions.is_empty());
+        let mut sp = usize::from(live != 0 && expansions.count() > 0);
         while sp > 0 {
             sp -= 1;
             let (index, active) = stack.get(sp).copied().unwrap_or_default();
-            let (Some(node), Some(e)) = (tree.get(index as usize), expansions.get(index as usize))
-            else {
+            let (Some(node), Some(e)) = (
+                tree.node(index as usize),
+                expansions.expansion(index as usize),
+            ) else {
                 continue;
             };
+            let e = &e;
             if e.area == 0.0 {
                 continue; // Nothing but zero-area triangles: they count nothing.
             }
@@ -113,7 +117,7 @@ impl WindingTree<'_> {
                 continue;
             }
             if node.is_leaf() {
-                for t in leaf_triangles(&self.bvh(), self.mesh(), node, self.scale()) {
+                for t in leaf_triangles(tree, self.triangles(), &node, self.scale()) {
                     for (g, (group, sum)) in lanes.iter().zip(angle.iter_mut()).enumerate() {
                         let mut added = sum.to_array();
                         let (xs, ys, zs) =

@@ -12,6 +12,9 @@ use crate::bvh::check::{CheckLevel, Extent, check};
 use crate::bvh::split_coverage::check_split_coverage;
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::{BlobError, BlobSection, BuildError};
+#[cfg(feature = "blob-winding")]
+use crate::inside::WindingNodes;
+use crate::inside::WindingTree;
 use crate::math::PackedTriangle;
 use crate::mesh::ValidMesh;
 use crate::query::{SplitRef, SplitRefs};
@@ -58,6 +61,13 @@ impl MeshBvh {
             return Err(BlobError::HeaderMismatch { field: "depth" });
         }
         check_references(&loaded.order, loaded.triangle_count(), &loaded.split_refs())?;
+        // Last, as `parse` checks them last: stored expansions are the ones this tree gives.
+        if let Some(nodes) = &loaded.winding {
+            let (bvh, mesh) = (loaded.bvh(), loaded.mesh());
+            if !WindingTree::expansions_match(&bvh, &mesh, &nodes.as_slice()) {
+                return Err(BlobError::BadWindingNodes);
+            }
+        }
         Ok(loaded)
     }
 
@@ -123,6 +133,15 @@ impl MeshBvh {
             },
         })?;
         loaded.splits = splits;
+        // Copied as stored; a validated view checked them, `from_blob` checks them last.
+        #[cfg(feature = "blob-winding")]
+        {
+            loaded.winding = view.tree().and_then(|t| t.winding_nodes()).map(|nodes| {
+                (0..nodes.count())
+                    .filter_map(|i| nodes.expansion(i))
+                    .collect()
+            });
+        }
         Ok(loaded)
     }
 
@@ -138,7 +157,10 @@ impl MeshBvh {
     }
 
     /// Encodes the tree, the roles of its nodes in its eight-wide collapse (planned here, as
-    /// every build plans it: format version 5, so loaders collapse it without planning) and (as
+    /// every build plans it: format version 5, so loaders collapse it without planning), its
+    /// winding-number expansions when they were prepared
+    /// ([`MeshBvh::with_winding_numbers`]: format version 6, 112 bytes per node, so that a
+    /// [`BlobView::winding_tree`] answers containment and signed distance in place) and (as
     /// `layout` says) the mesh as a blob, with this tree's config in its header: the bytes
     /// [`blob::encode_into`] writes, which depend only on the mesh, the tree and the layout, on
     /// every target.
@@ -156,11 +178,12 @@ impl MeshBvh {
         Ok(out)
     }
 
-    fn encode_options<'r>(&self, layout: MeshLayout, roles: &'r [u8]) -> EncodeOptions<'r> {
+    fn encode_options<'r>(&'r self, layout: MeshLayout, roles: &'r [u8]) -> EncodeOptions<'r> {
         EncodeOptions {
             mesh: layout,
             config: self.config,
             collapse_roles: Some(CollapseRoles::new(roles)),
+            winding: self.winding.as_deref(),
         }
     }
 }

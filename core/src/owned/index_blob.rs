@@ -9,7 +9,7 @@ use super::cell_scene::CellScene;
 use super::mesh_cells::{GridArrays, TreeArrays};
 use super::{CellKind, MeshBvh, MeshCells, MeshIndex};
 use crate::blob::{
-    BlobHeader, BlobSource, BlobStructure, BlobView, MeshLayout, StructureConfig,
+    BlobHeader, BlobSource, BlobStructure, BlobView, BvhSections, MeshLayout, StructureConfig,
     encode_structure_into, structure_encoded_len,
 };
 use crate::cells::Words;
@@ -135,7 +135,10 @@ impl MeshIndex {
         f: impl FnOnce(&BlobSource<'_>, &ValidMesh<'_>) -> Result<T, BlobError>,
     ) -> Result<T, BlobError> {
         match self {
-            Self::Bvh(s) => f(&BlobSource::Bvh(&s.bvh(), *s.config(), None), &s.mesh()),
+            Self::Bvh(s) => f(
+                &BlobSource::Bvh(&s.bvh(), *s.config(), BvhSections::default()),
+                &s.mesh(),
+            ),
             Self::KdTree(s) => f(&BlobSource::KdTree(&s.structure(), s.config), &s.mesh()),
             Self::Octree(s) => f(&BlobSource::Octree(&s.structure(), s.config), &s.mesh()),
             Self::Grid(s) => f(&BlobSource::Grid(&s.structure(), s.config), &s.mesh()),

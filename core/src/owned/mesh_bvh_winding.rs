@@ -8,7 +8,7 @@ use crate::inside::{WindingNode, WindingTree};
 
 impl MeshBvh {
     /// This structure with its winding-number expansions worked out (one
-    /// [`WindingNode`] per binary node, 68 bytes each), so that [`MeshBvh::winding`] answers
+    /// [`WindingNode`] per binary node, 112 bytes each), so that [`MeshBvh::winding`] answers
     /// winding numbers, containment and signed distance. Already prepared: unchanged.
     ///
     /// # Errors
