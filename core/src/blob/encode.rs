@@ -38,7 +38,7 @@ pub struct EncodeOptions<'r> {
     /// [`WindingTree::build`](crate::inside::WindingTree::build) wrote them for this tree and
     /// mesh (checked), stored (format version 6) so that a view answers winding numbers,
     /// containment and signed distance in place
-    /// ([`BlobView::winding_tree`](super::BlobView::winding_tree)). 112 bytes per node.
+    /// (`BlobView::winding_tree`, feature `blob-winding`). 112 bytes per node.
     /// `None` (the default) writes no expansions.
     pub winding: Option<&'r [WindingNode]>,
 }

@@ -103,6 +103,10 @@ mod tree;
 mod view;
 #[cfg(feature = "blob-winding")]
 mod winding;
+#[cfg(feature = "blob-winding")]
+mod winding_check;
+#[cfg(feature = "blob-winding")]
+mod winding_nodes;
 
 #[cfg(feature = "alloc")]
 pub(crate) use boxes_deferred::BoxesUnchecked;
@@ -120,4 +124,6 @@ pub use view::BlobView;
 #[cfg(feature = "alloc")]
 pub(crate) use view::same_bounds;
 #[cfg(feature = "blob-winding")]
-pub use winding::{BlobWindingNodes, BlobWindingTree};
+pub use winding::BlobWindingTree;
+#[cfg(feature = "blob-winding")]
+pub use winding_nodes::BlobWindingNodes;

@@ -396,7 +396,7 @@ fn check_structure<'a>(
             same_bounds(&root, &header.bounds)?;
             #[cfg(feature = "blob-winding")]
             if let Some(mesh) = mesh {
-                super::winding::check_winding(&tree, mesh)?;
+                super::winding_check::check_winding(&tree, mesh)?;
             }
             (BlobStructure::Bvh(tree), tree.depth)
         }

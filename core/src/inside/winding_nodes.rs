@@ -4,7 +4,7 @@ use super::WindingNode;
 
 /// Read access to one [`WindingNode`] per tree node, wherever they are stored: in a slice
 /// ([`WindingTree::build`](super::WindingTree::build) fills one) or in a blob's bytes, read in
-/// place ([`BlobView::winding_tree`](crate::blob::BlobView::winding_tree)).
+/// place (`BlobView::winding_tree`, feature `blob-winding`).
 /// Implementations return `None` past the end; they never panic.
 pub trait WindingNodes {
     /// How many expansions there are (one per tree node).

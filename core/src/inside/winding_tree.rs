@@ -25,7 +25,7 @@ use crate::query::LeafTriangles;
 /// The tree, triangles and expansions may live anywhere: `T` is the tree ([`Bvh`] in slices by
 /// default, or a blob's tree read in place), `S` its triangles (the mesh, or a blob's), `E` the
 /// expansions (a slice, or a blob's records). Made by [`WindingTree::build`],
-/// [`WindingTree::from_parts`] or [`BlobView::winding_tree`](crate::blob::BlobView::winding_tree);
+/// [`WindingTree::from_parts`] or `BlobView::winding_tree` (feature `blob-winding`);
 /// every kind answers with the same bits.
 #[derive(Clone, Copy, Debug)]
 pub struct WindingTree<'a, T = Bvh<'a>, S = ValidMesh<'a>, E = &'a [WindingNode]> {
