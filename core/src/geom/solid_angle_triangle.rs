@@ -16,6 +16,7 @@ use crate::math::{Triangle, cross, dot};
 /// which includes every point of a degenerate triangle's line and a point on the triangle
 /// itself, where the angle jumps from `+2π` to `−2π` and `0` is the mean of the two sides.
 /// NaN when a coordinate is NaN or infinite.
+#[inline]
 #[must_use]
 pub fn solid_angle_triangle(tri: &Triangle, p: Vec3) -> f32 {
     let (a, b, c) = (tri.a - p, tri.b - p, tri.c - p);

@@ -77,6 +77,7 @@ impl WindingNode {
     }
 
     /// The evaluation form of a node's moments, with its `radius`.
+    #[inline]
     pub(super) fn of(m: &Moments, radius: f32) -> Self {
         let c = |i: usize, j: usize| m.first_moment.get(3 * i + j).copied().unwrap_or(0.0);
         let first = [
@@ -201,9 +202,10 @@ pub(super) fn leaf_triangles<'m, T: TreeArrays + ?Sized, S: LeafTriangles + ?Siz
 ) -> impl Iterator<Item = Triangle> + Clone + 'm {
     let (first, count) = (node.first as usize, node.count as usize);
     let splits = tree.split_refs();
+    // An empty run for a range the tree does not have (never, for a validated tree): one
+    // iterator type either way, without `Option`'s flattening in the loop.
     tree.leaf_triangles(first, count)
-        .into_iter()
-        .flatten()
+        .unwrap_or_else(|| crate::query::LeafTriangleIds::new(first, &[]))
         .filter(move |&(slot, tri)| counts_here(&splits, slot, tri))
         .filter_map(move |(slot, tri)| triangles.corners(slot, tri))
         .map(move |t| Triangle::new(t.a * scale, t.b * scale, t.c * scale))
@@ -308,6 +310,7 @@ pub(super) fn leaf_moments(triangles: impl Iterator<Item = Triangle> + Clone) ->
 /// An inner node's moments from its two children's: the moments move to the new centre
 /// (with `δ` a child's centre less the new one, `C + N ⊗ δ` and
 /// `D + C ⊗ δ + (C ⊗ δ)ᵀ⁽ʲᵏ⁾ + N ⊗ δ ⊗ δ`), the radius bounds both children's balls.
+#[inline]
 pub(super) fn merged_moments(left: &Moments, right: &Moments) -> Moments {
     let area = left.area + right.area;
     let (cl, cr) = (left.centre, right.centre);

@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 use super::expansion::{Moments, WindingNode, leaf_moments, leaf_triangles, merged_moments};
-use crate::bvh::{BvhNode, MAX_DEPTH, TreeArrays};
+use crate::bvh::{MAX_DEPTH, TreeArrays};
 use crate::math::dot;
 use crate::query::LeafTriangles;
 
@@ -96,21 +96,25 @@ where
     let (Some(low), Some(high)) = (leaf_at(index, false), leaf_at(index, true)) else {
         return f32::INFINITY;
     };
-    let span = BvhNode {
-        first: low.first,
-        count: high
-            .first
+    let (first, count) = (
+        low.first as usize,
+        high.first
             .saturating_add(high.count)
-            .saturating_sub(low.first),
-        ..low
-    };
+            .saturating_sub(low.first) as usize,
+    );
     // The largest square, then one root: the root is monotonic and correctly rounded, so this
-    // is the largest root, bit for bit.
+    // is the largest root, bit for bit. Every reference counts (a triangle held twice has the
+    // same corners twice, which leaves the largest alone), so no split references are looked up.
+    let Some(ids) = tree.leaf_triangles(first, count) else {
+        return f32::INFINITY;
+    };
     let mut farthest = 0.0f32;
-    for t in leaf_triangles(tree, triangles, &span, scale) {
-        for corner in [t.a, t.b, t.c] {
-            let d = corner - centre;
-            farthest = farthest.max(dot(d, d));
+    for (slot, tri) in ids {
+        if let Some(t) = triangles.corners(slot, tri) {
+            for corner in [t.a, t.b, t.c] {
+                let d = corner * scale - centre;
+                farthest = farthest.max(dot(d, d));
+            }
         }
     }
     libm::sqrtf(farthest)
