@@ -169,6 +169,18 @@ fn key(c: Option<ClosestPoint>) -> Option<(u32, u32, [u32; 3])> {
     })
 }
 
+/// By an f64 scan of `triangles` over `positions`: the distance from `p` to the nearest
+/// triangle, and to triangle `chosen`.
+fn nearest_f64(positions: &[[f32; 3]], triangles: &[[u32; 3]], p: Vec3, chosen: u32) -> (f64, f64) {
+    let p64 = p.to_array().map(f64::from);
+    let dist = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|v| positions[v as usize].map(f64::from));
+        distance_f64(p64, a, b, c)
+    };
+    let nearest = triangles.iter().map(dist).fold(f64::INFINITY, f64::min);
+    (nearest, dist(&triangles[chosen as usize]))
+}
+
 /// The distance from `p` to triangle `(a, b, c)` in f64, by its own method: the nearest of
 /// the plane's foot (when it falls inside) and the three edges' nearest points.
 fn distance_f64(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
@@ -257,18 +269,7 @@ fn points_beyond_squared_distance_overflow_are_answered() {
             "{p}"
         );
         // f64: the chosen triangle is the nearest to f32 precision, the distance right.
-        let p64 = p.to_array().map(f64::from);
-        let corners = |t: &[u32; 3]| t.map(|v| big[v as usize].map(f64::from));
-        let dist = |t: &[u32; 3]| {
-            let [a, b, c] = corners(t);
-            distance_f64(p64, a, b, c)
-        };
-        let nearest = loaded
-            .triangles
-            .iter()
-            .map(dist)
-            .fold(f64::INFINITY, f64::min);
-        let chosen = dist(&loaded.triangles[got.tri as usize]);
+        let (nearest, chosen) = nearest_f64(&big, &loaded.triangles, p, got.tri);
         assert!(
             chosen <= nearest * (1.0 + 1e-6),
             "{p}: {chosen} vs {nearest}"
@@ -355,17 +356,7 @@ fn meshes_of_any_size_answer_as_at_unit_size() {
         for &p in &points {
             let p = p * 1e14;
             let got = index.closest_point(p, f32::INFINITY).unwrap();
-            let p64 = p.to_array().map(f64::from);
-            let dist = |t: &[u32; 3]| {
-                let [a, b, c] = t.map(|v| big[v as usize].map(f64::from));
-                distance_f64(p64, a, b, c)
-            };
-            let nearest = loaded
-                .triangles
-                .iter()
-                .map(dist)
-                .fold(f64::INFINITY, f64::min);
-            let chosen = dist(&loaded.triangles[got.tri as usize]);
+            let (nearest, chosen) = nearest_f64(&big, &loaded.triangles, p, got.tri);
             let scale = 1e14 * 1e-6;
             assert!(
                 chosen <= nearest + scale,
