@@ -189,21 +189,22 @@ pub(crate) fn closest_point<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     closest_point_by::<A, S, LANES_PAY>(tree, source, point, max_distance)
 }
 
-/// The point [`closest_point`] finds, with its triangle's mesh index and corners, for
-/// callers that need more of the triangle than the point (the remesher judges facing by its
-/// normal): the same answer, `Ok`, unless the leaves visited offer more than `budget`
-/// triangle references first, then `Err(Crowded)`. (How many references a search is offered
-/// depends on the order it visits leaves in, so whether a budget is spent can differ between
-/// structures over one mesh; the answer never does.)
-pub(crate) fn closest_point_and_triangle<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
+/// The nearest non-degenerate triangle of `source` to `point` within `max_distance` through
+/// `tree`: its mesh index and corners, the one [`closest_point`] answers on (the smaller
+/// distance, then the lower index), for callers that need the triangle rather than the point
+/// (the remesher judges facing by its normal; [`answer`] gives the point). `Ok`, unless the
+/// leaves visited offer more than `budget` triangle references first, then `Err(Crowded)`.
+/// (How many references a search is offered depends on the order it visits leaves in, so
+/// whether a budget is spent can differ between structures over one mesh; the answer never
+/// does.)
+pub(crate) fn nearest_triangle<A: Traverse + ?Sized, S: LeafTriangles + ?Sized>(
     tree: &A,
     source: &S,
     point: Vec3,
     max_distance: f32,
     budget: usize,
-) -> Result<Option<(Vec3, Triangle)>, Crowded> {
-    let best = search::<A, S, LANES_PAY>(tree, source, point, max_distance, None, budget)?;
-    Ok(best.map(|best| (answer(point, best).point, best.1)))
+) -> Result<Option<(u32, Triangle)>, Crowded> {
+    search::<A, S, LANES_PAY>(tree, source, point, max_distance, None, budget)
 }
 
 /// A search that gave up: its leaves offered more triangle references than its budget.
@@ -282,7 +283,7 @@ fn scale_for(point: Vec3) -> f32 {
 }
 
 /// The answer for the nearest triangle `tri` with corners `t`.
-pub(super) fn answer(point: Vec3, (tri, t): (u32, Triangle)) -> ClosestPoint {
+pub(crate) fn answer(point: Vec3, (tri, t): (u32, Triangle)) -> ClosestPoint {
     // The lanes computed this triangle's distance with the walk's own arithmetic, so the walk
     // agrees with the distance it was chosen by; a far point is worked out scaled, as it was
     // found, and scaled back (exact, or +inf for a squared distance past f32).

@@ -112,7 +112,7 @@ mod sweep;
 pub(crate) mod traverse;
 
 pub(crate) use cell::Cell;
-pub(crate) use closest::closest_point_and_triangle;
+pub(crate) use closest::{answer as closest_answer, nearest_triangle};
 pub(crate) use leaf::LeafTriangleIds;
 pub use leaf::{LeafTriangles, PackedTriangles};
 pub use mesh_query::MeshQuery;

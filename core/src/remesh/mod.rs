@@ -13,6 +13,7 @@ mod check;
 mod config;
 mod creases;
 mod edit;
+mod flips;
 pub(crate) mod half_edge_edits;
 mod half_edges;
 mod moves;

@@ -4,10 +4,11 @@
 use glam::Vec3;
 
 use super::config::RemeshConfig;
+use super::flips::{flip_keeps_orientation, flip_toward_delaunay};
 use super::half_edges::HalfEdgeMesh;
 use super::relax::relax_small_angles;
 use super::report::{Progress, RemeshObserver, RemeshReport, RemeshStep};
-use super::shape::{FLATTEST, flat_enough, flatness, normal_of, smallest_angle_sine};
+use super::shape::{FLATTEST, normal_of, smallest_angle_sine};
 use super::smooth::smooth;
 use super::surface::Input;
 use crate::error::{RemeshBuffer, RemeshError};
@@ -27,7 +28,9 @@ pub(crate) fn mean_edge_length(mesh: &HalfEdgeMesh<'_>) -> f32 {
 ///
 /// Each iteration splits edges longer than `4/3·L`, always across the longest side of both
 /// their triangles (longest-edge bisection), at the input's point nearest the midpoint
-/// (the midpoint itself on boundaries and creases), collapses edges shorter than `4/5·L`
+/// (the midpoint itself on boundaries and creases; a split of an edge longer than `8/3·L`,
+/// a needle's side, is followed by flips toward Delaunay around the new vertex, so needles
+/// refine in proportion to their area), collapses edges shorter than `4/5·L`
 /// (to the input's point nearest their midpoint) unless that would make an edge longer
 /// than `4/3·L`, turn a triangle over, or change the topology, flips edges that bring the
 /// four vertices' valences nearer 6 (4 on the boundary), and moves every free vertex, one
@@ -139,7 +142,9 @@ pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     };
     let (high, low) = (length * 4.0 / 3.0, length * 4.0 / 5.0);
     for _ in 0..config.iterations {
-        report.splits += split_long_edges(mesh, input, high, observer)?;
+        let (splits, flips) = split_long_edges(mesh, input, high, observer)?;
+        report.splits += splits;
+        report.flips += flips;
         // Only splits add: the counts peak here.
         report.peak_vertices = report.peak_vertices.max(mesh.vertex_count());
         report.peak_triangles = report.peak_triangles.max(mesh.triangle_count());
@@ -205,18 +210,21 @@ fn terminal_edge(mesh: &HalfEdgeMesh<'_>, he: u32) -> u32 {
 /// in turn.
 ///
 /// Bisecting across the longest side keeps every new angle at least half the smallest angle
-/// it cut and never fans new edges out of one corner, so skinny input (a capsule's side
-/// strip, a scan's slivers) refines into about as many triangles as its area needs. Splitting
-/// any long edge at its midpoint instead joins the midpoint to the opposite corner, which on
-/// a skinny triangle is another long edge from that same corner, and the count runs away.
+/// it cut and never fans new edges out of one corner. Splitting any long edge at its
+/// midpoint instead joins the midpoint to the opposite corner, which on a skinny triangle is
+/// another long edge from that same corner, and the count runs away. Bisection alone still
+/// keeps a needle's shape, though, so a needle `n` targets long would become about `n²`
+/// triangles: a split of an edge over twice `high` is followed by
+/// [`flip_toward_delaunay`], and skinny input (a capsule's side strip, a scan's jump edge, a
+/// cone's sides) refines into about as many triangles as its area needs.
 fn split_long_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
     input: &Input<'_, Q>,
     high: f32,
     observer: &mut O,
-) -> Result<usize, RemeshError> {
+) -> Result<(usize, usize), RemeshError> {
     let limit = high * high;
-    let mut splits = 0usize;
+    let (mut splits, mut flips) = (0usize, 0usize);
     let mut t = 0u32;
     // Triangles made by splits are visited in turn, so every edge ends short enough.
     while (t as usize) < mesh.triangle_count() {
@@ -232,12 +240,16 @@ fn split_long_edges<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
             t += 1;
             continue;
         };
-        mesh.split_edge(edge, mid)?;
+        let long = squared_length(mesh, edge) > 4.0 * limit;
+        let m = mesh.split_edge(edge, mid)?;
         splits += 1;
         observer.edited(RemeshStep::Split, mesh);
+        if long {
+            flips += flip_toward_delaunay(mesh, input, m, observer);
+        }
         // Triangle `t` may still be too long (a neighbour's edge was split first): look again.
     }
-    Ok(splits)
+    Ok((splits, flips))
 }
 
 /// Where to split the edge of `he`, or `None` to leave it whole. An edge inside the surface
@@ -552,37 +564,6 @@ fn improve_angles<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
         }
     }
     flips
-}
-
-/// Whether flipping the edge of `he` (twin `g`) gives two triangles facing the way the old
-/// pair does (each new normal has a positive dot product with both old ones) and face the
-/// input (see [`faces_input`]). Without the input's judgement, a flip
-/// between two vertices of one cross-section of a thin tube passes: the old pair, already
-/// leaning, agrees with a new pair lying across the tube.
-fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
-    mesh: &HalfEdgeMesh<'_>,
-    input: &Input<'_, Q>,
-    he: u32,
-    g: u32,
-) -> bool {
-    let (a, b) = mesh.ends(he);
-    let c = mesh.origin(HalfEdgeMesh::prev(he));
-    let d = mesh.origin(HalfEdgeMesh::prev(g));
-    let [pa, pb, pc, pd] = [a, b, c, d].map(|v| mesh.position(v));
-    let (old0, old1) = (mesh.triangle_normal(he / 3), mesh.triangle_normal(g / 3));
-    let new0 = cross(pd - pa, pc - pa);
-    let new1 = cross(pb - pd, pc - pd);
-    // Beside a crease, where vertices are fixed and a sliver once made stays, a flip may
-    // not make one. (Elsewhere later passes mend slivers, and the guard costs quality.)
-    let near_crease = [a, b, c, d].iter().any(|&v| mesh.touches_crease(v));
-    let was = flatness([pa, pb, pc]).min(flatness([pb, pa, pd]));
-    let now = flatness([pa, pd, pc]).min(flatness([pd, pb, pc]));
-    (!near_crease || flat_enough(now, was))
-        && [new0, new1]
-            .iter()
-            .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)
-        && input.faces_input([pa, pd, pc])
-        && input.faces_input([pd, pb, pc])
 }
 
 #[cfg(test)]

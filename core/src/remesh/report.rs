@@ -11,7 +11,8 @@ pub struct RemeshReport {
     pub splits: usize,
     /// Edges collapsed.
     pub collapses: usize,
-    /// Edges flipped.
+    /// Edges flipped: toward valence 6, toward wider angles, and toward Delaunay around the
+    /// new vertex of each split of a needle's side (an edge over twice the split bound).
     pub flips: usize,
     /// Vertices moved one at a time after the iterations, to open up small angles (a
     /// vertex may move more than once).

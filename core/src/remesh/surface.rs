@@ -13,7 +13,7 @@ use glam::Vec3;
 use super::half_edges::HalfEdgeMesh;
 use super::shape::normal_of;
 use crate::math::{Triangle, dot};
-use crate::query::{MeshQuery, closest_point_and_triangle};
+use crate::query::{MeshQuery, closest_answer, nearest_triangle};
 
 /// The input surface a run answers to: the query over it, and how crowded it may be at a
 /// point before no edit is judged there.
@@ -58,7 +58,7 @@ impl<'q, Q: MeshQuery + ?Sized> Input<'q, Q> {
     pub(super) fn closest_on(&self, p: Vec3, was: Vec3) -> Option<Vec3> {
         let moved = p - was;
         self.nearest(p, libm::sqrtf(dot(moved, moved)))
-            .map(|(point, _)| point)
+            .map(|found| closest_answer(p, found).point)
     }
 
     /// Whether the triangle of corners `p` faces the way the input surface does under its
@@ -90,7 +90,7 @@ impl<'q, Q: MeshQuery + ?Sized> Input<'q, Q> {
             })
     }
 
-    /// The input's point nearest `p` and the triangle it lies on: first looked for within
+    /// The input triangle nearest `p` (mesh index and corners): first looked for within
     /// `near` (with a little room), then everywhere. The same answer either way; only the
     /// work differs. `None` where the input is crowded at `p`.
     ///
@@ -100,9 +100,8 @@ impl<'q, Q: MeshQuery + ?Sized> Input<'q, Q> {
     /// that count alone, the same whatever order a structure visits its leaves in: a search
     /// that looked at no more has looked at every leaf holding `p`.
     #[cfg_attr(target_os = "none", inline(never))]
-    fn nearest(&self, p: Vec3, near: f32) -> Option<(Vec3, Triangle)> {
-        let search =
-            |max, budget| closest_point_and_triangle(self.query, self.query, p, max, budget);
+    fn nearest(&self, p: Vec3, near: f32) -> Option<(u32, Triangle)> {
+        let search = |max, budget| nearest_triangle(self.query, self.query, p, max, budget);
         for max in [near * 1.001, f32::INFINITY] {
             let found = match search(max, self.crowded) {
                 Ok(found) => found,
