@@ -41,6 +41,20 @@ if CORPUS is not None:
 RATIOS = {"cone-1024": 0.05}
 
 
+def faces_against_all_nearest(t, centroid, d2, normal, nearest, v_in, f_in, n_in):
+    """Whether output triangle `t` faces against every input triangle as near its centroid
+    as the nearest one (to a part in 10⁶): where the nearest point lies on an edge or corner
+    that input triangles facing different ways share, each of them is "the nearest", and a
+    triangle facing the way one of them does faces the input. Ties can only be among the
+    triangles around the nearest one's corners."""
+    around = np.flatnonzero(np.isin(f_in, f_in[nearest]).any(axis=1))
+    for s in around:
+        ds = gpy.squared_distance(centroid[None], v_in, f_in[s:s + 1], use_cpp=True)[0][0]
+        if ds <= d2 * (1 + 1e-6) + 1e-30 and np.dot(normal, n_in[s]) > 0:
+            return False
+    return True
+
+
 def quality(v, f, v_in, f_in):
     e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
     directed = set(map(tuple, e))
@@ -69,15 +83,18 @@ def quality(v, f, v_in, f_in):
 
     dist = max(one_way(v, f, v_in, f_in), one_way(v_in, f_in, v, f)) / diag
     # Degenerate output: triangles of (relatively) zero area, and used vertices sharing one
-    # position; flipped: triangles facing against the input triangle nearest their centroid.
+    # position; flipped: triangles facing against the input triangle nearest their centroid
+    # (against every one of them where several are equally near).
     normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
     area2 = np.linalg.norm(normals, axis=1)
     zero_area = int(np.count_nonzero(area2 <= 1e-12 * diag * diag))
     coincident = int(np.count_nonzero(used)) - len(np.unique(v[used], axis=0))
-    nearest = gpy.squared_distance(p.mean(axis=1), v_in, f_in, use_cpp=True)[1]
+    centroids = p.mean(axis=1)
+    d2, nearest = gpy.squared_distance(centroids, v_in, f_in, use_cpp=True)[:2]
     q = v_in[f_in]
     n_in = np.cross(q[:, 1] - q[:, 0], q[:, 2] - q[:, 0])
-    flipped = int(np.count_nonzero(np.einsum("ij,ij->i", normals, n_in[nearest]) < 0))
+    against = np.flatnonzero(np.einsum("ij,ij->i", normals, n_in[nearest]) < 0)
+    flipped = sum(1 for t in against if faces_against_all_nearest(t, centroids[t], d2[t], normals[t], nearest[t], v_in, f_in, n_in))
     return {
         "degenerate": zero_area + coincident,
         "flipped": flipped,
