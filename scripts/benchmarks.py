@@ -257,7 +257,7 @@ def render_remesh(data):
             "with long side strips and high-valence poles, a closed cone of 1,024 needle-thin side facets, an open tube of strips, boxes, "
             "slivers, stretched spheres, and `scan-224`: an open range scan of 99,458 triangles with upright slivers across a jump edge). Both outputs are measured by the same code: "
             "degenerate (zero-area triangles and coincident vertices), flipped (facing against "
-            "the nearest input triangle), the distance two ways over the bounding-box "
+            "the nearest input triangle, and against every other one as near), the distance two ways over the bounding-box "
             "diagonal.\n\n" + data["table"])
 
 
