@@ -104,6 +104,27 @@ impl TriangleLanes {
         self.rescaled_lanes(wild, p, d)
     }
 
+    /// Per lane, the squared distance from `p` to the box around that lane's triangle: never
+    /// more than the distance to the triangle itself, except by rounding (callers allow a
+    /// margin), so a search can pass over four triangles whose boxes all lie beyond its bound
+    /// without walking their regions. NaN for a lane with a coordinate that is not a number.
+    #[inline(always)]
+    pub(crate) fn box_distance_squared(&self, p: Vec3) -> Vec4 {
+        let gap = |a: Vec4, b: Vec4, c: Vec4, q: f32| {
+            let q = Vec4::splat(q);
+            (a.min(b).min(c) - q)
+                .max(q - a.max(b).max(c))
+                .max(Vec4::ZERO)
+        };
+        let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (self.a.rows, self.b.rows, self.c.rows);
+        let (x, y, z) = (
+            gap(ax, bx, cx, p.x),
+            gap(ay, by, cy, p.y),
+            gap(az, bz, cz, p.z),
+        );
+        x * x + y * y + z * z
+    }
+
     /// `d` with each lane set in `wild` replaced by the scalar walk's squared distance.
     #[cold]
     #[inline(never)]

@@ -100,6 +100,12 @@ impl<S: LeafTriangles + ?Sized, const LANES: bool> Visitor for Closest<'_, S, LA
                 self.offered = self
                     .offered
                     .saturating_add(batch.used.count_ones() as usize);
+                // Four triangles whose boxes all lie beyond the bound cannot win (the scalar
+                // walk's cull, four at a time): their regions are not walked.
+                let low = batch.lanes.box_distance_squared(self.point) * (1.0 - MARGIN);
+                if low.cmple(Vec4::splat(self.limit)).bitmask() & batch.used == 0 {
+                    return ControlFlow::Continue(());
+                }
                 let d2 = batch.lanes.closest_distance_squared(self.point);
                 let mut near = d2.cmple(Vec4::splat(self.limit)).bitmask() & batch.used;
                 let d2 = d2.to_array();
