@@ -67,12 +67,19 @@ impl Remeshed {
         };
         loop {
             let mut storage = RemeshStorage::new(capacity)?;
+            // Pairing reads the input only: scratch for the input's size, freed before the run.
+            let pairing_len = RemeshCapacity {
+                vertices: mesh.vertex_count(),
+                triangles: mesh.triangle_count(),
+            }
+            .pairing_scratch();
             let mut pairing = Vec::new();
             pairing
-                .try_reserve_exact(capacity.pairing_scratch())
-                .map_err(|_| too_big(capacity.pairing_scratch()))?;
-            pairing.resize(capacity.pairing_scratch(), 0u32);
+                .try_reserve_exact(pairing_len)
+                .map_err(|_| too_big(pairing_len))?;
+            pairing.resize(pairing_len, 0u32);
             let mut he = HalfEdgeMesh::from_mesh(mesh, storage.buffers(), &mut pairing)?;
+            drop(pairing);
             let before = MeshQuality::of(&he);
             let mut smoothing = Vec::new();
             smoothing

@@ -10,9 +10,11 @@ use crate::mesh::ValidMesh;
 ///
 /// A remesh of surface area `A` toward edge length `L` ends with about `A / (√3/4 · L²)`
 /// triangles (equilateral ones of side `L`). Before collapsing, splitting can leave edges as
-/// short as `2/3·L`, so the count may pass that on the way: the estimate allows three times
-/// the final count on top of the input's triangles, and one more vertex per added triangle.
-/// A run that still needs more stops with
+/// short as `2/3·L`, so the count may pass that on the way (by up to half again, measured on
+/// the bundled meshes refined up to tenfold): the estimate allows twice the final count on top
+/// of the input's triangles, and one more vertex per added triangle (a closed mesh has about
+/// half as many vertices as triangles; a boundary adds one vertex per boundary edge, up to
+/// one per triangle on a strip). A run that still needs more stops with
 /// [`RemeshError::OutOfCapacity`](crate::error::RemeshError::OutOfCapacity), leaving a
 /// valid mesh; retry with larger buffers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,14 +31,8 @@ impl RemeshCapacity {
     /// estimated here over each triangle's three edges).
     #[must_use]
     pub fn for_mesh(mesh: &ValidMesh<'_>, target: EdgeTarget) -> Self {
-        let (area, length) = area_and_length(mesh, target);
-        let expected = if length > 0.0 {
-            area / (libm::sqrt(3.0) / 4.0 * length * length)
-        } else {
-            0.0
-        };
         // `as` saturates a huge estimate; the sums below saturate too.
-        let added = ((3.0 * expected) as usize).saturating_add(64);
+        let added = ((2.0 * expected_triangles(mesh, target)) as usize).saturating_add(64);
         Self {
             vertices: mesh.positions().len().saturating_add(added),
             triangles: mesh.triangle_count().saturating_add(added),
@@ -47,12 +43,12 @@ impl RemeshCapacity {
     /// that still needs more is refused rather than grown. Splits bisect every triangle
     /// across its longest side until no edge is longer than `4/3·L`, so a triangle whose
     /// longest edge is `ℓ` becomes at most about `2·⌈ℓ / (4/3·L)⌉²` pieces; the bound is the
-    /// sum of that over the input's triangles plus four times the
-    /// [`for_mesh`](Self::for_mesh) estimate of the result, with one vertex per triangle.
+    /// sum of that over the input's triangles plus twelve times the expected count of the
+    /// result (`A / (√3/4 · L²)`, see [`RemeshCapacity`]) and 256, with one vertex per
+    /// triangle.
     /// Saturates instead of overflowing.
     #[must_use]
     pub fn most_for(mesh: &ValidMesh<'_>, target: EdgeTarget) -> Self {
-        let estimate = Self::for_mesh(mesh, target);
         let high = area_and_length(mesh, target).1 * 4.0 / 3.0;
         let mut pieces = 0.0f64;
         for t in 0..mesh.triangle_count() as u32 {
@@ -70,9 +66,9 @@ impl RemeshCapacity {
             };
             pieces += 2.0 * per_side * per_side;
         }
-        let added = estimate.triangles.saturating_sub(mesh.triangle_count());
         // `as` saturates a huge (or infinite) sum.
-        let triangles = (pieces as usize).saturating_add(added.saturating_mul(4));
+        let added = ((12.0 * expected_triangles(mesh, target)) as usize).saturating_add(256);
+        let triangles = (pieces as usize).saturating_add(added);
         Self {
             vertices: mesh.positions().len().saturating_add(triangles),
             triangles,
@@ -158,6 +154,17 @@ impl RemeshStorage {
 
 /// The surface area of `mesh` and the edge length `target` names (a multiple of the mean edge
 /// length estimated over each triangle's three edges), in `f64`.
+/// The count of equilateral triangles of side `L` (the target) that cover the area of `mesh`:
+/// about what a run ends with. Zero for a target of no length.
+fn expected_triangles(mesh: &ValidMesh<'_>, target: EdgeTarget) -> f64 {
+    let (area, length) = area_and_length(mesh, target);
+    if length > 0.0 {
+        area / (libm::sqrt(3.0) / 4.0 * length * length)
+    } else {
+        0.0
+    }
+}
+
 fn area_and_length(mesh: &ValidMesh<'_>, target: EdgeTarget) -> (f64, f64) {
     let (mut area, mut edge_sum, mut edges) = (0.0f64, 0.0f64, 0usize);
     for t in 0..mesh.triangle_count() as u32 {

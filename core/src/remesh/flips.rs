@@ -32,9 +32,9 @@ pub(super) fn flip_keeps_orientation<Q: MeshQuery + ?Sized>(
     // Beside a crease, where vertices are fixed and a sliver once made stays, a flip may
     // not make one. (Elsewhere later passes mend slivers, and the guard costs quality.)
     let near_crease = [a, b, c, d].iter().any(|&v| mesh.touches_crease(v));
-    let was = flatness([pa, pb, pc]).min(flatness([pb, pa, pd]));
-    let now = flatness([pa, pd, pc]).min(flatness([pd, pb, pc]));
-    (!near_crease || flat_enough(now, was))
+    let was = || flatness([pa, pb, pc]).min(flatness([pb, pa, pd]));
+    let now = || flatness([pa, pd, pc]).min(flatness([pd, pb, pc]));
+    (!near_crease || flat_enough(now(), was))
         && [new0, new1]
             .iter()
             .all(|&n| dot(n, old0) > 0.0 && dot(n, old1) > 0.0)

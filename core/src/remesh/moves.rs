@@ -40,11 +40,14 @@ pub(super) fn moves_safely<Q: MeshQuery + ?Sized>(
 pub(super) fn keeps_shape(mesh: &HalfEdgeMesh<'_>, v: u32, to: Vec3) -> bool {
     let mut kept = true;
     mesh.for_each_outgoing(v, |he| {
+        if !kept {
+            return;
+        }
         let corners = mesh.triangle(he / 3);
         let before = corners.map(|x| mesh.position(x));
         let after = corners.map(|x| if x == v { to } else { mesh.position(x) });
-        let (was, now) = (flatness(before), flatness(after));
-        kept &= dot(normal_of(before), normal_of(after)) > 0.0 && flat_enough(now, was);
+        kept = dot(normal_of(before), normal_of(after)) > 0.0
+            && flat_enough(flatness(after), || flatness(before));
     });
     kept
 }

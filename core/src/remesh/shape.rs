@@ -29,10 +29,11 @@ pub(super) fn flatness(p: [Vec3; 3]) -> f32 {
     }
 }
 
-/// Whether an edit that replaces triangles as flat as `was` (the flattest of them) with
+/// Whether an edit that replaces triangles as flat as `was()` (the flattest of them) with
 /// ones as flat as `now` is allowed: not below [`FLATTEST`] unless no worse than before.
-pub(super) fn flat_enough(now: f32, was: f32) -> bool {
-    now >= FLATTEST * FLATTEST || now >= was
+/// `was` is worked out only when `now` is below.
+pub(super) fn flat_enough(now: f32, was: impl FnOnce() -> f32) -> bool {
+    now >= FLATTEST * FLATTEST || now >= was()
 }
 
 /// The sine of the smallest angle of corners `p` (the angle between the two longest edges;
