@@ -15,6 +15,13 @@ its own mean edge length times its entry in RATIOS (1 when absent): the cone's m
 dominated by its 1,024 long side edges, a target at which the whole cone is a dozen
 triangles, so it is remeshed at a twentieth of it.
 
+A second table refines the bundled meshes (`--target-ratio` 0.5, 0.2 and 0.1; the bunny
+at 0.5 and 0.2, whose 0.1 run would make about six million triangles) with meshq alone: the
+triangles against the count of equilateral triangles of the target's side that cover the
+input's area, the same degenerate/flipped/angle figures, the time per output triangle, and the
+resident peak of the command (`--max-distance-tests 0`, so it is the remeshing's: no distance
+report) against the output's size (12 bytes per vertex and per triangle).
+
 Set up once: scripts/peers-setup.sh (a virtual environment in target/peers-venv).
 Run: target/peers-venv/bin/python bench/peers/remesh.py [meshq binary] [--corpus DIR]
 """
@@ -107,6 +114,47 @@ def quality(v, f, v_in, f_in):
     }
 
 
+REFINING = [("spot", [0.5, 0.2, 0.1]), ("fandisk", [0.5, 0.2, 0.1]), ("stanford-bunny", [0.5, 0.2])]
+
+
+def refining(tmp):
+    rows = []
+    for name, ratios in REFINING:
+        path = ROOT / "assets" / f"{name}.obj"
+        v_in, f_in = read_obj(path)
+        q = v_in[f_in]
+        area = 0.5 * np.linalg.norm(np.cross(q[:, 1] - q[:, 0], q[:, 2] - q[:, 0]), axis=1).sum()
+        for ratio in ratios:
+            out = pathlib.Path(tmp) / "refined.ply"
+            args = [MESHQ, "remesh", str(path), "-o", str(out), "--json", "--target-ratio", str(ratio),
+                    "--max-distance-tests", "0"]
+            # GNU time reports its child's resident peak (KiB). A child forked from this
+            # process would count this process's pages, mapped in it until exec.
+            peak_file = pathlib.Path(tmp) / "peak"
+            done = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", str(peak_file)] + args,
+                                  capture_output=True, text=True)
+            if done.returncode != 0:
+                rows.append((name, ratio, f"failed: {done.stderr.strip().splitlines()[-1:]}"))
+                continue
+            report = json.loads(done.stdout)
+            mv, mf = read_ply(out)
+            length = report["target_length"]
+            expected = area / (np.sqrt(3) / 4 * length * length)
+            peak = int(peak_file.read_text().split()[-1]) * 1024
+            size = 12 * len(mv) + 12 * len(mf)
+            rows.append((name, ratio, quality(mv, mf, v_in, f_in), expected, report["remesh_seconds"], peak, size))
+    print("| mesh | target ratio | triangles | of expected | degenerate | flipped | min angle off boundary | % tri < 30° | time (s) | µs per triangle | peak (MB) | peak / output |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for row in rows:
+        if isinstance(row[2], str):
+            print(f"| {row[0]} | {row[1]:g} | {row[2]} | | | | | | | | | |")
+            continue
+        name, ratio, q, expected, seconds, peak, size = row
+        print(f"| {name} | {ratio:g} | {q['triangles']} | {q['triangles'] / expected:.3f} | {q['degenerate']} | "
+              f"{q['flipped']} | {q['min_angle']:.2f}° | {q['under30']:.3f} | {seconds:.2f} | "
+              f"{1e6 * seconds / q['triangles']:.1f} | {peak / 1e6:.0f} | {peak / size:.1f}× |")
+
+
 def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -148,6 +196,10 @@ def main():
             continue
         print(f"| {label} | {who} | {q['triangles']} | {q['degenerate']} | {q['flipped']} | {q['valence6']:.2f} | "
               f"{q['min_angle']:.2f}° | {q['under30']:.3f} | {q['edge_cv']:.3f} | {q['distance']:.2e} | {s:.3f} |")
+    if "--no-refining" not in ARGS:
+        print()
+        with tempfile.TemporaryDirectory() as tmp:
+            refining(tmp)
 
 
 if __name__ == "__main__":

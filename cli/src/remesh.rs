@@ -40,7 +40,7 @@ pub struct RemeshArgs {
     pub feature_angle: Option<f32>,
     /// The most point–triangle tests the distance report may make (default: 2^20 + 256 per
     /// triangle of the input and the result). Past it, the distance is the largest of the
-    /// samples measured so far.
+    /// samples measured so far; 0 skips the report (and the trees it builds).
     #[arg(long, value_name = "N")]
     pub max_distance_tests: Option<usize>,
     /// Print the figures as one JSON object.

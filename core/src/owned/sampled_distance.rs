@@ -47,7 +47,8 @@ const STRIDES: [u64; 3] = [1_000_003, 999_983, 65_537];
 /// [`SampledDistance`] between `first` (whose bounds scale the result) and `second`: samples
 /// visited in a fixed stride order over both meshes, each a closest-point query on a BVH of
 /// the other mesh; the query that would take the tests past `budget` is abandoned and the run
-/// stops there. The same meshes and budget give the same answer on every target.
+/// stops there. The same meshes and budget give the same answer on every target. A budget of
+/// no tests measures no sample and builds no BVH.
 ///
 /// # Errors
 /// [`RemeshError::ReferenceBvh`] when a BVH of either mesh cannot be built.
@@ -60,9 +61,17 @@ pub(crate) fn sampled_distance(
         MeshBvh::build(m, &BuildConfig::default())
             .map_err(|error| RemeshError::ReferenceBvh { error })
     };
-    let (to_first, to_second) = (bvh(first)?, bvh(second)?);
     let first_samples = 4 * first.triangle_count() as u64;
     let samples = first_samples + 4 * second.triangle_count() as u64;
+    if budget.max_tests == 0 {
+        return Ok(SampledDistance {
+            relative: 0.0,
+            measured: 0,
+            samples,
+            tested: 0,
+        });
+    }
+    let (to_first, to_second) = (bvh(first)?, bvh(second)?);
     let stride = STRIDES
         .iter()
         .copied()
