@@ -199,7 +199,7 @@ fn shortest_edge(mesh: &HalfEdgeMesh<'_>, v: u32, at: Vec3) -> f32 {
 }
 
 /// The smallest angle's sine over the triangles around `v`, were `v` at `at`.
-pub(super) fn ring_smallest_sine(mesh: &HalfEdgeMesh<'_>, v: u32, at: Vec3) -> f32 {
+fn ring_smallest_sine(mesh: &HalfEdgeMesh<'_>, v: u32, at: Vec3) -> f32 {
     let mut smallest = f32::INFINITY;
     mesh.for_each_outgoing(v, |he| {
         let corners = mesh

@@ -150,7 +150,7 @@ pub fn remesh_observed<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
         report.peak_triangles = report.peak_triangles.max(mesh.triangle_count());
         report.collapses += collapse_short_edges(mesh, input, low, high, observer);
         report.flips += equalize_valences(mesh, input, observer);
-        smooth(mesh, input, positions_scratch, length, observer);
+        smooth(mesh, input, positions_scratch, observer);
         report.iterations += 1;
         observer.iterated(&report);
     }

@@ -6,7 +6,6 @@ use glam::Vec3;
 
 use super::half_edges::HalfEdgeMesh;
 use super::moves::{is_free, moves_safely};
-use super::relax::ring_smallest_sine;
 use super::report::{RemeshObserver, RemeshStep};
 use super::surface::Input;
 use crate::math::{cross, dot};
@@ -20,19 +19,12 @@ use crate::query::MeshQuery;
 /// judged against the mesh as the moves before it left it, so the mesh is sound after every
 /// one (`observer` sees each); the order changes which moves are refused, not where a
 /// vertex aims. `goals` holds the goals: at least one entry per vertex.
-///
-/// A vertex whose goal lies within [`SETTLED_STEP`] of the target `length` and whose
-/// triangles' angles are all at least 35° ([`SETTLED_SINE`]) stays: its neighbourhood has
-/// settled, and the searches that would judge the move (one per triangle around it) would
-/// buy a change of a few hundredths of an edge.
 pub(super) fn smooth<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     mesh: &mut HalfEdgeMesh<'_>,
     input: &Input<'_, Q>,
     goals: &mut [[f32; 3]],
-    length: f32,
     observer: &mut O,
 ) {
-    let settled = (SETTLED_STEP * length) * (SETTLED_STEP * length);
     let count = mesh.vertex_count();
     for (v, slot) in (0u32..).zip(goals.iter_mut().take(count)) {
         let goal = is_free(mesh, v).then(|| tangential_goal(mesh, v)).flatten();
@@ -40,10 +32,7 @@ pub(super) fn smooth<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
     }
     for (v, goal) in (0u32..).zip(goals.iter().take(count)) {
         let (goal, p) = (Vec3::from_array(*goal), mesh.position(v));
-        let step = goal - p;
-        if goal == p
-            || (dot(step, step) < settled && ring_smallest_sine(mesh, v, p) >= SETTLED_SINE)
-        {
+        if goal == p {
             continue;
         }
         let safe = |to: &Vec3| *to != p && moves_safely(mesh, input, v, *to);
@@ -57,15 +46,6 @@ pub(super) fn smooth<Q: MeshQuery + ?Sized, O: RemeshObserver + ?Sized>(
         }
     }
 }
-
-/// The longest step, as a fraction of the target length, that a settled vertex does not
-/// take (see [`smooth`]).
-const SETTLED_STEP: f32 = 0.03;
-
-/// The sine of 35°: the smallest angle around a vertex that counts as settled (see
-/// [`smooth`]). Below it, every step is taken, however small, since the angles of a
-/// neighbourhood still being shaped are what the pass is for.
-const SETTLED_SINE: f32 = 0.573_576_4;
 
 /// Where tangential smoothing takes free vertex `v`: toward the area-weighted centroid of its
 /// one-ring's triangles, within its tangent plane (the plane of their area-weighted normal).
