@@ -145,7 +145,11 @@ fn the_distance_report_is_the_farthest_sample_by_an_f64_scan() {
         assert_eq!(unlimited, report, "{name}");
         // No tests: no sample measured, nothing claimed.
         let none = out.distance_to(&mesh, PairBudget { max_tests: 0 }).unwrap();
-        assert_eq!((none.measured, none.samples, none.tested), (0, samples, 0), "{name}");
+        assert_eq!(
+            (none.measured, none.samples, none.tested),
+            (0, samples, 0),
+            "{name}"
+        );
         assert!(!none.is_complete() && none.relative == 0.0, "{name}");
     }
 }
