@@ -152,8 +152,6 @@ impl RemeshStorage {
     }
 }
 
-/// The surface area of `mesh` and the edge length `target` names (a multiple of the mean edge
-/// length estimated over each triangle's three edges), in `f64`.
 /// The count of equilateral triangles of side `L` (the target) that cover the area of `mesh`:
 /// about what a run ends with. Zero for a target of no length.
 fn expected_triangles(mesh: &ValidMesh<'_>, target: EdgeTarget) -> f64 {
@@ -165,6 +163,8 @@ fn expected_triangles(mesh: &ValidMesh<'_>, target: EdgeTarget) -> f64 {
     }
 }
 
+/// The surface area of `mesh` and the edge length `target` names (a multiple of the mean edge
+/// length estimated over each triangle's three edges), in `f64`.
 fn area_and_length(mesh: &ValidMesh<'_>, target: EdgeTarget) -> (f64, f64) {
     let (mut area, mut edge_sum, mut edges) = (0.0f64, 0.0f64, 0usize);
     for t in 0..mesh.triangle_count() as u32 {
