@@ -322,6 +322,63 @@ def grid_text(grid):
             f"{grid['sign_disagreements']} samples.")
 
 
+# --- python -----------------------------------------------------------------------------------
+
+PY = "target/py-venv/bin/python"
+
+
+def run_python():
+    commands = [BUILD_CLI,
+                "(cd python && VIRTUAL_ENV=$PWD/../target/py-venv ../target/py-venv/bin/maturin develop --release --quiet)",
+                f"{PY} -m pip install --quiet libigl==2.6.3",
+                f"{PY} bench/python/bench.py --json"]
+    for command in commands[:-1]:
+        sh(command)
+    return commands, json.loads(sh(commands[-1]))
+
+
+def render_python(data):
+    rows = []
+    r = data.get("rays")
+    if r:
+        rows.append((f"{r['rays']:,} random rays, first hit", "`Mesh.raycast`", "trimesh + embreex `intersects_first`",
+                     f"{r['meshq_seconds']:.3f}", f"{r['embree_seconds']:.3f}", f"{r['ratio']:.2f}×"))
+        rows.append((f"{r['rays']:,} random rays, first hit", "`meshq.trimesh` drop-in `intersects_first`",
+                     "trimesh + embreex `intersects_first`", f"{r['dropin_seconds']:.3f}", f"{r['embree_seconds']:.3f}",
+                     f"{r['dropin_ratio']:.2f}×"))
+    c = data.get("closest")
+    if c:
+        rows.append((f"{c['points']:,} closest points", "`Mesh.closest_points`", f"`trimesh.proximity.closest_point` ({c.get('trimesh_chunk', 0):,} points per call)",
+                     f"{c['meshq_seconds']:.3f}", f"{c['trimesh_seconds']:.1f}", f"{c['trimesh_ratio']:.0f}×"))
+        if "libigl_seconds" in c:
+            rows.append((f"{c['points']:,} closest points, tree built in the call", "`Mesh(...)` + `closest_points`",
+                         "libigl `point_mesh_squared_distance`", f"{c['meshq_with_build_seconds']:.3f}",
+                         f"{c['libigl_seconds']:.3f}", f"{c['libigl_ratio']:.2f}×"))
+    text = (f"One core (the script pins itself to one CPU and sets `RAYON_NUM_THREADS=1`), the bundled bunny "
+            f"({data.get('triangles', 0):,} triangles), structures built before the clock starts unless said; best of 3.\n\n"
+            + table(["workload", "meshq", "peer", "meshq (s)", "peer (s)", "ratio"], rows))
+    if r:
+        text += (f"\n\nFirst triangles equal to Embree's: {r['same_first_triangle'] * 100:.2f}% of rays; the drop-in's "
+                 f"equal to `Mesh.raycast`'s: {'yes' if r['dropin_equal'] else 'no'}.")
+    if c:
+        text += (f" Closest distances: largest difference from trimesh's {c['trimesh_largest_difference_over_diagonal']:.1e}"
+                 + (f", from libigl's {c['libigl_largest_difference_over_diagonal']:.1e}" if "libigl_seconds" in c else "")
+                 + " of the diagonal.")
+    o = data.get("overhead")
+    if o:
+        text += (f"\n\nCall overhead: a one-ray `Mesh.raycast` call takes {o['python_microseconds_per_call']:.1f} µs "
+                 f"({o['calls']:,} calls), the Rust call {o['rust_microseconds_per_call']:.2f} µs "
+                 f"(`meshq raycast --per-ray` on the same rays): {o['overhead_microseconds']:.1f} µs of Python per call.")
+    d = data.get("dask")
+    if d:
+        text += (f"\n\nDask: {d['blobs']:,} blobs ({d['blob_megabytes']:.0f} MB; the bundled meshes turned, scaled and moved) × "
+                 f"{d['rays_per_blob']:,} random rays each, `meshq.dask.Blobs(client, paths).raycast` on a local cluster of "
+                 f"two single-threaded workers: {d['dask_seconds']:.1f} s, one process loading and querying each blob in "
+                 f"turn: {d['one_process_seconds']:.1f} s: **{d['ratio']:.2f}×**; answers "
+                 f"{'identical, bit for bit' if d['identical'] else 'DIFFERENT'}.")
+    return text
+
+
 # --- threads ----------------------------------------------------------------------------------
 
 def run_threads():
@@ -361,6 +418,7 @@ SECTIONS = {
     "node": ("Node: WebAssembly against three-mesh-bvh", run_node, render_node),
     "remesh": ("Remeshing against gpytoolbox", run_remesh, render_remesh),
     "inside": ("Inside and signed distance against libigl", run_inside, render_inside),
+    "python": ("Python: trimesh, Embree, libigl and Dask", run_python, render_python),
     "firmware": ("Firmware: Cortex-M4F in QEMU", run_firmware, render_firmware),
 }
 
@@ -416,6 +474,16 @@ def summary_rows(results):
                 rows.append(("winding numbers, bunny, 100k points, equal accuracy", "libigl `fast_winding_number`", f"{m['ratio']:.2f}×"))
                 sd = r["signed"]["meshq"][r["equal_accuracy_ratio"]]
                 rows.append(("signed distance, bunny, 100k points", "libigl `signed_distance`", f"{sd['ratio']:.2f}×"))
+    if "python" in results:
+        p = results["python"]["data"]
+        if "rays" in p:
+            rows.append(("Python, bunny: 1M random rays, `Mesh.raycast`", "trimesh + embreex `intersects_first`", f"{p['rays']['ratio']:.2f}×"))
+        if "closest" in p:
+            rows.append(("Python, bunny: 100k closest points", "`trimesh.proximity.closest_point`", f"{p['closest']['trimesh_ratio']:.0f}×"))
+            if "libigl_ratio" in p["closest"]:
+                rows.append(("Python, bunny: 100k closest points, build included", "libigl `point_mesh_squared_distance`", f"{p['closest']['libigl_ratio']:.2f}×"))
+        if "dask" in p:
+            rows.append(("Python: 1,000 blobs × 100k rays, two Dask workers", "one process", f"{p['dask']['ratio']:.2f}×"))
     if "remesh" in results:
         times = {}
         lines = results["remesh"]["data"]["table"].splitlines()
@@ -485,7 +553,7 @@ def run(names):
     RESULTS.mkdir(parents=True, exist_ok=True)
     commit = first_line("git rev-parse --short HEAD")
     # Only changes to what is built and run count: docs and results do not move a number.
-    code = ["core", "cli", "wasm", "web", "bench", "workload", "firmware", "tests", "Cargo.lock"]
+    code = ["core", "cli", "wasm", "web", "bench", "workload", "firmware", "tests", "python", "Cargo.lock"]
     changed = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", *code], cwd=ROOT,
                              capture_output=True, text=True).stdout.strip()
     if changed:

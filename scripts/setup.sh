@@ -100,6 +100,25 @@ for dir in web bench/node; do
   fi
 done
 
+# Python: a virtual environment in target/py-venv (ignored by git) with the packages pinned in
+# python/requirements.lock (maturin builds the extension module; numpy, trimesh, embreex and
+# dask are what the package and its tests use). Reinstalled only when the lock file changes.
+py_venv=target/py-venv
+py_stamp=$py_venv/.requirements.lock
+if [ -x "$py_venv/bin/python" ] && cmp -s python/requirements.lock "$py_stamp"; then
+  log "python packages in $py_venv: present"
+else
+  command -v python3 >/dev/null || {
+    echo "[setup] python3 (3.11 or later) is required for the Python package" >&2
+    exit 1
+  }
+  log "python packages: installing into $py_venv (python/requirements.lock)"
+  [ -x "$py_venv/bin/python" ] || python3 -m venv "$py_venv"
+  "$py_venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-input \
+    -r python/requirements.lock
+  cp python/requirements.lock "$py_stamp"
+fi
+
 if [ -n "$apt_pid" ]; then
   log "apt: waiting for the background install"
   if ! wait "$apt_pid"; then

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every check, as CI runs it: install what is missing, then formatting, lints, docs, the
-# bare-metal and WebAssembly builds of the core, all tests, the profile-guided build against
-# the test build, the firmware in QEMU, the WebAssembly tests in Node, the npm package
+# bare-metal and WebAssembly builds of the core, all tests, the Python package's tests (with a
+# two-worker Dask cluster), the profile-guided build against the test build, the firmware in
+# QEMU, the WebAssembly tests in Node, the npm package
 # installed from its tarball, its TypeScript typings, the three.js drop-in test, the demo in
 # headless Chromium, and a short run of the Node benchmark. (Clippy with --all-targets
 # type-checks the criterion benchmarks; `cargo bench` runs them.)
@@ -33,8 +34,12 @@ cargo clippy --locked -p meshq --features blob --target thumbv7em-none-eabihf --
 
 step "tests (optimised test profile)"
 # meshq-bench holds only benchmarks and an example (clippy above type-checks them); leaving it
-# out spares compiling its peers (obvhs, parry3d, criterion) optimised.
-cargo test --locked --workspace --exclude meshq-bench
+# out spares compiling its peers (obvhs, parry3d, criterion) optimised. meshq-python is tested
+# from Python (its own step below).
+cargo test --locked --workspace --exclude meshq-bench --exclude meshq-python
+
+step "Python package: the extension module in target/py-venv, its tests (brute force, trimesh, Embree, a two-worker Dask cluster)"
+MESHQ_PY_PROFILE=python-test ./scripts/python.sh
 
 step "the wide trees built for AVX2 (eight lanes in one instruction), against brute force"
 # The default x86-64 build runs eight lanes as two SSE halves; an AVX2 build takes the `wide`

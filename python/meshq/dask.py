@@ -1,0 +1,230 @@
+"""Jobs larger than one machine, on a ``dask.distributed`` cluster.
+
+Two jobs scale: baking a directory of meshes into blobs, and answering ray, closest-point and
+signed-distance batches over many blobs. Blobs go to workers as bytes once — sent from
+this process inside the task that decodes them, or read by the workers from storage they
+share — and are decoded
+there (validated, never rebuilt) into :class:`meshq.Mesh` objects that stay in the workers'
+memory for every later query. Results come back in input order and equal the single-process
+answers bit for bit (the core's answers do not depend on the machine or the thread count).
+
+A worker lost in the middle of a job loses nothing: what it held is made again from the
+bytes the scheduler keeps in each blob's task or from the files, each task's answer is
+returned once, and a bake writes each blob by atomic rename, so a half-written blob never appears.
+
+Quick start::
+
+    from dask.distributed import Client
+    from meshq.dask import Blobs, bake_directory
+
+    client = Client()                                   # a local cluster; or Client("tcp://…")
+    paths = bake_directory(client, "meshes/", "blobs/")  # one .meshq blob per mesh file
+    blobs = Blobs(client, paths)                        # or Blobs(client, [bytes, …])
+    hits = blobs.raycast(origins, directions)           # one (t, triangle, u, v) per blob
+
+Each worker runs one query batch at a time per thread it has; a batch uses the worker's rayon
+pool (``RAYON_NUM_THREADS`` sets its size; 1 suits a worker per core).
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import warnings
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import Mesh
+
+BlobSource = bytes | bytearray | memoryview | str | os.PathLike
+
+
+def _load_group(sources: list) -> list[Mesh]:
+    """Decodes each blob of a group: ``bytes``, or the path of a blob file to read."""
+    meshes = []
+    for source in sources:
+        if isinstance(source, bytes):
+            meshes.append(Mesh.from_blob(source))
+        else:
+            with open(source, "rb") as file:
+                meshes.append(Mesh.from_blob(file.read()))
+    return meshes
+
+
+def _keep(value: Any) -> Any:
+    return value
+
+
+def _call_group(meshes: list[Mesh], method: str, shared: tuple | None, own: list, kwargs: dict) -> list:
+    """``Mesh.<method>`` on each mesh of a group, with the ``shared`` arguments, or each mesh
+    with its ``own``."""
+    if shared is not None:
+        return [getattr(m, method)(*shared, **kwargs) for m in meshes]
+    return [getattr(m, method)(*args, **kwargs) for m, args in zip(meshes, own)]
+
+
+def _bake_one(source: str, target: str, build: dict, layout: str | None, winding: bool) -> str:
+    import trimesh
+
+    loaded = trimesh.load(source, force="mesh", process=False)
+    mesh = Mesh(np.asarray(loaded.vertices), np.asarray(loaded.faces), **build)
+    blob = mesh.to_blob(layout, winding=winding)
+    directory = os.path.dirname(target) or "."
+    # Written beside the target and renamed over it: a worker killed mid-write leaves a
+    # temporary file, never a half blob under the target's name.
+    handle, temporary = tempfile.mkstemp(prefix=".bake-", suffix=".tmp", dir=directory)
+    try:
+        with os.fdopen(handle, "wb") as file:
+            file.write(blob)
+        os.replace(temporary, target)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+        raise
+    return target
+
+
+def bake_directory(
+    client: Any,
+    source: str | os.PathLike,
+    target: str | os.PathLike,
+    *,
+    pattern: str = "*.obj",
+    layout: str | None = None,
+    winding: bool = False,
+    **build: Any,
+) -> list[Path]:
+    """Bakes every file in ``source`` matching ``pattern`` (any format trimesh reads; read as
+    is, vertices not merged) into ``target/<name>.meshq``, one task per file on ``client``'s
+    workers, which must all see both directories. ``build`` takes :class:`meshq.Mesh`'s
+    keyword arguments (``structure``, ``quality``…); ``layout`` and ``winding`` are
+    ``Mesh.to_blob``'s. Returns the blob paths in the sorted order of the sources. A file that
+    fails raises its error here, naming the file."""
+    sources = sorted(Path(source).glob(pattern))
+    out = Path(target)
+    out.mkdir(parents=True, exist_ok=True)
+    targets = [str(out / (s.stem + ".meshq")) for s in sources]
+    futures = [
+        client.submit(_bake_one, str(s), t, build, layout, winding, pure=False, key=f"meshq-bake-{i}-{s.name}")
+        for i, (s, t) in enumerate(zip(sources, targets))
+    ]
+    done = []
+    for s, future in zip(sources, futures):
+        try:
+            done.append(Path(future.result()))
+        except Exception as error:
+            raise RuntimeError(f"baking {s} failed: {error}") from error
+    return done
+
+
+class Blobs:
+    """Blobs placed on a cluster once and queried many times.
+
+    ``blobs``: ``bytes`` (sent once, inside the task that decodes them, so the scheduler can run
+    that task again if its worker is lost) or paths of blob files every worker can read (read
+    by the workers, and read again if a worker is lost). Each blob is decoded once on a worker
+    into a :class:`meshq.Mesh` that stays in that worker's memory.
+
+    Blobs travel and are queried in groups of ``group`` (default: enough groups for four per
+    worker thread), one task per group, so that a thousand small blobs cost the scheduler a few
+    dozen tasks, not thousands.
+    """
+
+    def __init__(self, client: Any, blobs: Sequence[BlobSource], *, group: int | None = None) -> None:
+        self.client = client
+        sources: list[bytes | str] = []
+        for i, blob in enumerate(blobs):
+            if isinstance(blob, (bytes, bytearray, memoryview)):
+                sources.append(bytes(blob))
+            else:
+                path = os.fspath(blob)
+                if not os.path.isfile(path):
+                    raise FileNotFoundError(f"blobs[{i}]: no such file: {path}")
+                sources.append(path)
+        if group is None:
+            threads = max(1, sum(client.nthreads().values()))
+            group = max(1, -(-len(sources) // (4 * threads)))
+        if group < 1:
+            raise ValueError(f"group must be at least 1, got {group}")
+        self._count = len(sources)
+        self._sizes = []
+        self._groups = []
+        for start in range(0, len(sources), group):
+            part = sources[start:start + group]
+            with warnings.catch_warnings():
+                # Blobs are meant to travel in their task; Dask warns about large tasks.
+                warnings.simplefilter("ignore", UserWarning)
+                self._groups.append(client.submit(_load_group, part, pure=False))
+            self._sizes.append(len(part))
+
+    def __len__(self) -> int:
+        return self._count
+
+    def _shared(self, value: Any) -> Any:
+        # An argument every task reads is the result of one task holding it: workers fetch it
+        # from each other, and the scheduler can run that task again if its holders are lost
+        # (scattered data could not be recovered).
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            return self.client.submit(_keep, value, pure=False)
+
+    def submit(self, method: str, *args: Any, per_blob: bool = False, **kwargs: Any) -> list[Any]:
+        """Starts ``Mesh.<method>(*args, **kwargs)`` on every blob and returns one future per
+        group (each giving its blobs' answers in order); :meth:`gather` turns them into the
+        answers in blob order. The arguments go to the cluster once; with ``per_blob=True``
+        each positional argument is instead a sequence holding one value per blob."""
+        futures = []
+        if per_blob:
+            for a in args:
+                if len(a) != self._count:
+                    raise ValueError(
+                        f"per_blob arguments need one value per blob ({self._count}), got {len(a)}"
+                    )
+            start = 0
+            for meshes, size in zip(self._groups, self._sizes):
+                own = [tuple(a[i] for a in args) for i in range(start, start + size)]
+                start += size
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", UserWarning)
+                    futures.append(
+                        self.client.submit(_call_group, meshes, method, None, own, kwargs, pure=False)
+                    )
+            return futures
+        shared = self._shared(args)
+        return [
+            self.client.submit(_call_group, meshes, method, shared, [], kwargs, pure=False)
+            for meshes in self._groups
+        ]
+
+    def gather(self, futures: list[Any]) -> list[Any]:
+        """The answers of :meth:`submit`'s futures, in blob order. Each group's answers are
+        fetched as soon as they are ready, while the others still run."""
+        from distributed import as_completed
+
+        parts: list[Any] = [None] * len(futures)
+        place = {future.key: i for i, future in enumerate(futures)}
+        for future, answers in as_completed(futures, with_results=True):
+            parts[place[future.key]] = answers
+        return [answer for part in parts for answer in part]
+
+    def map(self, method: str, *args: Any, per_blob: bool = False, **kwargs: Any) -> list[Any]:
+        """:meth:`submit`, then :meth:`gather`: the answers in blob order."""
+        return self.gather(self.submit(method, *args, per_blob=per_blob, **kwargs))
+
+    def raycast(self, origins: Any, directions: Any, **options: Any) -> list[tuple]:
+        """``Mesh.raycast`` of the same rays on every blob: one ``(t, triangle, u, v)`` per
+        blob, in blob order."""
+        return self.map(
+            "raycast", np.asarray(origins, np.float32), np.asarray(directions, np.float32), **options
+        )
+
+    def closest_points(self, points: Any, **options: Any) -> list[tuple]:
+        """``Mesh.closest_points`` of the same points on every blob, in blob order."""
+        return self.map("closest_points", np.asarray(points, np.float32), **options)
+
+    def signed_distances(self, points: Any, **options: Any) -> list[tuple]:
+        """``Mesh.signed_distances`` of the same points on every blob, in blob order."""
+        return self.map("signed_distances", np.asarray(points, np.float32), **options)
