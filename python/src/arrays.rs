@@ -27,27 +27,46 @@ fn contiguous<'py>(
 /// The rows of an `(n, 3)` array of floats (`float32`, or converted to it), each checked
 /// finite. A single row of 3 numbers is taken as `n = 1`.
 pub fn vec3s(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Vec3>> {
-    let flat = floats(obj, name, 3)?;
-    if let Some(at) = flat.iter().position(|x| !x.is_finite()) {
-        return Err(PyValueError::new_err(format!(
+    with_floats(obj, name, 3, |flat| {
+        finite_rows(flat, name)?;
+        Ok(flat
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect())
+    })
+}
+
+/// A `ValueError` naming the first value of `flat` (rows of 3) that is not finite.
+pub fn finite_rows(flat: &[f32], name: &str) -> PyResult<()> {
+    match flat.iter().position(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(at) => Err(PyValueError::new_err(format!(
             "{name}[{}, {}] is not finite as float32: {}",
             at / 3,
             at % 3,
             flat.get(at).copied().unwrap_or(f32::NAN)
-        )));
+        ))),
     }
-    Ok(flat
-        .chunks_exact(3)
-        .map(|p| Vec3::new(p[0], p[1], p[2]))
-        .collect())
+}
+
+/// Runs `read` on the values of an `(n, width)` float array, as one flat `float32` slice
+/// borrowed from the array itself when it is C-contiguous, aligned `float32` (else from the
+/// one conversion numpy makes).
+pub fn with_floats<R>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    width: usize,
+    read: impl FnOnce(&[f32]) -> PyResult<R>,
+) -> PyResult<R> {
+    let array = contiguous(obj, "float32", name)?;
+    let array = shaped::<f32>(&array, name, width)?;
+    let readonly = array.readonly();
+    read(readonly.as_slice()?)
 }
 
 /// The values of an `(n, width)` float array as one flat `float32` vector (not checked finite).
 pub fn floats(obj: &Bound<'_, PyAny>, name: &str, width: usize) -> PyResult<Vec<f32>> {
-    let array = contiguous(obj, "float32", name)?;
-    let array = shaped::<f32>(&array, name, width)?;
-    let readonly = array.readonly();
-    Ok(readonly.as_slice()?.to_vec())
+    with_floats(obj, name, width, |flat| Ok(flat.to_vec()))
 }
 
 /// The values of an `(n, width)` array of whole numbers in `0..2^32` as `uint32`.

@@ -2,6 +2,7 @@
 //! (python/meshq). It binds the core's owned API ([`meshq::owned::MeshIndex`] and the
 //! remesher) to numpy arrays; batches run on rayon's thread pool with the GIL released.
 
+mod allocator;
 mod arrays;
 mod build;
 mod closest;

@@ -9,39 +9,45 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 
-use crate::arrays::{column, vec3s};
+use crate::arrays::{column, finite_rows, with_floats};
 use crate::mesh::{Column, Mesh, Storage};
 
-/// The rays `origins[i] + t·directions[i]`, `t` in `[near, far]`, each direction non-zero.
+/// The rays `origins[i] + t·directions[i]`, `t` in `[near, far]`, each direction non-zero,
+/// made in one pass over the two arrays (read in place where their layout allows).
 fn rays(
     origins: &Bound<'_, PyAny>,
     directions: &Bound<'_, PyAny>,
     near: f64,
     far: f64,
 ) -> PyResult<Vec<Ray>> {
-    let origins = vec3s(origins, "origins")?;
-    let directions = vec3s(directions, "directions")?;
-    if origins.len() != directions.len() {
-        return Err(PyValueError::new_err(format!(
-            "origins has {} rows but directions has {}",
-            origins.len(),
-            directions.len()
-        )));
-    }
     if near.is_nan() || far.is_nan() || near > far {
         return Err(PyValueError::new_err(format!(
             "near and far must be numbers with near <= far, got {near} and {far}"
         )));
     }
-    if let Some(at) = directions.iter().position(|d| *d == Vec3::ZERO) {
-        return Err(PyValueError::new_err(format!("directions[{at}] is zero")));
-    }
     let (near, far) = (near as f32, far as f32);
-    Ok(origins
-        .iter()
-        .zip(&directions)
-        .map(|(&o, &d)| Ray::new(o, d).with_range(near, far))
-        .collect())
+    with_floats(origins, "origins", 3, |o| {
+        with_floats(directions, "directions", 3, |d| {
+            if o.len() != d.len() {
+                return Err(PyValueError::new_err(format!(
+                    "origins has {} rows but directions has {}",
+                    o.len() / 3,
+                    d.len() / 3
+                )));
+            }
+            finite_rows(o, "origins")?;
+            finite_rows(d, "directions")?;
+            let mut rays = Vec::with_capacity(o.len() / 3);
+            for (i, (o, d)) in o.chunks_exact(3).zip(d.chunks_exact(3)).enumerate() {
+                let dir = Vec3::new(d[0], d[1], d[2]);
+                if dir == Vec3::ZERO {
+                    return Err(PyValueError::new_err(format!("directions[{i}] is zero")));
+                }
+                rays.push(Ray::new(Vec3::new(o[0], o[1], o[2]), dir).with_range(near, far));
+            }
+            Ok(rays)
+        })
+    })
 }
 
 /// The options of `side` (`"both"`, `"front"`, `"back"`: the faces a ray may hit) and `test`
