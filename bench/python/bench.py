@@ -18,9 +18,11 @@ meshq starts; the Dask workers get a core each), on the bundled bunny:
   one-call-per-ray time (`meshq raycast --per-ray --json`);
 - Dask: `--blobs` blob files (the bundled meshes turned, scaled and moved, written to a
   temporary directory) × `--dask-rays` random rays: `meshq.dask.Blobs(client, paths).raycast`
-  on a local cluster of two single-threaded workers against one process loading and querying
-  each blob in turn; every answer compared bit for bit (by digest).
-Times are the best of `--repeat` rounds (Dask: one round).
+  on a local cluster of two single-threaded workers (answers gathered into this process, and
+  answers written to /dev/shm with `out=` and returned memory-mapped) against one process
+  loading and querying each blob in turn, and two plain processes (no Dask) each doing half,
+  the machine's own ceiling; every answer compared bit for bit (by digest).
+Times are the best of `--repeat` rounds (Dask: of `--dask-rounds` rounds of every variant).
 
 Set up: scripts/setup.sh (target/py-venv), then the extension built for speed:
   (cd python && VIRTUAL_ENV=$PWD/../target/py-venv ../target/py-venv/bin/maturin develop --release)
@@ -30,6 +32,7 @@ Run: target/py-venv/bin/python bench/python/bench.py [--meshq BIN] [--json]
 import argparse
 import hashlib
 import json
+import multiprocessing
 import os
 import pathlib
 import subprocess
@@ -207,6 +210,14 @@ def digest(arrays):
     return h.hexdigest()
 
 
+def _query_blobs(paths, origins, directions):
+    """One of the two plain processes: the digests of its blobs' answers."""
+    import meshq
+
+    return [digest(meshq.Mesh.from_blob(pathlib.Path(p).read_bytes()).raycast(origins, directions))
+            for p in paths]
+
+
 def dask_section(args):
     import distributed
     import meshq
@@ -234,7 +245,10 @@ def dask_section(args):
                 digests.append(digest(answers))
             return seconds, digests
 
-        t_one, want = one_process()
+        # Rounds of every variant one after the other, best of each: this machine's speed drifts
+        # by a fifth over minutes.
+        t_one, t_two, t_dask, t_shared = (float("inf"),) * 4
+        shm = "/dev/shm" if os.path.isdir("/dev/shm") else None
         set_cpus(set(range(os.cpu_count())))
         cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                            dashboard_address=None, silence_logs=40,
@@ -243,11 +257,30 @@ def dask_section(args):
             cpus = client.run(lambda: len(os.sched_getaffinity(0)))
             # Workers import meshq and numpy once, as the process measured alone already has.
             Blobs(client, paths[:2]).raycast(o32[:10], d32[:10])
-            start = time.perf_counter()
-            answers = Blobs(client, paths).raycast(o32, d32)
-            t_dask = time.perf_counter() - start
-            got = [digest(a) for a in answers]
-            del answers
+            for _ in range(args.dask_rounds):
+                set_cpus({0})
+                seconds, want = one_process()
+                t_one = min(t_one, seconds)
+                set_cpus(set(range(os.cpu_count())))
+                # The machine's own ceiling: two plain processes, each loading and querying
+                # half the blobs (no Dask).
+                with multiprocessing.get_context("spawn").Pool(2) as pool:
+                    start = time.perf_counter()
+                    halves = pool.starmap(_query_blobs, [([str(p) for p in paths[k::2]], o32, d32) for k in (0, 1)])
+                    t_two = min(t_two, time.perf_counter() - start)
+                two = [None] * len(paths)
+                two[0::2], two[1::2] = halves
+                start = time.perf_counter()
+                answers = Blobs(client, paths).raycast(o32, d32)
+                t_dask = min(t_dask, time.perf_counter() - start)
+                got = [digest(a) for a in answers]
+                del answers
+                with tempfile.TemporaryDirectory(prefix="meshq-answers-", dir=shm) as out:
+                    start = time.perf_counter()
+                    answers = Blobs(client, paths).raycast(o32, d32, out=out)
+                    t_shared = min(t_shared, time.perf_counter() - start)
+                    got_shared = [digest(a) for a in answers]
+                    del answers
         cluster.close()
         set_cpus({0})
     return {
@@ -257,7 +290,13 @@ def dask_section(args):
         "one_process_seconds": t_one,
         "dask_seconds": t_dask,
         "ratio": t_one / t_dask,
-        "identical": got == want,
+        "dask_shared_seconds": t_shared,
+        "shared_ratio": t_one / t_shared,
+        "shared_folder": shm or tempfile.gettempdir(),
+        "two_processes_seconds": t_two,
+        "two_processes_ratio": t_one / t_two,
+        "identical": got == want and got_shared == want and two == want,
+        "rounds": args.dask_rounds,
         "worker_cpus": sorted(cpus.values()),
     }
 
@@ -271,6 +310,7 @@ def main():
     parser.add_argument("--blobs", type=int, default=1000)
     parser.add_argument("--dask-rays", type=int, default=100_000)
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--dask-rounds", type=int, default=2)
     parser.add_argument("--only", default="rays,closest,overhead,dask")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()

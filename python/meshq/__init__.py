@@ -12,7 +12,13 @@ Companion modules: :mod:`meshq.trimesh` (a drop-in for trimesh's ray intersector
 a ``dask.distributed`` cluster).
 """
 
-from ._meshq import Mesh, remesh
+import os as _os
+
+from ._meshq import Mesh, after_fork_in_child as _after_fork_in_child, remesh
+
+# A forked child (multiprocessing's default on Linux) has none of the parent's batch threads:
+# from the fork on, batches there run on threads the child makes (see python/src/pool.rs).
+_os.register_at_fork(after_in_child=_after_fork_in_child)
 
 __all__ = ["Mesh", "remesh"]
 __version__ = "0.1.0"

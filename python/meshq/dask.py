@@ -1,26 +1,28 @@
 """Jobs larger than one machine, on a ``dask.distributed`` cluster.
 
 Two jobs scale: baking a directory of meshes into blobs, and answering ray, closest-point and
-signed-distance batches over many blobs. Blobs go to workers as bytes once — sent from
-this process inside the task that decodes them, or read by the workers from storage they
-share — and are decoded
-there (validated, never rebuilt) into :class:`meshq.Mesh` objects that stay in the workers'
-memory for every later query. Results come back in input order and equal the single-process
-answers bit for bit (the core's answers do not depend on the machine or the thread count).
+signed-distance batches over many blobs. Blobs go to workers as bytes once — sent from this
+process inside the task that decodes them, or read by the workers from storage they share —
+and are decoded there (validated, never rebuilt) into :class:`meshq.Mesh` objects that stay
+in the workers' memory for every later query. Results come back in input order and equal the
+single-process answers bit for bit (the core's answers do not depend on the machine or the
+thread count); large results can come back through shared storage instead of the cluster's
+connections (``out=``).
 
 A worker lost in the middle of a job loses nothing: what it held is made again from the
 bytes the scheduler keeps in each blob's task or from the files, each task's answer is
-returned once, and a bake writes each blob by atomic rename, so a half-written blob never appears.
+returned once, and every file written (a baked blob, a group's answers) appears by atomic
+rename, so no half-written file ever carries its name.
 
 Quick start::
 
-    from dask.distributed import Client
-    from meshq.dask import Blobs, bake_directory
+    from meshq.dask import Blobs, bake_directory, connect
 
-    client = Client()                                   # a local cluster; or Client("tcp://…")
+    client = connect()                                  # a local cluster; or connect("tcp://…")
     paths = bake_directory(client, "meshes/", "blobs/")  # one .meshq blob per mesh file
     blobs = Blobs(client, paths)                        # or Blobs(client, [bytes, …])
     hits = blobs.raycast(origins, directions)           # one (t, triangle, u, v) per blob
+    hits = blobs.raycast(origins, directions, out="/dev/shm/hits")  # the same, memory-mapped
 
 Each worker runs one query batch at a time per thread it has; a batch uses the worker's rayon
 pool (``RAYON_NUM_THREADS`` sets its size; 1 suits a worker per core).
@@ -58,12 +60,73 @@ def _keep(value: Any) -> Any:
     return value
 
 
-def _call_group(meshes: list[Mesh], method: str, shared: tuple | None, own: list, kwargs: dict) -> list:
+def _call_group(
+    meshes: list[Mesh],
+    method: str,
+    shared: tuple | None,
+    own: list,
+    kwargs: dict,
+    out: str | None,
+    first: int,
+) -> Any:
     """``Mesh.<method>`` on each mesh of a group, with the ``shared`` arguments, or each mesh
-    with its ``own``."""
+    with its ``own``: the answers, or with ``out`` a :class:`_Saved` record of the files they
+    were written to."""
     if shared is not None:
-        return [getattr(m, method)(*shared, **kwargs) for m in meshes]
-    return [getattr(m, method)(*args, **kwargs) for m, args in zip(meshes, own)]
+        answers = [getattr(m, method)(*shared, **kwargs) for m in meshes]
+    else:
+        answers = [getattr(m, method)(*args, **kwargs) for m, args in zip(meshes, own)]
+    if out is None:
+        return answers
+    return _save_group(answers, out, first)
+
+
+class _Saved:
+    """A group's answers written to files: one ``.npy`` per part of the answer (``t``,
+    ``triangle``… for a ray cast), the blobs' arrays one after the other in it."""
+
+    def __init__(self, names: list[str], rows: list[int], single: bool) -> None:
+        self.names, self.rows, self.single = names, rows, single
+
+    def load(self) -> list[Any]:
+        """Each blob's answer, its arrays views of the memory-mapped files."""
+        parts = [np.load(name, mmap_mode="r", allow_pickle=False) for name in self.names]
+        answers, start = [], 0
+        for count in self.rows:
+            arrays = tuple(part[start:start + count] for part in parts)
+            answers.append(arrays[0] if self.single else arrays)
+            start += count
+        return answers
+
+
+def _save_group(answers: list, out: str, first: int) -> _Saved:
+    single = bool(answers) and not isinstance(answers[0], tuple)
+    columns = [(a,) if single else a for a in answers]
+    for answer in columns:
+        for part in answer if isinstance(answer, tuple) else (answer,):
+            if not isinstance(part, np.ndarray):
+                raise TypeError(f"out= needs a method that returns arrays, got {type(part).__name__}")
+    names = []
+    for k in range(len(columns[0]) if columns else 0):
+        parts = [np.ascontiguousarray(answer[k]) for answer in columns]
+        shape = (sum(p.shape[0] for p in parts),) + parts[0].shape[1:]
+        header = {"descr": np.lib.format.dtype_to_descr(parts[0].dtype), "fortran_order": False, "shape": shape}
+        name = os.path.join(out, f"{first:07}-{k}.npy")
+        # Written beside its name and renamed over it: a worker lost mid-write leaves no half
+        # file under the name, and the task run again writes the same bytes.
+        handle, temporary = tempfile.mkstemp(prefix=".part-", suffix=".npy", dir=out)
+        try:
+            with os.fdopen(handle, "wb") as file:
+                np.lib.format.write_array_header_2_0(file, header)
+                for p in parts:
+                    file.write(memoryview(p).cast("B"))
+            os.replace(temporary, name)
+        except BaseException:
+            if os.path.exists(temporary):
+                os.unlink(temporary)
+            raise
+        names.append(name)
+    return _Saved(names, [answer[0].shape[0] for answer in columns], single)
 
 
 def _bake_one(source: str, target: str, build: dict, layout: str | None, winding: bool) -> str:
@@ -87,6 +150,38 @@ def _bake_one(source: str, target: str, build: dict, layout: str | None, winding
     return target
 
 
+def connect(address: str | None = None) -> Any:
+    """A ``distributed.Client``: to the scheduler at ``address``, or, without one, to a local
+    cluster of one single-threaded worker process per core (each batch then runs on its
+    worker's one thread: ``RAYON_NUM_THREADS=1``)."""
+    from distributed import Client, LocalCluster
+
+    if address is not None:
+        return Client(address)
+    cluster = LocalCluster(
+        n_workers=os.cpu_count() or 1,
+        threads_per_worker=1,
+        processes=True,
+        env={"RAYON_NUM_THREADS": "1"},
+    )
+    return Client(cluster)
+
+
+def _client(client: Any) -> Any:
+    """``client`` as given; an address string connected to; ``None``: the client this process
+    already has, else a new local cluster's (see :func:`connect`)."""
+    if client is None:
+        from distributed import get_client
+
+        try:
+            return get_client()
+        except ValueError:
+            return connect()
+    if isinstance(client, str):
+        return connect(client)
+    return client
+
+
 def bake_directory(
     client: Any,
     source: str | os.PathLike,
@@ -101,8 +196,10 @@ def bake_directory(
     is, vertices not merged) into ``target/<name>.meshq``, one task per file on ``client``'s
     workers, which must all see both directories. ``build`` takes :class:`meshq.Mesh`'s
     keyword arguments (``structure``, ``quality``…); ``layout`` and ``winding`` are
-    ``Mesh.to_blob``'s. Returns the blob paths in the sorted order of the sources. A file that
+    ``Mesh.to_blob``'s. ``client``: a ``distributed.Client``, a scheduler address, or
+    ``None`` (see :func:`connect`). Returns the blob paths in the sorted order of the sources. A file that
     fails raises its error here, naming the file."""
+    client = _client(client)
     sources = sorted(Path(source).glob(pattern))
     out = Path(target)
     out.mkdir(parents=True, exist_ok=True)
@@ -128,13 +225,16 @@ class Blobs:
     by the workers, and read again if a worker is lost). Each blob is decoded once on a worker
     into a :class:`meshq.Mesh` that stays in that worker's memory.
 
-    Blobs travel and are queried in groups of ``group`` (default: enough groups for four per
-    worker thread), one task per group, so that a thousand small blobs cost the scheduler a few
-    dozen tasks, not thousands.
+    ``client``: a ``distributed.Client``, a scheduler address, or ``None`` (the client this
+    process has, else a local cluster: see :func:`connect`).
+
+    Blobs travel and are queried in groups of ``group`` (by default at most 32, and at least
+    four groups per worker thread), one task per group, so that a thousand small blobs cost the
+    scheduler a few dozen tasks, not thousands.
     """
 
     def __init__(self, client: Any, blobs: Sequence[BlobSource], *, group: int | None = None) -> None:
-        self.client = client
+        self.client = client = _client(client)
         sources: list[bytes | str] = []
         for i, blob in enumerate(blobs):
             if isinstance(blob, (bytes, bytearray, memoryview)):
@@ -145,8 +245,11 @@ class Blobs:
                     raise FileNotFoundError(f"blobs[{i}]: no such file: {path}")
                 sources.append(path)
         if group is None:
+            # At least four groups per worker thread (for balance), and at most 32 blobs in a
+            # group, so answers stream back while other groups still run.
             threads = max(1, sum(client.nthreads().values()))
-            group = max(1, -(-len(sources) // (4 * threads)))
+            groups = max(4 * threads, -(-len(sources) // 32))
+            group = max(1, -(-len(sources) // groups))
         if group < 1:
             raise ValueError(f"group must be at least 1, got {group}")
         self._count = len(sources)
@@ -171,11 +274,30 @@ class Blobs:
             warnings.simplefilter("ignore", UserWarning)
             return self.client.submit(_keep, value, pure=False)
 
-    def submit(self, method: str, *args: Any, per_blob: bool = False, **kwargs: Any) -> list[Any]:
+    def submit(
+        self,
+        method: str,
+        *args: Any,
+        per_blob: bool = False,
+        out: str | os.PathLike | None = None,
+        **kwargs: Any,
+    ) -> list[Any]:
         """Starts ``Mesh.<method>(*args, **kwargs)`` on every blob and returns one future per
-        group (each giving its blobs' answers in order); :meth:`gather` turns them into the
-        answers in blob order. The arguments go to the cluster once; with ``per_blob=True``
-        each positional argument is instead a sequence holding one value per blob."""
+        group; :meth:`gather` turns them into the answers in blob order. The arguments go to
+        the cluster once; with ``per_blob=True`` each positional argument is instead a sequence
+        holding one value per blob.
+
+        ``out``: a directory the workers and this process share (made if missing). Each
+        group's answers are then written there as ``.npy`` files, one per part of the answer
+        (``<first blob>-<part>.npy``, the group's blobs one after the other), and
+        :meth:`gather` returns views of them memory-mapped, so results pass through storage (on one
+        machine, the page cache: a file system in memory such as ``/dev/shm`` makes that a
+        copy in memory) instead of the cluster's connections. Only for methods that return
+        arrays."""
+        if out is not None:
+            out = os.fspath(out)
+            os.makedirs(out, exist_ok=True)
+        starts = [sum(self._sizes[:i]) for i in range(len(self._sizes))]
         futures = []
         if per_blob:
             for a in args:
@@ -183,40 +305,48 @@ class Blobs:
                     raise ValueError(
                         f"per_blob arguments need one value per blob ({self._count}), got {len(a)}"
                     )
-            start = 0
-            for meshes, size in zip(self._groups, self._sizes):
+            for meshes, size, start in zip(self._groups, self._sizes, starts):
                 own = [tuple(a[i] for a in args) for i in range(start, start + size)]
-                start += size
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", UserWarning)
                     futures.append(
-                        self.client.submit(_call_group, meshes, method, None, own, kwargs, pure=False)
+                        self.client.submit(
+                            _call_group, meshes, method, None, own, kwargs, out, start, pure=False
+                        )
                     )
             return futures
         shared = self._shared(args)
         return [
-            self.client.submit(_call_group, meshes, method, shared, [], kwargs, pure=False)
-            for meshes in self._groups
+            self.client.submit(_call_group, meshes, method, shared, [], kwargs, out, start, pure=False)
+            for meshes, start in zip(self._groups, starts)
         ]
 
     def gather(self, futures: list[Any]) -> list[Any]:
-        """The answers of :meth:`submit`'s futures, in blob order. Each group's answers are
-        fetched as soon as they are ready, while the others still run."""
+        """The answers of :meth:`submit`'s futures, in blob order (memory-mapped arrays when
+        it was given ``out``). Each group's answers are fetched as soon as they are ready,
+        while the others still run."""
         from distributed import as_completed
 
         parts: list[Any] = [None] * len(futures)
         place = {future.key: i for i, future in enumerate(futures)}
         for future, answers in as_completed(futures, with_results=True):
-            parts[place[future.key]] = answers
+            parts[place[future.key]] = answers.load() if isinstance(answers, _Saved) else answers
         return [answer for part in parts for answer in part]
 
-    def map(self, method: str, *args: Any, per_blob: bool = False, **kwargs: Any) -> list[Any]:
+    def map(
+        self,
+        method: str,
+        *args: Any,
+        per_blob: bool = False,
+        out: str | os.PathLike | None = None,
+        **kwargs: Any,
+    ) -> list[Any]:
         """:meth:`submit`, then :meth:`gather`: the answers in blob order."""
-        return self.gather(self.submit(method, *args, per_blob=per_blob, **kwargs))
+        return self.gather(self.submit(method, *args, per_blob=per_blob, out=out, **kwargs))
 
     def raycast(self, origins: Any, directions: Any, **options: Any) -> list[tuple]:
         """``Mesh.raycast`` of the same rays on every blob: one ``(t, triangle, u, v)`` per
-        blob, in blob order."""
+        blob, in blob order (``out`` as for :meth:`submit`)."""
         return self.map(
             "raycast", np.asarray(origins, np.float32), np.asarray(directions, np.float32), **options
         )

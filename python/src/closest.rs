@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use crate::arrays::{column, rows, vec3s};
 use crate::mesh::{Column, Mesh};
+use crate::pool::detached;
 
 fn batch_error(e: impl std::fmt::Display) -> PyErr {
     PyRuntimeError::new_err(e.to_string())
@@ -104,8 +105,10 @@ impl Mesh {
             .winding_tree()
             .ok_or_else(|| PyRuntimeError::new_err("no winding-number tree"))?;
         let mut out = vec![0.0f32; queries.len()];
-        py.detach(|| meshq::parallel::winding_numbers(&tree, &queries, accuracy, &mut out))
-            .map_err(batch_error)?;
+        detached(py, || {
+            meshq::parallel::winding_numbers(&tree, &queries, accuracy, &mut out)
+        })?
+        .map_err(batch_error)?;
         Ok(out)
     }
 }
@@ -128,9 +131,9 @@ impl Mesh {
         let queries = vec3s(points, "points")?;
         let storage = self.read()?;
         let mut out = vec![None; queries.len()];
-        py.detach(|| {
+        detached(py, || {
             meshq::parallel::closest_points(&storage.scene, &queries, max_distance, &mut out)
-        })
+        })?
         .map_err(batch_error)?;
         closest_columns(py, &queries, &out)
     }
@@ -191,7 +194,7 @@ impl Mesh {
                     .winding_tree()
                     .ok_or_else(|| PyRuntimeError::new_err("no winding-number tree"))?;
                 let mut out = vec![None; n];
-                py.detach(|| {
+                detached(py, || {
                     meshq::parallel::signed_distances(
                         &tree,
                         &storage.scene,
@@ -200,7 +203,7 @@ impl Mesh {
                         accuracy,
                         &mut out,
                     )
-                })
+                })?
                 .map_err(batch_error)?;
                 out.into_iter()
                     .map(|s| s.map(|s| (s.distance, s.closest)))
@@ -214,7 +217,7 @@ impl Mesh {
                     .ok_or_else(|| PyRuntimeError::new_err("no pseudo-normals"))?
                     .view();
                 let mut closest = vec![None; n];
-                py.detach(|| -> PyResult<Vec<Option<(f32, ClosestPoint)>>> {
+                detached(py, || -> PyResult<Vec<Option<(f32, ClosestPoint)>>> {
                     meshq::parallel::closest_points(
                         &storage.scene,
                         &queries,
@@ -233,7 +236,7 @@ impl Mesh {
                             Some((if inside { -d } else { d }, c))
                         })
                         .collect())
-                })?
+                })??
             }
             other => {
                 return Err(PyValueError::new_err(format!(

@@ -8,6 +8,7 @@ mod build;
 mod closest;
 mod mesh;
 mod pairs;
+mod pool;
 mod rays;
 mod remesh;
 mod shapes;
@@ -19,5 +20,6 @@ use pyo3::prelude::*;
 fn _meshq(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mesh::Mesh>()?;
     m.add_function(wrap_pyfunction!(remesh::remesh, m)?)?;
+    m.add_function(wrap_pyfunction!(pool::after_fork_in_child, m)?)?;
     Ok(())
 }

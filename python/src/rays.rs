@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use crate::arrays::{column, finite_rows, with_floats};
 use crate::mesh::{Column, Mesh, Storage};
+use crate::pool::detached;
 
 /// The rays `origins[i] + t·directions[i]`, `t` in `[near, far]`, each direction non-zero,
 /// made in one pass over the two arrays (read in place where their layout allows).
@@ -144,8 +145,10 @@ impl Mesh {
         let rays = rays(origins, directions, near, far)?;
         let storage = self.read()?;
         let mut out = vec![None; rays.len()];
-        py.detach(|| meshq::parallel::raycast_batch(&storage.scene, &rays, &options, &mut out))
-            .map_err(batch_error)?;
+        detached(py, || {
+            meshq::parallel::raycast_batch(&storage.scene, &rays, &options, &mut out)
+        })?
+        .map_err(batch_error)?;
         let n = out.len();
         let (mut t, mut tri, mut u, mut v) = (
             Vec::with_capacity(n),
@@ -180,8 +183,10 @@ impl Mesh {
         let rays = rays(origins, directions, near, far)?;
         let storage = self.read()?;
         let mut out = vec![false; rays.len()];
-        py.detach(|| meshq::parallel::raycast_any_batch(&storage.scene, &rays, &options, &mut out))
-            .map_err(batch_error)?;
+        detached(py, || {
+            meshq::parallel::raycast_any_batch(&storage.scene, &rays, &options, &mut out)
+        })?
+        .map_err(batch_error)?;
         Ok(column(py, out))
     }
 
@@ -204,7 +209,7 @@ impl Mesh {
         let options = options(side, test)?;
         let rays = rays(origins, directions, near, far)?;
         let storage = self.read()?;
-        let per_ray: Vec<Vec<RayHit>> = py.detach(|| {
+        let per_ray: Vec<Vec<RayHit>> = detached(py, || {
             rays.par_iter()
                 .map(|ray| {
                     let mut hits = every_hit(&storage, ray, &options);
@@ -212,7 +217,7 @@ impl Mesh {
                     hits
                 })
                 .collect()
-        });
+        })?;
         let total: usize = per_ray.iter().map(Vec::len).sum();
         let (mut ray, mut t, mut tri, mut u, mut v) = (
             Vec::with_capacity(total),

@@ -120,3 +120,43 @@ def test_a_killed_worker_loses_and_repeats_nothing(client):
     while len(client.scheduler_info()["workers"]) < 2 and time.time() < deadline:
         time.sleep(0.2)
     assert len(client.scheduler_info()["workers"]) == 2
+
+
+def test_answers_written_to_shared_storage_equal_one_process(client, tmp_path):
+    meshes = [meshq.Mesh(v, f) for v, f in placed_copies(5, seed=6)]
+    placed = Blobs(client, [m.to_blob() for m in meshes], group=2)
+    origins, directions = random_rays(np.array([[-1.5, -1.5, -1.5], [1.5, 1.5, 1.5]]), 3000, seed=7)
+    points = origins * 0.5
+    got_rays = placed.raycast(origins, directions, out=tmp_path / "rays")
+    got_winding = placed.map("winding_numbers", points, out=tmp_path / "winding")
+    got_closest = placed.map("closest_points", [points[i::5] for i in range(5)], per_blob=True, out=tmp_path / "closest")
+    for i, m in enumerate(meshes):
+        for a, b in zip(m.raycast(origins, directions), got_rays[i]):
+            assert isinstance(b, np.memmap)
+            np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(m.winding_numbers(points), got_winding[i])
+        for a, b in zip(m.closest_points(points[i::5]), got_closest[i]):
+            np.testing.assert_array_equal(a, b)
+    assert not list((tmp_path / "rays").glob(".part-*"))
+    with pytest.raises(TypeError, match="out= needs a method that returns arrays"):
+        placed.map("distance_to", meshes[0], out=tmp_path / "pairs")
+
+
+def test_the_client_may_be_an_address_or_the_current_one(client, tmp_path):
+    from meshq.dask import _client
+
+    assert _client(client) is client
+    assert _client(None) is client  # the client this process already has
+    address = client.scheduler.address
+    other = _client(address)
+    try:
+        assert other.scheduler.address == address
+        blobs = [meshq.Mesh(v, f).to_blob() for v, f in placed_copies(2, seed=8)]
+        points = np.zeros((10, 3))
+        placed = Blobs(address, blobs)
+        try:
+            assert len(placed.closest_points(points)) == 2
+        finally:
+            placed.client.close()
+    finally:
+        other.close()

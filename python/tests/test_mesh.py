@@ -143,3 +143,28 @@ def test_threads_share_one_mesh(fandisk):
         got = list(pool.map(lambda _: fresh.signed_distances(points)[0], range(8)))
     for g in got:
         np.testing.assert_array_equal(g, want)
+
+
+def _child_answers(mesh, origins, directions, pipe):
+    pipe.send([a.tolist() for a in mesh.raycast(origins, directions)])
+
+
+def test_a_forked_child_answers_as_its_parent(fandisk):
+    """multiprocessing forks on Linux: the child has none of the parent's batch threads and
+    must still answer (not wait forever for them), and answer the same."""
+    import multiprocessing
+
+    v, f = fandisk
+    m = meshq.Mesh(v, f)
+    origins, directions = random_rays(v, 20_000, seed=8)
+    want = m.raycast(origins, directions)  # starts the parent's threads
+    context = multiprocessing.get_context("fork")
+    for _ in range(2):
+        receive, send = context.Pipe(duplex=False)
+        child = context.Process(target=_child_answers, args=(m, origins, directions, send))
+        child.start()
+        assert receive.poll(60), "the forked child did not answer within a minute"
+        got = receive.recv()
+        child.join(10)
+        for a, b in zip(want, got):
+            np.testing.assert_array_equal(a, np.array(b, dtype=a.dtype))
