@@ -2,10 +2,10 @@
 # Every check, as CI runs it: install what is missing, then formatting, lints, docs, the
 # bare-metal and WebAssembly builds of the core, all tests, the Python package's tests (with a
 # two-worker Dask cluster), the profile-guided build against the test build, the firmware in
-# QEMU, the WebAssembly tests in Node, the npm package
-# installed from its tarball, its TypeScript typings, the three.js drop-in test, the demo in
-# headless Chromium, and a short run of the Node benchmark. (Clippy with --all-targets
-# type-checks the criterion benchmarks; `cargo bench` runs them.)
+# QEMU, the WebAssembly tests in Node, the npm package installed from its tarball, its
+# TypeScript typings, the three.js drop-in test, the demo in headless Chromium, and a short run
+# of the Node benchmark. (Clippy with --all-targets type-checks the criterion benchmarks;
+# `cargo bench` runs them.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
