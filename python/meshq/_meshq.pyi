@@ -112,7 +112,7 @@ class Mesh:
         other: Mesh,
         *,
         transform: ArrayLike | None = None,
-        max_pairs: int = ...,
+        max_pairs: int | None = None,
         max_tests: int | None = None,
     ) -> NDArray[np.int64]: ...
     def intersection_segments(
@@ -120,7 +120,7 @@ class Mesh:
         other: Mesh,
         *,
         transform: ArrayLike | None = None,
-        max_segments: int = ...,
+        max_segments: int | None = None,
         max_tests: int | None = None,
     ) -> tuple[NDArray[np.float32], NDArray[np.int64]]: ...
     def distance_to(
@@ -133,7 +133,7 @@ class Mesh:
         max_tests: int | None = None,
     ) -> MeshDistance | None: ...
     def self_intersections(
-        self, *, max_pairs: int = ..., max_tests: int | None = None
+        self, *, max_pairs: int | None = None, max_tests: int | None = None
     ) -> NDArray[np.int64]: ...
     def overlap_box(self, lower: ArrayLike, upper: ArrayLike) -> NDArray[np.int64]: ...
     def overlap_sphere(self, center: ArrayLike, radius: float) -> NDArray[np.int64]: ...

@@ -131,6 +131,44 @@ pub fn column<T: numpy::Element>(py: Python<'_>, values: Vec<T>) -> Bound<'_, Py
     PyArray1::from_vec(py, values)
 }
 
+/// An optional whole-number argument (`None` when omitted or `None`): a Python or numpy
+/// integer in `0..=max`, or a `TypeError` / `ValueError` naming `name`.
+pub fn whole(value: Option<&Bound<'_, PyAny>>, name: &str, max: u64) -> PyResult<Option<u64>> {
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    let kind = || {
+        value
+            .get_type()
+            .name()
+            .map_or_else(|_| "?".to_owned(), |n| n.to_string())
+    };
+    if value.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(PyTypeError::new_err(format!(
+            "{name} must be a whole number, got bool"
+        )));
+    }
+    let n: i128 = value.extract().map_err(|_| {
+        PyTypeError::new_err(format!("{name} must be a whole number, got {}", kind()))
+    })?;
+    if n < 0 || n > i128::from(max) {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be in 0..={max}, got {n}"
+        )));
+    }
+    Ok(u64::try_from(n).ok())
+}
+
+/// [`whole`] for a count of items held in memory.
+pub fn count(value: Option<&Bound<'_, PyAny>>, name: &str) -> PyResult<Option<usize>> {
+    Ok(whole(value, name, usize::MAX as u64)?.map(|n| usize::try_from(n).unwrap_or(usize::MAX)))
+}
+
+/// [`whole`] for a 32-bit setting.
+pub fn setting(value: Option<&Bound<'_, PyAny>>, name: &str) -> PyResult<Option<u32>> {
+    Ok(whole(value, name, u64::from(u32::MAX))?.map(|n| u32::try_from(n).unwrap_or(u32::MAX)))
+}
+
 /// A point from three numbers (a sequence or an array), each finite.
 pub fn point(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec3> {
     match vec3s(obj, name)?.as_slice() {

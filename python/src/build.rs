@@ -7,6 +7,8 @@ use meshq::owned::StructureKind;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::arrays::setting;
+
 /// The nodes a BVH's queries walk (`nodes`): every layout gives the same answers.
 #[derive(Clone, Copy)]
 pub enum Nodes {
@@ -34,9 +36,9 @@ pub struct BuildChoice {
 pub fn build_choice(
     structure: &str,
     quality: &str,
-    max_leaf_size: Option<u32>,
-    bins: Option<u32>,
-    max_depth: Option<u32>,
+    max_leaf_size: Option<&Bound<'_, PyAny>>,
+    bins: Option<&Bound<'_, PyAny>>,
+    max_depth: Option<&Bound<'_, PyAny>>,
     spatial_splits: Option<&Bound<'_, PyAny>>,
     nodes: Option<&str>,
 ) -> PyResult<BuildChoice> {
@@ -55,13 +57,13 @@ pub fn build_choice(
             )));
         }
     };
-    if let Some(n) = max_leaf_size {
+    if let Some(n) = setting(max_leaf_size, "max_leaf_size")? {
         config.max_leaf_size = n;
     }
-    if let Some(n) = bins {
+    if let Some(n) = setting(bins, "bins")? {
         config.bins = n;
     }
-    if let Some(n) = max_depth {
+    if let Some(n) = setting(max_depth, "max_depth")? {
         config.max_depth = n;
     }
     if let Err(e) = config.check() {

@@ -9,9 +9,10 @@ use meshq::inside::WindingTree;
 use meshq::mesh::MeshRef;
 use meshq::owned::{MeshBvh, MeshIndex, MeshPseudoNormals, StructureKind};
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::PyTypeInfo;
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyTuple};
+use pyo3::types::{PyByteArray, PyBytes, PyMemoryView, PyTuple};
 
 use crate::arrays::{floats, indices, rows};
 use crate::build::{Nodes, build_choice};
@@ -50,6 +51,24 @@ impl Storage {
 #[pyclass(module = "meshq", name = "Mesh", frozen)]
 pub struct Mesh {
     storage: RwLock<Storage>,
+}
+
+/// The bytes of a `bytes`, `bytearray` or `memoryview`, or a `TypeError` naming `blob`.
+fn blob_bytes(blob: &Bound<'_, PyAny>) -> PyResult<Vec<u8>> {
+    if let Ok(bytes) = blob.cast::<PyBytes>() {
+        return Ok(bytes.as_bytes().to_vec());
+    }
+    if let Ok(array) = blob.cast::<PyByteArray>() {
+        return Ok(array.to_vec());
+    }
+    if blob.is_instance_of::<PyMemoryView>() {
+        let copied = PyBytes::type_object(blob.py()).call1((blob,))?;
+        return Ok(copied.cast::<PyBytes>()?.as_bytes().to_vec());
+    }
+    Err(PyTypeError::new_err(format!(
+        "blob must be bytes, bytearray or memoryview, got {}",
+        blob.get_type().name()?
+    )))
 }
 
 fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -134,9 +153,9 @@ impl Mesh {
         faces: &Bound<'_, PyAny>,
         structure: &str,
         quality: &str,
-        max_leaf_size: Option<u32>,
-        bins: Option<u32>,
-        max_depth: Option<u32>,
+        max_leaf_size: Option<&Bound<'_, PyAny>>,
+        bins: Option<&Bound<'_, PyAny>>,
+        max_depth: Option<&Bound<'_, PyAny>>,
         spatial_splits: Option<&Bound<'_, PyAny>>,
         nodes: Option<&str>,
     ) -> PyResult<Self> {
@@ -187,8 +206,8 @@ impl Mesh {
     /// count, index and range) and decoded into the buffers a build makes: the same answers,
     /// bit for bit, as the mesh it was baked from. Raises `ValueError` naming what is wrong.
     #[staticmethod]
-    fn from_blob(py: Python<'_>, blob: &[u8]) -> PyResult<Self> {
-        let bytes = blob.to_vec();
+    fn from_blob(py: Python<'_>, blob: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let bytes = blob_bytes(blob)?;
         let scene = py.detach(|| MeshIndex::from_blob(&bytes).map(|s| (s, bytes)));
         let (scene, bytes) = scene.map_err(value_error)?;
         Ok(Self::from_storage(scene, Some(bytes)))

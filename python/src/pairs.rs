@@ -17,7 +17,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::arrays::{floats, rows};
+use crate::arrays::{count, floats, rows};
 use crate::mesh::{Mesh, Storage};
 
 /// Pairs returned when `max_pairs` is not given: 2²⁰.
@@ -123,8 +123,9 @@ impl Mesh {
         py: Python<'_>,
         other: &Mesh,
         transform: Option<&Bound<'_, PyAny>>,
-        max_tests: Option<usize>,
+        max_tests: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<bool> {
+        let max_tests = count(max_tests, "max_tests")?;
         let place = placement(transform)?;
         on_both(py, self, other, |a, b, na, nb| {
             meshes_intersect(a, b, place.as_ref(), budget(max_tests, na, nb))
@@ -135,15 +136,17 @@ impl Mesh {
     /// The pairs of triangles (this mesh's, `other`'s) that meet, as a `(k, 2)` `int64` array,
     /// at most `max_pairs` (default 2²⁰) of them; `transform` and `max_tests` as for
     /// `intersects`.
-    #[pyo3(signature = (other, *, transform = None, max_pairs = DEFAULT_MAX_PAIRS, max_tests = None))]
+    #[pyo3(signature = (other, *, transform = None, max_pairs = None, max_tests = None))]
     fn intersecting_pairs<'py>(
         &self,
         py: Python<'py>,
         other: &Mesh,
         transform: Option<&Bound<'_, PyAny>>,
-        max_pairs: usize,
-        max_tests: Option<usize>,
+        max_pairs: Option<&Bound<'_, PyAny>>,
+        max_tests: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let max_tests = count(max_tests, "max_tests")?;
+        let max_pairs = count(max_pairs, "max_pairs")?.unwrap_or(DEFAULT_MAX_PAIRS);
         let place = placement(transform)?;
         let (pairs, found) = on_both(py, self, other, |a, b, na, nb| {
             let budget = budget(max_tests, na, nb);
@@ -160,16 +163,18 @@ impl Mesh {
     /// crossing triangles (coplanar overlaps have none), at most `max_segments` (default 2²⁰).
     /// Returns `(segments, pairs)`: `(k, 2, 3)` `float32` end points in this mesh's frame and
     /// the `(k, 2)` `int64` triangle pairs they lie on. `max_tests` as for `intersects`.
-    #[pyo3(signature = (other, *, transform = None, max_segments = DEFAULT_MAX_PAIRS, max_tests = None))]
+    #[pyo3(signature = (other, *, transform = None, max_segments = None, max_tests = None))]
     #[allow(clippy::type_complexity)]
     fn intersection_segments<'py>(
         &self,
         py: Python<'py>,
         other: &Mesh,
         transform: Option<&Bound<'_, PyAny>>,
-        max_segments: usize,
-        max_tests: Option<usize>,
+        max_segments: Option<&Bound<'_, PyAny>>,
+        max_tests: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<(Bound<'py, PyArray3<f32>>, Bound<'py, PyArray2<i64>>)> {
+        let max_tests = count(max_tests, "max_tests")?;
+        let max_segments = count(max_segments, "max_segments")?.unwrap_or(DEFAULT_MAX_PAIRS);
         let place = placement(transform)?;
         let segments = on_both(py, self, other, |a, b, na, nb| {
             let budget = budget(max_tests, na, nb);
@@ -216,8 +221,9 @@ impl Mesh {
         transform: Option<&Bound<'_, PyAny>>,
         max_distance: f64,
         stop_at: f64,
-        max_tests: Option<usize>,
+        max_tests: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let max_tests = count(max_tests, "max_tests")?;
         if !(max_distance >= 0.0) || !(stop_at >= 0.0) {
             return Err(PyValueError::new_err(format!(
                 "max_distance and stop_at must be numbers >= 0, got {max_distance} and {stop_at}"
@@ -247,13 +253,15 @@ impl Mesh {
     /// Where this mesh meets itself: pairs of its triangles (lower index first, `(k, 2)`
     /// `int64`) that meet beyond the corner or edge they share; corners shared by index or by
     /// position count as shared. `max_pairs` and `max_tests` as for `intersecting_pairs`.
-    #[pyo3(signature = (*, max_pairs = DEFAULT_MAX_PAIRS, max_tests = None))]
+    #[pyo3(signature = (*, max_pairs = None, max_tests = None))]
     fn self_intersections<'py>(
         &self,
         py: Python<'py>,
-        max_pairs: usize,
-        max_tests: Option<usize>,
+        max_pairs: Option<&Bound<'_, PyAny>>,
+        max_tests: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let max_tests = count(max_tests, "max_tests")?;
+        let max_pairs = count(max_pairs, "max_pairs")?.unwrap_or(DEFAULT_MAX_PAIRS);
         let storage = self.read()?;
         let bvh = bvh_of(&storage)?;
         let (pairs, found) = py

@@ -9,7 +9,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 
-use crate::arrays::{column, finite_rows, with_floats};
+use crate::arrays::{column, count, finite_rows, with_floats};
 use crate::mesh::{Column, Mesh, Storage};
 use crate::pool::detached;
 
@@ -204,8 +204,9 @@ impl Mesh {
         far: f64,
         side: &str,
         test: &str,
-        max_hits: Option<usize>,
+        max_hits: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<AllHits<'py>> {
+        let max_hits = count(max_hits, "max_hits")?;
         let options = options(side, test)?;
         let rays = rays(origins, directions, near, far)?;
         let storage = self.read()?;

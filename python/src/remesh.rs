@@ -9,7 +9,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::arrays::{floats, indices, rows};
+use crate::arrays::{count, floats, indices, rows, setting};
 
 fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
@@ -61,10 +61,12 @@ pub fn remesh<'py>(
     faces: &Bound<'py, PyAny>,
     target_length: Option<f64>,
     target_ratio: Option<f64>,
-    iterations: Option<u32>,
+    iterations: Option<&Bound<'py, PyAny>>,
     feature_angle: Option<f64>,
-    max_distance_tests: Option<usize>,
+    max_distance_tests: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Remeshing<'py>> {
+    let iterations = setting(iterations, "iterations")?;
+    let max_distance_tests = count(max_distance_tests, "max_distance_tests")?;
     let mut config = RemeshConfig::default();
     match (
         positive(target_length, "target_length")?,

@@ -39,6 +39,9 @@ def test_properties_describe_the_mesh(fandisk):
         (TRIANGLE, {"spatial_splits": 9.0}, ValueError, "spatial_splits must be"),
         (TRIANGLE, {"structure": "grid", "spatial_splits": True}, ValueError, "applies to the BVH"),
         (TRIANGLE, {"nodes": "two-wide"}, ValueError, "nodes must be"),
+        (TRIANGLE, {"bins": -3}, ValueError, "bins must be in 0..=4294967295, got -3"),
+        (TRIANGLE, {"max_depth": "deep"}, TypeError, "max_depth must be a whole number, got str"),
+        (TRIANGLE, {"max_leaf_size": True}, TypeError, "max_leaf_size must be a whole number, got bool"),
         (TRIANGLE, {"structure": "octree", "nodes": "compact"}, ValueError, "nodes applies to the BVH"),
     ],
 )
@@ -70,6 +73,18 @@ def test_query_arguments_are_checked_by_name():
         m.intersects(m, transform=np.ones((4, 4)))
     with pytest.raises(ValueError, match="layout must be"):
         m.to_blob("zipped")
+    with pytest.raises(ValueError, match="max_hits must be in 0..="):
+        m.raycast_all([[0, 0, 1]], [[0, 0, -1]], max_hits=-1)
+    with pytest.raises(TypeError, match="max_tests must be a whole number, got float"):
+        m.intersects(m, max_tests=1.5)
+    with pytest.raises(ValueError, match="max_pairs must be in 0..="):
+        m.self_intersections(max_pairs=-1)
+    with pytest.raises(ValueError, match="iterations must be in 0..="):
+        meshq.remesh(*TRIANGLE, iterations=-2)
+    with pytest.raises(TypeError, match="blob must be bytes, bytearray or memoryview, got int"):
+        meshq.Mesh.from_blob(123)
+    # Whole numbers from numpy count as whole numbers.
+    assert m.raycast_all([[0.2, 0.2, 1]], [[0, 0, -1]], max_hits=np.int64(1))[0].tolist() == [0]
 
 
 @pytest.mark.parametrize("structure", ["bvh", "kdtree", "octree", "grid"])
@@ -79,6 +94,8 @@ def test_blob_and_pickle_answer_bit_for_bit(fandisk, structure):
     blob = built.to_blob()
     loaded = meshq.Mesh.from_blob(blob)
     assert loaded.structure == structure
+    for other_kind in (bytearray(blob), memoryview(blob)):
+        assert meshq.Mesh.from_blob(other_kind).to_blob() == blob
     assert loaded.to_blob() == blob
     unpickled = pickle.loads(pickle.dumps(built))
     origins, directions = random_rays(v, 2000, seed=5)
