@@ -217,6 +217,25 @@ def bake_directory(
     return done
 
 
+def _byte_size(source: bytes | str) -> int:
+    return len(source) if isinstance(source, bytes) else os.path.getsize(source)
+
+
+def _even_bounds(sizes: list[int], count: int) -> list[int]:
+    """Where ``count`` runs of consecutive items, each about as large in total as the next,
+    begin: ``[0, …, len(sizes)]``, every run holding at least one item (fewer runs than
+    ``count`` when there are fewer items)."""
+    total, bounds, running = sum(sizes), [0], 0
+    for i, size in enumerate(sizes[:-1]):
+        running += size
+        runs_left = count - len(bounds)
+        # A run ends once it reaches its share, or where the items left are just enough for
+        # one run each.
+        if runs_left > 0 and (running * count >= total * len(bounds) or len(sizes) - 1 - i <= runs_left):
+            bounds.append(i + 1)
+    return bounds + [len(sizes)] if sizes else [0]
+
+
 class Blobs:
     """Blobs placed on a cluster once and queried many times.
 
@@ -228,9 +247,12 @@ class Blobs:
     ``client``: a ``distributed.Client``, a scheduler address, or ``None`` (the client this
     process has, else a local cluster: see :func:`connect`).
 
-    Blobs travel and are queried in groups of ``group`` (by default at most 32, and at least
-    four groups per worker thread), one task per group, so that a thousand small blobs cost the
-    scheduler a few dozen tasks, not thousands.
+    Blobs travel and are queried in groups, one task per group, so that a thousand small blobs
+    cost the scheduler a few dozen tasks, not thousands: by default as many groups for every
+    worker thread, at least four, and about 32 blobs a group at most, each group holding about as many bytes of
+    blob as the next (the work a query costs grows with them); ``group`` gives a fixed number
+    of blobs per group instead. Groups are dealt to the workers' threads in turn, so each
+    thread gets about the same work (a group moves elsewhere only when its worker is lost).
     """
 
     def __init__(self, client: Any, blobs: Sequence[BlobSource], *, group: int | None = None) -> None:
@@ -244,23 +266,30 @@ class Blobs:
                 if not os.path.isfile(path):
                     raise FileNotFoundError(f"blobs[{i}]: no such file: {path}")
                 sources.append(path)
+        threads = client.nthreads()
         if group is None:
-            # At least four groups per worker thread (for balance), and at most 32 blobs in a
-            # group, so answers stream back while other groups still run.
-            threads = max(1, sum(client.nthreads().values()))
-            groups = max(4 * threads, -(-len(sources) // 32))
-            group = max(1, -(-len(sources) // groups))
-        if group < 1:
+            # At least four groups per worker thread, as many for each (for balance), and
+            # about 32 blobs in a group at most, so answers stream back while other groups
+            # still run.
+            slots = max(1, sum(threads.values()))
+            count = max(4, -(-len(sources) // (32 * slots))) * slots
+            bounds = _even_bounds([_byte_size(s) for s in sources], count)
+        elif group < 1:
             raise ValueError(f"group must be at least 1, got {group}")
+        else:
+            bounds = list(range(0, len(sources), group)) + [len(sources)]
+        # One slot per worker thread, the groups dealt to them in turn.
+        slots = [address for address, n in sorted(threads.items()) for _ in range(n)]
         self._count = len(sources)
         self._sizes = []
         self._groups = []
-        for start in range(0, len(sources), group):
-            part = sources[start:start + group]
+        for i, (start, stop) in enumerate(zip(bounds, bounds[1:])):
+            part = sources[start:stop]
+            place = {"workers": [slots[i % len(slots)]], "allow_other_workers": True} if slots else {}
             with warnings.catch_warnings():
                 # Blobs are meant to travel in their task; Dask warns about large tasks.
                 warnings.simplefilter("ignore", UserWarning)
-                self._groups.append(client.submit(_load_group, part, pure=False))
+                self._groups.append(client.submit(_load_group, part, pure=False, **place))
             self._sizes.append(len(part))
 
     def __len__(self) -> int:
@@ -325,12 +354,20 @@ class Blobs:
         """The answers of :meth:`submit`'s futures, in blob order (memory-mapped arrays when
         it was given ``out``). Each group's answers are fetched as soon as they are ready,
         while the others still run."""
+        return self._collect(futures, release=False)
+
+    @staticmethod
+    def _collect(futures: list[Any], release: bool) -> list[Any]:
         from distributed import as_completed
 
         parts: list[Any] = [None] * len(futures)
         place = {future.key: i for i, future in enumerate(futures)}
         for future, answers in as_completed(futures, with_results=True):
             parts[place[future.key]] = answers.load() if isinstance(answers, _Saved) else answers
+            if release:
+                # The worker may free the group's answers now, and reuse that memory for the
+                # groups still running rather than take fresh pages from the system.
+                future.release()
         return [answer for part in parts for answer in part]
 
     def map(
@@ -341,8 +378,10 @@ class Blobs:
         out: str | os.PathLike | None = None,
         **kwargs: Any,
     ) -> list[Any]:
-        """:meth:`submit`, then :meth:`gather`: the answers in blob order."""
-        return self.gather(self.submit(method, *args, per_blob=per_blob, out=out, **kwargs))
+        """:meth:`submit`, then :meth:`gather`: the answers in blob order. Each group's answers
+        leave the cluster's memory as soon as they are here."""
+        futures = self.submit(method, *args, per_blob=per_blob, out=out, **kwargs)
+        return self._collect(futures, release=True)
 
     def raycast(self, origins: Any, directions: Any, **options: Any) -> list[tuple]:
         """``Mesh.raycast`` of the same rays on every blob: one ``(t, triangle, u, v)`` per

@@ -160,3 +160,45 @@ def test_the_client_may_be_an_address_or_the_current_one(client, tmp_path):
             placed.client.close()
     finally:
         other.close()
+
+
+def test_groups_are_even_in_bytes_and_dealt_to_every_thread(client):
+    from meshq.dask import _even_bounds
+
+    # Consecutive runs, none empty, each within one item of its share of the total.
+    rng = np.random.default_rng(8)
+    for count in (1, 3, 8, 13):
+        sizes = [int(s) for s in rng.integers(1, 100, size=40)]
+        bounds = _even_bounds(sizes, count)
+        assert bounds[0] == 0 and bounds[-1] == len(sizes) and len(bounds) == count + 1
+        runs = [sum(sizes[a:b]) for a, b in zip(bounds, bounds[1:])]
+        assert all(b > a for a, b in zip(bounds, bounds[1:]))
+        assert max(runs) - sum(sizes) / count <= max(sizes)
+    assert _even_bounds([5, 5], 4) == [0, 1, 2] and _even_bounds([], 4) == [0]
+    # Small and large meshes mixed: as many groups on each worker, about as many bytes each.
+    meshes = [meshq.Mesh(v, f) for v, f in placed_copies(12, seed=9)]
+    blobs = [m.to_blob() for m in meshes] + [meshes[0].to_blob()] * 30
+    placed = Blobs(client, blobs)
+    assert len(placed._groups) % 2 == 0 and len(placed._groups) >= 8
+    distributed.wait(placed._groups)
+    holders = client.who_has(placed._groups)
+    per_worker = {}
+    for future in placed._groups:
+        (worker,) = holders[future.key]
+        per_worker[worker] = per_worker.get(worker, 0) + 1
+    assert sorted(per_worker.values()) == [len(placed._groups) // 2] * 2
+    # A map's answers leave the workers as they arrive: only the decoded groups stay.
+    origins, directions = random_rays(np.array([[-1.5, -1.5, -1.5], [1.5, 1.5, 1.5]]), 1000, seed=10)
+
+    def held():
+        return {key for keys in client.has_what().values() for key in keys}
+
+    before = held()
+    assert {future.key for future in placed._groups} <= before
+    # (The futures stay referenced here: only the release as each group arrives frees them.)
+    futures = placed.submit("raycast", origins, directions)
+    assert len(placed._collect(futures, release=True)) == len(blobs)
+    deadline = time.time() + 30
+    while not held() <= before and time.time() < deadline:
+        time.sleep(0.1)
+    assert held() <= before, f"answers left on the workers: {held() - before}"
