@@ -84,15 +84,13 @@ where
 /// one, and is skipped. The bound is exact, not padded: it rounds the box's extremes through
 /// the same operations as a corner's squared distance, and each of them (a subtraction of
 /// `centre`, a square, a sum of non-negative terms) never rounds a larger input to a smaller
-/// result. With split references, every corner of the subtree is measured.
+/// result. With split references the same walk skips nothing: every corner is measured.
 fn subtree_radius<T, S>(tree: &T, triangles: &S, index: usize, scale: f32, centre: Vec3) -> f32
 where
     T: TreeArrays + ?Sized,
     S: LeafTriangles + ?Sized,
 {
-    if !tree.split_refs().is_empty() {
-        return every_corner_radius(tree, triangles, index, scale, centre);
-    }
+    let boxes_hold_corners = tree.split_refs().is_empty();
     let farthest_in_box = |node: &BvhNode| {
         let low = Vec3::from_array(node.min) * scale - centre;
         let high = Vec3::from_array(node.max) * scale - centre;
@@ -101,15 +99,15 @@ where
     };
     let mut farthest = 0.0f32;
     let mut stack = [0u32; MAX_DEPTH as usize + 2];
-    let (mut sp, mut start) = (0usize, Some(index as u32));
-    while let Some(i) = start.take().or_else(|| {
+    let (mut sp, mut next) = (0usize, Some(index as u32));
+    while let Some(i) = next.take().or_else(|| {
         sp = sp.checked_sub(1)?;
         stack.get(sp).copied()
     }) {
         let Some(node) = tree.node(i as usize) else {
             return f32::INFINITY;
         };
-        if farthest_in_box(&node) <= farthest {
+        if boxes_hold_corners && farthest_in_box(&node) <= farthest {
             continue;
         }
         if node.is_leaf() {
@@ -126,56 +124,20 @@ where
             return f32::INFINITY;
         };
         // The child reaching farther first: its corners shrink the other's chance.
-        let (near, far) = if farthest_in_box(&left) > farthest_in_box(&right) {
+        let (later, first) = if farthest_in_box(&left) > farthest_in_box(&right) {
             (node.first.wrapping_add(1), node.first)
         } else {
             (node.first, node.first.wrapping_add(1))
         };
-        match stack.get_mut(sp) {
-            Some(slot) => {
-                *slot = near;
-                sp += 1;
-            }
-            // Deeper than a valid tree: measure the rest the slow way.
-            None => return every_corner_radius(tree, triangles, index, scale, centre),
-        }
-        start = Some(far);
+        // A walk deeper than a valid tree gives no radius: the node is never far then.
+        let Some(slot) = stack.get_mut(sp) else {
+            return f32::INFINITY;
+        };
+        *slot = later;
+        sp += 1;
+        next = Some(first);
     }
     libm::sqrtf(farthest)
-}
-
-/// [`subtree_radius`] by measuring every corner: the triangles of a subtree fill the order
-/// slots from its leftmost leaf's first to its rightmost leaf's last.
-fn every_corner_radius<T, S>(tree: &T, triangles: &S, index: usize, scale: f32, centre: Vec3) -> f32
-where
-    T: TreeArrays + ?Sized,
-    S: LeafTriangles + ?Sized,
-{
-    let leaf_at = |mut i: usize, right: bool| {
-        for _ in 0..=MAX_DEPTH {
-            match tree.node(i) {
-                Some(n) if n.is_leaf() => return Some(n),
-                Some(n) => i = n.first as usize + usize::from(right),
-                None => return None,
-            }
-        }
-        None
-    };
-    let (Some(low), Some(high)) = (leaf_at(index, false), leaf_at(index, true)) else {
-        return f32::INFINITY;
-    };
-    let (first, count) = (
-        low.first as usize,
-        high.first
-            .saturating_add(high.count)
-            .saturating_sub(low.first) as usize,
-    );
-    // Every reference counts (a triangle held twice has the same corners twice, which leaves
-    // the largest alone), so no split references are looked up.
-    let Some(ids) = tree.leaf_triangles(first, count) else {
-        return f32::INFINITY;
-    };
-    libm::sqrtf(farthest_corner(triangles, ids, scale, centre))
 }
 
 /// The largest squared distance from `centre` to a corner (times `scale`) of the triangles
@@ -207,6 +169,46 @@ mod tests {
     use crate::bvh::{BuildConfig, Bvh, PrimRef, node_capacity};
     use crate::mesh::MeshRef;
     use crate::test_floats::floats;
+
+    /// The oracle: [`subtree_radius`] by measuring every corner: the triangles of a subtree fill the order
+    /// slots from its leftmost leaf's first to its rightmost leaf's last.
+    fn every_corner_radius<T, S>(
+        tree: &T,
+        triangles: &S,
+        index: usize,
+        scale: f32,
+        centre: Vec3,
+    ) -> f32
+    where
+        T: TreeArrays + ?Sized,
+        S: LeafTriangles + ?Sized,
+    {
+        let leaf_at = |mut i: usize, right: bool| {
+            for _ in 0..=MAX_DEPTH {
+                match tree.node(i) {
+                    Some(n) if n.is_leaf() => return Some(n),
+                    Some(n) => i = n.first as usize + usize::from(right),
+                    None => return None,
+                }
+            }
+            None
+        };
+        let (Some(low), Some(high)) = (leaf_at(index, false), leaf_at(index, true)) else {
+            return f32::INFINITY;
+        };
+        let (first, count) = (
+            low.first as usize,
+            high.first
+                .saturating_add(high.count)
+                .saturating_sub(low.first) as usize,
+        );
+        // Every reference counts (a triangle held twice has the same corners twice, which leaves
+        // the largest alone), so no split references are looked up.
+        let Some(ids) = tree.leaf_triangles(first, count) else {
+            return f32::INFINITY;
+        };
+        libm::sqrtf(farthest_corner(triangles, ids, scale, centre))
+    }
 
     /// The branch and bound finds the very corner the full scan does, at every inner node of
     /// trees over triangle soups of several shapes (small and long triangles, flat and spread).
