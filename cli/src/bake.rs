@@ -14,7 +14,7 @@ use serde::Serialize;
 use crate::atomic::AtomicFile;
 use crate::mesh_file::read_mesh;
 use crate::output::say;
-use crate::quality::Quality;
+use crate::quality::BuildChoice;
 use crate::structure_arg::structure_parser;
 use crate::threads::Threads;
 use crate::{output, progress};
@@ -33,12 +33,8 @@ pub struct BakeArgs {
     /// The acceleration structure.
     #[arg(long, value_parser = structure_parser(), default_value = "bvh")]
     pub structure: StructureKind,
-    /// Build quality (BVH only; the others use their default configs).
-    #[arg(long, value_enum, default_value_t = Quality::Balanced)]
-    pub quality: Quality,
-    #[arg(long, value_name = "EXTRA", num_args = 0..=1, default_missing_value = "1",
-          help = crate::quality::SPATIAL_SPLITS_HELP)]
-    pub spatial_splits: Option<f32>,
+    #[command(flatten)]
+    pub build: BuildChoice,
     /// Leave the mesh out (the reader supplies it; it is matched by checksum).
     #[arg(long, conflicts_with = "packed")]
     pub no_mesh: bool,
@@ -88,8 +84,8 @@ pub fn run(args: &BakeArgs) -> Result<()> {
     let mesh = MeshRef::new(&data.positions, &data.triangles)
         .validate()
         .with_context(|| format!("{}: invalid mesh", args.mesh.display()))?;
-    let config = args.quality.config();
-    let spatial = crate::quality::spatial_splits(args.spatial_splits)?;
+    let config = args.build.config();
+    let spatial = args.build.spatial()?;
     if spatial.is_some() && args.structure != StructureKind::Bvh {
         anyhow::bail!("--spatial-splits applies to a BVH");
     }

@@ -9,7 +9,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use meshq::advanced::{BlobHeader, LEAF_HISTOGRAM_LEN, MAGIC, TreeStats};
 use meshq::blob::{BlobStructure, BlobTree};
-use meshq::bvh::BuildConfig;
+use meshq::bvh::{BuildConfig, SplitStrategy};
 use meshq::error::BlobError;
 use meshq::mesh::MeshRef;
 use meshq::owned::{MeshIndex, StructureKind};
@@ -65,8 +65,11 @@ struct Report {
 
 #[derive(Serialize)]
 struct Config {
-    /// `"sah"` or `"centre"`.
+    /// `"sah"`, `"centre"` or `"sweep"`.
     split: &'static str,
+    /// The sweep's step (triangles between weighed cuts); absent for the other strategies.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sweep_step: Option<u32>,
     bins: u32,
     max_leaf_size: u32,
     max_depth: u32,
@@ -152,6 +155,10 @@ fn report(h: &BlobHeader, tree: &BlobTree<'_>, config: &BuildConfig, total: usiz
         bounds_max: h.bounds.max.to_array(),
         config: Config {
             split: config.split.name(),
+            sweep_step: match config.split {
+                SplitStrategy::Sweep { step } => Some(step),
+                _ => None,
+            },
             bins: config.bins,
             max_leaf_size: config.max_leaf_size,
             max_depth: config.max_depth,
@@ -212,6 +219,15 @@ fn print(r: &Report) -> Result<()> {
             "  built with centre splits, leaves up to {}, max depth {}",
             c.max_leaf_size,
             c.max_depth
+        );
+    } else if let Some(step) = c.sweep_step {
+        say!(
+            "  built with sweep SAH: a cut weighed every {} triangles, leaves up to {}, max depth {}, costs traversal {} / triangle {}",
+            step,
+            c.max_leaf_size,
+            c.max_depth,
+            c.traversal_cost,
+            c.triangle_cost
         );
     } else {
         say!(

@@ -14,7 +14,7 @@ use meshq::mesh::MeshRef;
 use meshq::owned::{MeshBvh, MeshIndex, StructureKind};
 
 use crate::mesh_file::{MeshData, read_mesh};
-use crate::quality::Quality;
+use crate::quality::BuildChoice;
 use crate::structure_arg::structure_parser;
 use crate::threads::Threads;
 
@@ -80,12 +80,8 @@ pub struct QueryInput {
     /// The mesh of a blob baked with --no-mesh.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
-    /// Build quality when INPUT is a mesh (BVH only).
-    #[arg(long, value_enum, default_value_t = Quality::Balanced)]
-    pub quality: Quality,
-    #[arg(long, value_name = "EXTRA", num_args = 0..=1, default_missing_value = "1",
-          help = crate::quality::SPATIAL_SPLITS_HELP)]
-    pub spatial_splits: Option<f32>,
+    #[command(flatten)]
+    pub build: BuildChoice,
     /// The structure to build when INPUT is a mesh (default bvh). For a blob, the structure
     /// it must hold.
     #[arg(long, value_parser = structure_parser())]
@@ -141,7 +137,7 @@ pub fn with_structure<R>(
     let (input, mesh, config) = (
         args.input.as_path(),
         args.mesh.as_deref(),
-        &args.quality.config(),
+        &args.build.config(),
     );
     let bytes = std::fs::read(input).with_context(|| format!("cannot read {}", input.display()))?;
     if bytes.starts_with(&MAGIC) {
@@ -156,7 +152,7 @@ pub fn with_structure<R>(
             );
         }
         let kind = args.structure.unwrap_or_default();
-        let spatial = crate::quality::spatial_splits(args.spatial_splits)?;
+        let spatial = args.build.spatial()?;
         if spatial.is_some() && kind != StructureKind::Bvh {
             bail!("--spatial-splits applies to a BVH");
         }

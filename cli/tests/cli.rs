@@ -1125,6 +1125,102 @@ fn spatial_splits_bake_a_version_5_blob_that_answers_as_brute_force() {
 }
 
 #[test]
+fn sweep_builds_bake_the_library_tree_and_answer_as_brute_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("fandisk");
+    let mesh = loaded.valid();
+    let obj = asset("fandisk.obj");
+    let blob = dir.path().join("fandisk.meshq");
+    ok(&[&"bake", &obj, &"-o", &blob, &"--sweep-sah"]);
+    // On two threads: the same blob, byte for byte.
+    let threaded = dir.path().join("fandisk-2.meshq");
+    ok(&[
+        &"bake",
+        &obj,
+        &"-o",
+        &threaded,
+        &"--sweep-sah",
+        &"--threads",
+        &"2",
+    ]);
+    assert_eq!(
+        std::fs::read(&threaded).unwrap(),
+        std::fs::read(&blob).unwrap()
+    );
+    // The library's sweep tree, node for node (its SAH cost and node count).
+    let config = meshq::bvh::BuildConfig {
+        split: meshq::bvh::SplitStrategy::Sweep { step: 32 },
+        ..meshq::bvh::BuildConfig::default()
+    };
+    let library = meshq::MeshBvh::build(&mesh, &config).unwrap();
+    let inspect: serde_json::Value =
+        serde_json::from_str(&ok(&[&"inspect", &blob, &"--json"])).unwrap();
+    assert_eq!(inspect["config"]["split"], "sweep", "{inspect}");
+    assert_eq!(inspect["config"]["sweep_step"], 32, "{inspect}");
+    assert_eq!(inspect["nodes"], library.bvh().nodes().len());
+    assert!(ok(&[&"inspect", &blob]).contains("sweep SAH"));
+
+    let rays = workload::random_rays(&loaded.positions, 3_000, 79);
+    let ray_file = dir.path().join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let brute = BruteForce::new(&mesh);
+    let expected: Vec<(u32, u32)> = rays
+        .iter()
+        .map(|r| {
+            brute
+                .raycast(r, &RayOptions::default())
+                .map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
+                    (h.t.to_bits(), h.tri)
+                })
+        })
+        .collect();
+    let hits = dir.path().join("hits.bin");
+    for args in [
+        vec![&blob as &dyn AsRef<std::ffi::OsStr>],
+        vec![&obj, &"--sweep-sah", &"1"],
+    ] {
+        let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"raycast"];
+        all.extend(args);
+        all.extend([
+            &"--rays" as &dyn AsRef<std::ffi::OsStr>,
+            &ray_file,
+            &"--out",
+            &hits,
+        ]);
+        ok(&all);
+        let got: Vec<(u32, u32)> = read_records(&hits)
+            .into_iter()
+            .map(|(t, i)| (t.to_bits(), i))
+            .collect();
+        assert_eq!(got, expected);
+    }
+    // A step of 0, or with spatial splits: one message naming the option, non-zero status.
+    for bad in [
+        vec![
+            &"bake" as &dyn AsRef<std::ffi::OsStr>,
+            &obj,
+            &"-o",
+            &blob,
+            &"--sweep-sah",
+            &"0",
+        ],
+        vec![
+            &"bake",
+            &obj,
+            &"-o",
+            &blob,
+            &"--sweep-sah",
+            &"--spatial-splits",
+        ],
+    ] {
+        let out = meshq(&bad);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--sweep-sah"), "{err}");
+    }
+}
+
+#[test]
 fn inside_and_signed_closest_give_the_library_answers_on_every_input() {
     use meshq::inside::WindingAccuracy;
     let dir = tempfile::tempdir().unwrap();

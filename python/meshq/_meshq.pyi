@@ -35,6 +35,7 @@ class Mesh:
         bins: int | None = None,
         max_depth: int | None = None,
         spatial_splits: bool | float | None = None,
+        sweep_sah: bool | int | None = None,
         nodes: Literal["eight-wide", "four-wide", "compact"] | None = None,
     ) -> None: ...
     @staticmethod

@@ -1,7 +1,7 @@
 //! Build options from keyword arguments: the structure, the BVH's quality and tuning, spatial
 //! splits.
 
-use meshq::bvh::{BuildConfig, MAX_DEPTH, SpatialSplits};
+use meshq::bvh::{BuildConfig, MAX_DEPTH, SpatialSplits, SplitStrategy};
 use meshq::error::BuildError;
 use meshq::owned::StructureKind;
 use pyo3::exceptions::PyValueError;
@@ -30,9 +30,11 @@ pub struct BuildChoice {
 }
 
 /// The choice of `structure` (`"bvh"`, `"kdtree"`, `"octree"`, `"grid"`), `quality` (`"fast"`,
-/// `"balanced"`, `"high"`), the BVH's `max_leaf_size`, `bins`, `max_depth` and `spatial_splits`
-/// (`False`/`None`, `True`, or the extra room `0..=4`) and `nodes` (`None`, `"eight-wide"`,
+/// `"balanced"`, `"high"`), the BVH's `max_leaf_size`, `bins`, `max_depth`, `spatial_splits`
+/// (`False`/`None`, `True`, or the extra room `0..=4`) and `sweep_sah` (`False`/`None`,
+/// `True`, or the triangles between weighed cuts, `≥ 1`) and `nodes` (`None`, `"eight-wide"`,
 /// `"four-wide"`, `"compact"`), each checked and named when wrong.
+#[allow(clippy::too_many_arguments)] // One per keyword argument of `Mesh(...)`.
 pub fn build_choice(
     structure: &str,
     quality: &str,
@@ -40,6 +42,7 @@ pub fn build_choice(
     bins: Option<&Bound<'_, PyAny>>,
     max_depth: Option<&Bound<'_, PyAny>>,
     spatial_splits: Option<&Bound<'_, PyAny>>,
+    sweep_sah: Option<&Bound<'_, PyAny>>,
     nodes: Option<&str>,
 ) -> PyResult<BuildChoice> {
     let kind: StructureKind = structure.parse().map_err(|_| {
@@ -66,6 +69,10 @@ pub fn build_choice(
     if let Some(n) = setting(max_depth, "max_depth")? {
         config.max_depth = n;
     }
+    let sweep = sweep_option(sweep_sah)?;
+    if let Some(split) = sweep {
+        config.split = split;
+    }
     if let Err(e) = config.check() {
         let message = match e {
             BuildError::InvalidConfig {
@@ -89,9 +96,19 @@ pub fn build_choice(
         return Err(PyValueError::new_err(message));
     }
     let spatial = spatial_option(spatial_splits)?;
-    if spatial.is_some() && kind != StructureKind::Bvh {
+    if spatial.is_some() && sweep.is_some() {
+        return Err(PyValueError::new_err(
+            "sweep_sah and spatial_splits do not go together (spatial splits are weighed against the binned search)",
+        ));
+    }
+    if (spatial.is_some() || sweep.is_some()) && kind != StructureKind::Bvh {
+        let name = if spatial.is_some() {
+            "spatial_splits"
+        } else {
+            "sweep_sah"
+        };
         return Err(PyValueError::new_err(format!(
-            "spatial_splits applies to the BVH, not a {kind}"
+            "{name} applies to the BVH, not a {kind}"
         )));
     }
     let nodes = match nodes {
@@ -116,6 +133,25 @@ pub fn build_choice(
         spatial,
         nodes,
     })
+}
+
+/// `sweep_sah`: `None` or `False` → the quality's strategy; `True` → sweep SAH every
+/// [`SplitStrategy::SWEEP_STEP`] triangles; a whole number `≥ 1` → every that many.
+fn sweep_option(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<SplitStrategy>> {
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    if let Ok(on) = value.extract::<bool>() {
+        return Ok(on.then_some(SplitStrategy::Sweep {
+            step: SplitStrategy::SWEEP_STEP,
+        }));
+    }
+    match setting(Some(value), "sweep_sah")? {
+        Some(step) if step >= 1 => Ok(Some(SplitStrategy::Sweep { step })),
+        _ => Err(PyValueError::new_err(
+            "sweep_sah must be True, False, None or a whole number of triangles ≥ 1, got 0",
+        )),
+    }
 }
 
 /// `spatial_splits`: `None` or `False` → none; `True` → the default room; a number → that room.

@@ -140,12 +140,14 @@ impl Mesh {
     /// indices). `structure`: `"bvh"` (default), `"kdtree"`, `"octree"` or `"grid"`;
     /// `quality`: `"balanced"` (binned SAH, default), `"fast"` or `"high"`; `max_leaf_size`,
     /// `bins`, `max_depth` tune the BVH; `spatial_splits` (`True` or the extra room `0..=4`)
-    /// builds a BVH with spatial splits; `nodes` picks the BVH's query nodes (`"eight-wide"`,
+    /// builds a BVH with spatial splits; `sweep_sah` (`True` or the triangles between weighed
+    /// cuts, `≥ 1`) splits the BVH's nodes by sweep SAH (exact split positions, many times the
+    /// build time; not with `spatial_splits`); `nodes` picks the BVH's query nodes (`"eight-wide"`,
     /// the default on every x86-64 and AArch64, `"four-wide"`, or `"compact"`: 8-bit child
     /// boxes, half the memory), all giving the same answers. Raises `ValueError` naming a bad
     /// argument or what is wrong with the mesh (an index out of range, a non-finite position…).
     #[new]
-    #[pyo3(signature = (vertices, faces, *, structure = "bvh", quality = "balanced", max_leaf_size = None, bins = None, max_depth = None, spatial_splits = None, nodes = None))]
+    #[pyo3(signature = (vertices, faces, *, structure = "bvh", quality = "balanced", max_leaf_size = None, bins = None, max_depth = None, spatial_splits = None, sweep_sah = None, nodes = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -157,6 +159,7 @@ impl Mesh {
         bins: Option<&Bound<'_, PyAny>>,
         max_depth: Option<&Bound<'_, PyAny>>,
         spatial_splits: Option<&Bound<'_, PyAny>>,
+        sweep_sah: Option<&Bound<'_, PyAny>>,
         nodes: Option<&str>,
     ) -> PyResult<Self> {
         let choice = build_choice(
@@ -166,6 +169,7 @@ impl Mesh {
             bins,
             max_depth,
             spatial_splits,
+            sweep_sah,
             nodes,
         )?;
         let positions = floats(vertices, "vertices", 3)?;

@@ -39,6 +39,10 @@ def test_properties_describe_the_mesh(fandisk):
         (TRIANGLE, {"spatial_splits": 9.0}, ValueError, "spatial_splits must be"),
         (TRIANGLE, {"structure": "grid", "spatial_splits": True}, ValueError, "applies to the BVH"),
         (TRIANGLE, {"nodes": "two-wide"}, ValueError, "nodes must be"),
+        (TRIANGLE, {"sweep_sah": 0}, ValueError, "sweep_sah must be True, False, None or a whole number"),
+        (TRIANGLE, {"sweep_sah": 2.5}, TypeError, "sweep_sah must be a whole number, got float"),
+        (TRIANGLE, {"sweep_sah": True, "spatial_splits": True}, ValueError, "do not go together"),
+        (TRIANGLE, {"structure": "kdtree", "sweep_sah": 8}, ValueError, "sweep_sah applies to the BVH"),
         (TRIANGLE, {"bins": -3}, ValueError, "bins must be in 0..=4294967295, got -3"),
         (TRIANGLE, {"max_depth": "deep"}, TypeError, "max_depth must be a whole number, got str"),
         (TRIANGLE, {"max_leaf_size": True}, TypeError, "max_leaf_size must be a whole number, got bool"),
@@ -112,7 +116,10 @@ def test_every_structure_gives_the_same_answers(fandisk):
     answers = []
     builds = [{"structure": s} for s in ["bvh", "kdtree", "octree", "grid"]] + [
         {"nodes": n} for n in ["eight-wide", "four-wide", "compact"]
-    ] + [{"spatial_splits": True}, {"quality": "high"}, {"quality": "fast", "max_leaf_size": 2}]
+    ] + [{"spatial_splits": True}, {"quality": "high"}, {"quality": "fast", "max_leaf_size": 2}] + [
+        {"sweep_sah": True},
+        {"sweep_sah": 1, "quality": "high"},
+    ]
     for options in builds:
         m = meshq.Mesh(v, f, **options)
         answers.append((m.raycast(origins, directions), m.closest_points(points)))

@@ -158,6 +158,10 @@ fn the_parallel_build_is_the_sequential_build() {
             BuildConfig::fast(),
             BuildConfig::balanced(),
             BuildConfig::high_quality(),
+            BuildConfig {
+                split: meshq::bvh::SplitStrategy::Sweep { step: 32 },
+                ..BuildConfig::balanced()
+            },
         ] {
             let mut nodes = vec![BvhNode::EMPTY; Bvh::measure(n, None).nodes];
             let mut order = vec![0u32; n];

@@ -218,7 +218,8 @@ fn every_structure_and_the_golden_file_agree_with_brute_force() {
 const BLOBS_HEADER: &str = "\
 # meshq blob golden file: length and header checksum (CRC-32 over every other byte) of each
 # bundled mesh's blob with the indexed mesh layout, built with the default config (binned SAH)
-# and, as `<mesh>-fast`, with the fast preset (centre splits); `<mesh>-kdtree`, `-octree` and
+# and, as `<mesh>-fast`, with the fast preset (centre splits), as `<mesh>-sweep` with sweep SAH
+# (a cut weighed every 32 triangles, default costs); `<mesh>-kdtree`, `-octree` and
 # `-grid` hold the other structures with their default configs; `<mesh>-spatial` the BVH with
 # spatial splits (default config and room). BVH blobs are format version 5, with the roles of
 # their nodes in the eight-wide collapse; the others version 3. Builds and plans are
@@ -232,7 +233,17 @@ fn blobs_path() -> PathBuf {
 #[test]
 fn default_and_fast_blobs_match_the_golden_blob_file() {
     let mut file = String::from(BLOBS_HEADER);
-    for (suffix, config) in [("", BuildConfig::default()), ("-fast", BuildConfig::fast())] {
+    let sweep = BuildConfig {
+        split: meshq::bvh::SplitStrategy::Sweep {
+            step: meshq::bvh::SplitStrategy::SWEEP_STEP,
+        },
+        ..BuildConfig::default()
+    };
+    for (suffix, config) in [
+        ("", BuildConfig::default()),
+        ("-fast", BuildConfig::fast()),
+        ("-sweep", sweep),
+    ] {
         for name in MESHES {
             let loaded = load_mesh(name);
             let mesh = loaded.valid();

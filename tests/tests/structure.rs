@@ -46,6 +46,16 @@ fn configs() -> Vec<(String, BuildConfig)> {
             },
         ));
     }
+    for (step, max_leaf_size) in [(SplitStrategy::SWEEP_STEP, 4), (1, 4), (7, 1), (32, 16)] {
+        out.push((
+            format!("sweep {step}, leaf {max_leaf_size}"),
+            BuildConfig {
+                split: SplitStrategy::Sweep { step },
+                max_leaf_size,
+                ..BuildConfig::default()
+            },
+        ));
+    }
     out.push((
         "costly traversal".to_owned(),
         BuildConfig {
@@ -264,41 +274,160 @@ fn centre_splits_follow_the_centre_rule() {
     }
 }
 
+/// Half area of the box of `tris`, from the mesh, in f64 (the box corners are f32 values).
+fn half_area_f64(mesh: &ValidMesh<'_>, tris: &[u32]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &t in tris {
+        let t = mesh.triangle(t).unwrap();
+        for v in [t.a, t.b, t.c] {
+            for (k, x) in v.to_array().into_iter().enumerate() {
+                lo[k] = lo[k].min(f64::from(x));
+                hi[k] = hi[k].max(f64::from(x));
+            }
+        }
+    }
+    let e: [f64; 3] = std::array::from_fn(|k| hi[k] - lo[k]);
+    e[0] * e[1] + e[1] * e[2] + e[2] * e[0]
+}
+
+/// The sweep-SAH cost of cutting `sorted` after `k` triangles: `A_L·⌈k/4⌉ + A_R·⌈(n−k)/4⌉`.
+fn cut_cost(mesh: &ValidMesh<'_>, sorted: &[u32], k: usize) -> f64 {
+    let batches = |n: usize| n.div_ceil(4) as f64;
+    half_area_f64(mesh, &sorted[..k]) * batches(k)
+        + half_area_f64(mesh, &sorted[k..]) * batches(sorted.len() - k)
+}
+
+#[test]
+fn full_sweep_splits_take_the_cheapest_cut_in_centroid_order() {
+    // Every inner node of a step-1 sweep tree puts on its left the first triangles in centroid
+    // order (then triangle index) on some axis, and that cut costs no more than any other cut
+    // on any axis: recomputed here from the mesh in f64, over every cut. The tolerance is
+    // relative (the builder sums in f32).
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let config = BuildConfig {
+        split: SplitStrategy::Sweep { step: 1 },
+        ..BuildConfig::default()
+    };
+    let owned = MeshBvh::build(&mesh, &config).unwrap();
+    let bvh = checked_bvh(&owned, &mesh).unwrap();
+    let (nodes, order) = (bvh.nodes(), bvh.order());
+    let mut checked = 0;
+    for (i, node) in nodes.iter().enumerate() {
+        if node.is_leaf() {
+            continue;
+        }
+        let (begin, end) = slot_range(nodes, i);
+        let (mid, _) = slot_range(nodes, node.first as usize + 1);
+        let tris = &order[begin..end];
+        let mut left: Vec<u32> = order[begin..mid].to_vec();
+        left.sort_unstable();
+        let mut best = f64::INFINITY;
+        let mut chosen = None;
+        for axis in 0..3 {
+            let mut sorted = tris.to_vec();
+            sorted.sort_by(|&a, &b| {
+                let (ca, cb) = (
+                    doubled_centroid(&mesh, a)[axis],
+                    doubled_centroid(&mesh, b)[axis],
+                );
+                ca.total_cmp(&cb).then(a.cmp(&b))
+            });
+            for k in 1..sorted.len() {
+                best = best.min(cut_cost(&mesh, &sorted, k));
+            }
+            let mut first = sorted[..mid - begin].to_vec();
+            first.sort_unstable();
+            if first == left {
+                let cost = cut_cost(&mesh, &sorted, mid - begin);
+                chosen = Some(chosen.map_or(cost, |c: f64| c.min(cost)));
+            }
+        }
+        let chosen = chosen.unwrap_or_else(|| panic!("node {i}: not a cut in centroid order"));
+        assert!(
+            chosen <= best * (1.0 + 1e-5),
+            "node {i} of {} triangles: cut cost {chosen}, cheapest {best}",
+            end - begin
+        );
+        checked += 1;
+    }
+    assert!(checked > 100, "only {checked} inner nodes");
+}
+
+#[test]
+fn a_sweep_step_of_zero_is_a_full_sweep_and_spatial_splits_are_refused_by_name() {
+    let loaded = load_mesh("cow");
+    let mesh = loaded.valid();
+    let with_step = |step| BuildConfig {
+        split: SplitStrategy::Sweep { step },
+        ..BuildConfig::default()
+    };
+    let zero = MeshBvh::build(&mesh, &with_step(0)).unwrap();
+    let one = MeshBvh::build(&mesh, &with_step(1)).unwrap();
+    assert_eq!(zero.bvh().nodes(), one.bvh().nodes());
+    assert_eq!(zero.bvh().order(), one.bvh().order());
+    let sweep = BuildConfig {
+        split: SplitStrategy::Sweep { step: 32 },
+        ..BuildConfig::default()
+    };
+    let spatial = meshq::bvh::SpatialSplits::DEFAULT;
+    let sizes = Bvh::measure(mesh.triangle_count(), Some(&spatial));
+    let mut nodes = vec![BvhNode::EMPTY; sizes.nodes];
+    let mut order = vec![0; sizes.order];
+    let mut scratch = vec![meshq::advanced::PrimRef::EMPTY; sizes.order];
+    let mut split_refs = vec![meshq::advanced::SplitRef::default(); sizes.split_refs];
+    let built = Bvh::build_spatial(
+        &mesh,
+        &sweep,
+        &spatial,
+        &mut nodes,
+        &mut order,
+        &mut scratch,
+        &mut split_refs,
+    );
+    assert!(matches!(
+        built,
+        Err(meshq::error::BuildError::InvalidConfig { field: "split" })
+    ));
+}
+
 #[test]
 fn builds_are_deterministic_whatever_the_buffers_held() {
     let loaded = load_mesh("fandisk");
     let mesh = loaded.valid();
     let n = mesh.triangle_count();
-    let a = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
-    let garbage = BvhNode {
-        min: [1.0; 3],
-        first: 7,
-        max: [-3.0; 3],
-        count: 9,
+    let sweep = BuildConfig {
+        split: SplitStrategy::Sweep { step: 4 },
+        ..BuildConfig::default()
     };
-    let mut nodes = vec![garbage; Bvh::measure(n, None).nodes + 5];
-    let mut order = vec![u32::MAX; n + 3];
-    let mut scratch = vec![meshq::advanced::PrimRef::EMPTY; n + 1];
-    let b = Bvh::build(
-        &mesh,
-        &BuildConfig::default(),
-        &mut nodes,
-        &mut order,
-        &mut scratch,
-    )
-    .unwrap();
-    let bits = |nodes: &[BvhNode]| -> Vec<u32> {
-        nodes
-            .iter()
-            .flat_map(|n| {
-                let mut v: Vec<u32> = n.min.iter().chain(&n.max).map(|f| f.to_bits()).collect();
-                v.extend([n.first, n.count]);
-                v
-            })
-            .collect()
-    };
-    assert_eq!(bits(a.bvh().nodes()), bits(b.nodes()));
-    assert_eq!(a.bvh().order(), b.order());
+    // The sweep build keeps boxes in node slots it has not used yet: garbage there must not
+    // matter either.
+    for config in [BuildConfig::default(), sweep] {
+        let a = MeshBvh::build(&mesh, &config).unwrap();
+        let garbage = BvhNode {
+            min: [1.0; 3],
+            first: 7,
+            max: [-3.0; 3],
+            count: 9,
+        };
+        let mut nodes = vec![garbage; Bvh::measure(n, None).nodes + 5];
+        let mut order = vec![u32::MAX; n + 3];
+        let mut scratch = vec![meshq::advanced::PrimRef::EMPTY; n + 1];
+        let b = Bvh::build(&mesh, &config, &mut nodes, &mut order, &mut scratch).unwrap();
+        let bits = |nodes: &[BvhNode]| -> Vec<u32> {
+            nodes
+                .iter()
+                .flat_map(|n| {
+                    let mut v: Vec<u32> = n.min.iter().chain(&n.max).map(|f| f.to_bits()).collect();
+                    v.extend([n.first, n.count]);
+                    v
+                })
+                .collect()
+        };
+        assert_eq!(bits(a.bvh().nodes()), bits(b.nodes()), "{:?}", config.split);
+        assert_eq!(a.bvh().order(), b.order());
+    }
 }
 
 #[test]

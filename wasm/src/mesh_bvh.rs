@@ -141,7 +141,8 @@ impl MeshBvh {
     /// `maxDepth` (which tune the BVH; the other structures use their default configs),
     /// `spatialSplits` (`true`, or the extra room as a fraction of the triangle count, `0..=4`:
     /// a BVH with spatial splits, for scenes of long crossing triangles; the same answers,
-    /// several times the build time). Throws
+    /// several times the build time), `sweepSah` (`true`, or the triangles between weighed
+    /// cuts: nodes split by sweep SAH; the same answers, many times the build time). Throws
     /// a `TypeError` or `RangeError` naming a bad argument or an unknown option, and an `Error`
     /// with the core's message for an invalid mesh (an index out of range, a non-finite
     /// position…).

@@ -1,6 +1,6 @@
 //! Build options passed from JavaScript, read strictly (see [`crate::fields`]).
 
-use meshq::bvh::{BuildConfig, MAX_DEPTH, SpatialSplits};
+use meshq::bvh::{BuildConfig, MAX_DEPTH, SpatialSplits, SplitStrategy};
 use meshq::error::BuildError;
 use meshq::owned::StructureKind;
 use wasm_bindgen::prelude::*;
@@ -16,6 +16,7 @@ const BUILD_KEYS: &[&str] = &[
     "bins",
     "maxDepth",
     "spatialSplits",
+    "sweepSah",
 ];
 
 /// What `MeshBvh.build`'s options ask for.
@@ -56,7 +57,35 @@ fn spatial_option(value: &JsValue) -> Result<Option<SpatialSplits>, JsValue> {
     Ok(Some(spatial))
 }
 
-/// Reads `{ structure?, quality?, maxLeafSize?, bins?, maxDepth?, spatialSplits? }`: every
+/// `sweepSah`: omitted or `false` → the quality's strategy; `true` → sweep SAH every
+/// [`SplitStrategy::SWEEP_STEP`] triangles; a whole number `≥ 1` → every that many.
+fn sweep_option(value: &JsValue) -> Result<Option<SplitStrategy>, JsValue> {
+    const WHAT: &str = "options.sweepSah";
+    if omitted(value) {
+        return Ok(None);
+    }
+    if let Some(on) = value.as_bool() {
+        return Ok(on.then_some(SplitStrategy::Sweep {
+            step: SplitStrategy::SWEEP_STEP,
+        }));
+    }
+    let Some(step) = value.as_f64() else {
+        return Err(type_error(&format!(
+            "{WHAT} must be a boolean or a number, got {}",
+            value_kind(value)
+        )));
+    };
+    if step.fract() != 0.0 || !(1.0..=f64::from(u32::MAX)).contains(&step) {
+        return Err(range_error(&format!(
+            "{WHAT} must be true, false or a whole number of triangles in 1..={}, got {}",
+            u32::MAX,
+            JsNumber(step)
+        )));
+    }
+    Ok(Some(SplitStrategy::Sweep { step: step as u32 }))
+}
+
+/// Reads `{ structure?, quality?, maxLeafSize?, bins?, maxDepth?, spatialSplits?, sweepSah? }`: every
 /// field optional (`undefined` or `null` means the default: a BVH, balanced, no spatial
 /// splits). An unknown key, a value of the wrong kind or out of range throws, naming it.
 pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
@@ -90,6 +119,10 @@ pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
     if let Some(n) = optional_u32(&field(o, "maxDepth")?, "options.maxDepth")? {
         config.max_depth = n;
     }
+    let sweep = sweep_option(&field(o, "sweepSah")?)?;
+    if let Some(split) = sweep {
+        config.split = split;
+    }
     if let Err(e) = config.check() {
         let message = match e {
             BuildError::InvalidConfig {
@@ -113,9 +146,19 @@ pub fn build_options(value: &JsValue) -> Result<BuildChoice, JsValue> {
         return Err(range_error(&message));
     }
     let spatial = spatial_option(&field(o, "spatialSplits")?)?;
-    if spatial.is_some() && kind != StructureKind::Bvh {
+    if spatial.is_some() && sweep.is_some() {
+        return Err(type_error(
+            "options.sweepSah and options.spatialSplits do not go together (spatial splits are weighed against the binned search)",
+        ));
+    }
+    if (spatial.is_some() || sweep.is_some()) && kind != StructureKind::Bvh {
+        let name = if spatial.is_some() {
+            "spatialSplits"
+        } else {
+            "sweepSah"
+        };
         return Err(type_error(&format!(
-            "options.spatialSplits applies to the BVH, not a {kind}"
+            "options.{name} applies to the BVH, not a {kind}"
         )));
     }
     Ok(BuildChoice {

@@ -102,6 +102,11 @@ export interface MeshBvhOptions {
    *  crossing the plane on both sides: much faster rays on scenes of long crossing triangles,
    *  the same answers, several times the build time. */
   spatialSplits?: boolean | number | null;
+  /** Split BVH nodes by sweep SAH instead of binning: `true` (a cut weighed every 32
+   *  triangles) or the number of triangles between weighed cuts (1 weighs every cut). The
+   *  triangles are sorted by centroid on each axis: exact split positions, many times the
+   *  build time. Not with `spatialSplits`. */
+  sweepSah?: boolean | number | null;
 }
 
 /** How a blob stores its mesh: `'indexed'` (positions and indices; the default), `'packed'`

@@ -120,10 +120,13 @@ fn floats_js(values: &[f32]) -> JsValue {
 fn every_mesh_matches_the_golden_digest_and_blob() {
     let spatial = js_sys::Object::new();
     Reflect::set(&spatial, &"spatialSplits".into(), &true.into()).unwrap();
+    let sweep = js_sys::Object::new();
+    Reflect::set(&sweep, &"sweepSah".into(), &true.into()).unwrap();
     let presets = [
         ("", JsValue::UNDEFINED),
         ("-fast", fast()),
         ("-spatial", spatial.into()),
+        ("-sweep", sweep.into()),
     ];
     for ((name, obj), (suffix, options)) in MESHES
         .iter()

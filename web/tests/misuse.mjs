@@ -107,6 +107,19 @@ assert.equal(MeshBvh.MISS_T, Infinity);
   }
   split.free();
   splitBack.free();
+  // Sweep SAH (true: every 32 triangles; a number: that step): the same answers, read back
+  // from its blob; off (false) is the ordinary build.
+  assert.deepEqual(MeshBvh.build(positions, indices, { sweepSah: false }).toBlob(), bvh.toBlob());
+  for (const sweepSah of [true, 1, 5]) {
+    const swept = MeshBvh.build(positions, indices, { sweepSah });
+    const sweptBack = MeshBvh.fromBlob(swept.toBlob());
+    for (const [o, d] of [[[0.1, 0.2, 5], [0, 0, -1]], [[0.3, -2, 0.2], [0, 1, 0]], [above, down]]) {
+      assert.deepEqual(swept.raycast(o, d), bvh.raycast(o, d));
+      assert.deepEqual(sweptBack.raycast(o, d), bvh.raycast(o, d));
+    }
+    swept.free();
+    sweptBack.free();
+  }
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob(), bvh.toBlob(), 'toBlob on a loaded blob');
   assert.deepEqual(MeshBvh.fromBlob(bvh.toBlob()).toBlob('packed'), bvh.toBlob('packed'));
   // With the winding-number expansions (format version 6, 112 bytes per node): a load keeps
@@ -223,6 +236,11 @@ const cases = [
   [() => MeshBvh.build(positions, indices, { spatialSplits: 5 }), RangeError, /options.spatialSplits must be true, false or a number in 0..=4, got 5/],
   [() => MeshBvh.build(positions, indices, { spatialSplits: -1 }), RangeError, /options.spatialSplits must be/],
   [() => MeshBvh.build(positions, indices, { spatialSplits: true, structure: 'grid' }), TypeError, /options.spatialSplits applies to the BVH/],
+  [() => MeshBvh.build(positions, indices, { sweepSah: 'yes' }), TypeError, /options.sweepSah must be a boolean or a number/],
+  [() => MeshBvh.build(positions, indices, { sweepSah: 0 }), RangeError, /options.sweepSah must be true, false or a whole number of triangles in 1..=\d+, got 0$/],
+  [() => MeshBvh.build(positions, indices, { sweepSah: 2.5 }), RangeError, /options.sweepSah .* got 2.5$/],
+  [() => MeshBvh.build(positions, indices, { sweepSah: true, spatialSplits: true }), TypeError, /options.sweepSah and options.spatialSplits do not go together/],
+  [() => MeshBvh.build(positions, indices, { sweepSah: 8, structure: 'kdtree' }), TypeError, /options.sweepSah applies to the BVH/],
   [() => bvh.toBlob(5), TypeError, /layout must be a string/],
   [() => bvh.toBlob('zip'), RangeError, /layout must be one of "indexed", "packed", "omitted"/],
   [() => bvh.toBlob(null, 'yes'), TypeError, /winding must be a boolean, got/],

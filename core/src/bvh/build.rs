@@ -1,4 +1,4 @@
-//! The top-down builder (binned SAH or centre splits). Iterative, with a fixed task stack; writes only into the
+//! The top-down builder (binned SAH, sweep SAH or centre splits). Iterative, with a fixed task stack; writes only into the
 //! caller's buffers, and only after every size and limit has been checked.
 
 use glam::Vec3A;
@@ -9,6 +9,7 @@ use super::centre::{Side, centre_split};
 use super::lanes::{max_lanes, min_lanes};
 use super::median::median_split;
 use super::partition::bounds_of;
+use super::sweep_sah::{SweepSplit, find_sweep_split};
 use super::{BuildConfig, BvhNode, MAX_DEPTH, PrimRef, SplitStrategy, node_capacity};
 use crate::error::{BufferKind, BuildError};
 use crate::mesh::ValidMesh;
@@ -184,9 +185,15 @@ pub(super) fn build_subtree(
         ) else {
             break;
         };
-        let children = split_node(config, &task, range, tris, &mut |p, c, k| {
-            binning.find_split(p, c, k)
-        });
+        let spare = nodes.get_mut(node_count..).unwrap_or_default();
+        let children = split_node(
+            config,
+            &task,
+            range,
+            tris,
+            &mut |p, c, k| binning.find_split(p, c, k),
+            spare,
+        );
         let Some(slot) = nodes.get_mut(task.node) else {
             break;
         };
@@ -241,15 +248,23 @@ pub(super) fn build_subtree(
     Ok(Built { node_count, depth })
 }
 
+/// The split a node's search found, by strategy.
+enum Cut {
+    Binned(Split),
+    Sorted(SweepSplit),
+}
+
 /// Decides a node: `None` for a leaf, or the left count and both sides' bounds after reordering
 /// `prims` (and `tris` alongside) into left-then-right. `find_split` is
-/// [`Binning::find_split`] or its parallel twin, which finds the same split.
+/// [`Binning::find_split`] or its parallel twin, which finds the same split; `spare` is room
+/// for [`find_sweep_split`] (node slots not used yet).
 pub(super) fn split_node(
     config: &BuildConfig,
     task: &Task,
     prims: &mut [PrimRef],
     tris: &mut [u32],
     find_split: &mut FindSplit<'_>,
+    spare: &mut [BvhNode],
 ) -> Option<(usize, Side, Side)> {
     let count = prims.len();
     if count <= 1 {
@@ -266,24 +281,37 @@ pub(super) fn split_node(
         return Some(centre.unwrap_or_else(|| median_split(prims, tris, &task.centroids)));
     }
     let area = task.bounds.half_area();
-    if area > 0.0
-        && let Some(split) = find_split(prims, &task.centroids, config.bins)
-    {
-        {
-            let split_cost = config.traversal_cost + config.triangle_cost * (split.cost / area);
-            let leaf_cost = config.triangle_cost * batches(count) as f32;
-            if may_be_leaf && split_cost >= leaf_cost {
-                return None;
-            }
-            let right_count = count - split.left_count;
-            if split.left_count <= child_capacity && right_count <= child_capacity {
-                let (left_count, left_centers, right_centers) = partition(prims, tris, &split);
-                return Some((
-                    left_count,
-                    (split.left, left_centers),
-                    (split.right, right_centers),
-                ));
-            }
+    let found = if area > 0.0 {
+        match config.split {
+            SplitStrategy::Sweep { step } => find_sweep_split(prims, tris, step, spare)
+                .map(|s| (s.cost, s.left_count, Cut::Sorted(s))),
+            _ => find_split(prims, &task.centroids, config.bins)
+                .map(|s| (s.cost, s.left_count, Cut::Binned(s))),
+        }
+    } else {
+        None
+    };
+    if let Some((cost, left_count, cut)) = found {
+        let split_cost = config.traversal_cost + config.triangle_cost * (cost / area);
+        let leaf_cost = config.triangle_cost * batches(count) as f32;
+        if may_be_leaf && split_cost >= leaf_cost {
+            return None;
+        }
+        if left_count <= child_capacity && count - left_count <= child_capacity {
+            return Some(match cut {
+                Cut::Binned(split) => {
+                    let (left_count, left_centers, right_centers) = partition(prims, tris, &split);
+                    (
+                        left_count,
+                        (split.left, left_centers),
+                        (split.right, right_centers),
+                    )
+                }
+                Cut::Sorted(split) => {
+                    let (left, right) = split.apply(prims, tris);
+                    (split.left_count, left, right)
+                }
+            });
         }
     }
     if may_be_leaf {

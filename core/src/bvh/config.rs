@@ -1,3 +1,4 @@
+use serde::de::{Deserializer, EnumAccess, Error as _, Unexpected, VariantAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
 use super::MAX_DEPTH;
@@ -6,8 +7,8 @@ use crate::error::BuildError;
 /// How the builder divides a node's triangles in two.
 ///
 /// On the wire (blob header) a varint tag: 0 = [`SplitStrategy::Sah`], 1 =
-/// [`SplitStrategy::Centre`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+/// [`SplitStrategy::Centre`], 2 = [`SplitStrategy::Sweep`] followed by its step as a varint.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize)]
 #[non_exhaustive]
 pub enum SplitStrategy {
     /// Binned surface area heuristic: at each node, triangle centroids are sorted into `bins`
@@ -24,15 +25,64 @@ pub enum SplitStrategy {
     /// [`SplitStrategy::Sah`], for trees that answer rays more slowly (the README's benchmark
     /// table has the figures). The same rule as three-mesh-bvh's default (`CENTER`).
     Centre,
+    /// Sweep SAH, the classic full-sort builder: at each node the triangles are sorted by
+    /// centroid on each axis in turn (ties by triangle index) and the cost of
+    /// [`SplitStrategy::Sah`] is evaluated between neighbours every `step` triangles along that
+    /// order; the cheapest cut wins (ties: the lower axis, then fewer triangles on the left), and
+    /// the leaf rule is the same. A node of `n` triangles is cut at most `⌈n/32⌉` apart, so
+    /// small nodes still weigh 32 cuts (every cut when they have fewer). Split positions are
+    /// exact rather than binned; each node costs a sort per axis (`O(n log² n)` in all;
+    /// `docs/benchmarks.md` compares build times, SAH costs and ray speed with binned SAH).
+    /// `bins` is not used. Not combined with spatial splits ([`BuildError::InvalidConfig`] naming
+    /// `split`).
+    Sweep {
+        /// Triangles between evaluated cuts: 1 (or 0, which means the same) is a full sweep,
+        /// every cut; [`SplitStrategy::SWEEP_STEP`] the usual choice.
+        step: u32,
+    },
+}
+
+/// Read by variant index only (the tag postcard writes), with the sweep's step as a plain
+/// value: the same bytes the derived form reads, without its name-matching code (which would
+/// cost the firmware flash).
+impl<'de> Deserialize<'de> for SplitStrategy {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Tag;
+        impl<'de> Visitor<'de> for Tag {
+            type Value = SplitStrategy;
+            fn expecting(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str("a split strategy")
+            }
+            fn visit_enum<A: EnumAccess<'de>>(self, data: A) -> Result<Self::Value, A::Error> {
+                let (tag, variant): (u32, _) = data.variant()?;
+                match tag {
+                    0 => variant.unit_variant().map(|()| SplitStrategy::Sah),
+                    1 => variant.unit_variant().map(|()| SplitStrategy::Centre),
+                    2 => variant
+                        .newtype_variant()
+                        .map(|step| SplitStrategy::Sweep { step }),
+                    _ => Err(A::Error::invalid_value(
+                        Unexpected::Unsigned(u64::from(tag)),
+                        &"0, 1 or 2",
+                    )),
+                }
+            }
+        }
+        d.deserialize_enum("SplitStrategy", &["Sah", "Centre", "Sweep"], Tag)
+    }
 }
 
 impl SplitStrategy {
-    /// The strategy's name in lower case: `sah` or `centre` (what tools print).
+    /// The usual step of [`SplitStrategy::Sweep`]: a cut evaluated every 32 triangles.
+    pub const SWEEP_STEP: u32 = 32;
+
+    /// The strategy's name in lower case: `sah`, `centre` or `sweep` (what tools print).
     #[must_use]
     pub const fn name(&self) -> &'static str {
         match self {
             Self::Sah => "sah",
             Self::Centre => "centre",
+            Self::Sweep { .. } => "sweep",
         }
     }
 }

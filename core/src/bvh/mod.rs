@@ -32,6 +32,7 @@ mod buffers;
 mod build;
 mod build_box;
 mod centre;
+mod centroid_sort;
 pub(crate) mod check;
 mod clip;
 mod config;
@@ -54,6 +55,7 @@ mod spatial_compact;
 #[cfg(feature = "blob")]
 pub(crate) mod split_coverage;
 pub(crate) mod stats;
+mod sweep_sah;
 mod traverse;
 mod tree;
 

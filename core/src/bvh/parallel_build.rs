@@ -18,7 +18,7 @@ use super::binning::Binning;
 use super::build::{Built, Task, build_subtree, fill_prims, prepare_with, split_node};
 use super::build_box::BuildBox;
 use super::partition::bounds_of;
-use super::{BuildConfig, BvhNode, PrimRef, node_capacity};
+use super::{BuildConfig, BvhNode, PrimRef, SplitStrategy, node_capacity};
 use crate::error::BuildError;
 use crate::mesh::ValidMesh;
 
@@ -112,9 +112,19 @@ fn build_piece(
         return Ok((Piece::Subtree(nodes), built.depth));
     }
     let mut binning = Binning::new();
-    let children = split_node(config, &task, prims, order, &mut |p, c, k| {
-        binning.find_split_parallel(p, c, k)
-    });
+    // Room for the sweep SAH's boxes (none needed by the other strategies).
+    let mut spare = match config.split {
+        SplitStrategy::Sweep { .. } => vec![BvhNode::EMPTY; prims.len()],
+        _ => Vec::new(),
+    };
+    let children = split_node(
+        config,
+        &task,
+        prims,
+        order,
+        &mut |p, c, k| binning.find_split_parallel(p, c, k),
+        &mut spare,
+    );
     let Some((left_count, (lb, lc), (rb, rc))) = children else {
         // A leaf after all (not reached with the presets: a node this large always splits);
         // the sequential builder decides it the same way.

@@ -98,6 +98,10 @@ pub(super) fn prepare<'s>(
 ) -> Result<Option<Prepared<'s>>, BuildError> {
     config.check()?;
     spatial.check()?;
+    // Spatial splits are weighed against the binned search's best split.
+    if matches!(config.split, super::SplitStrategy::Sweep { .. }) {
+        return Err(BuildError::InvalidConfig { field: "split" });
+    }
     let n = mesh.triangle_count();
     let room = spatial.reference_capacity(n);
     // Entries carry a flag in their top bit while building, and leaves name slots in `u32`.
@@ -299,9 +303,14 @@ impl<'m, 'c> Builder<'m, 'c> {
         else {
             return Ok(None);
         };
-        let Some((left_count, (lb, lc), (rb, rc))) =
-            split_node(self.config, task, range, tris, &mut |_, _, _| object)
-        else {
+        let Some((left_count, (lb, lc), (rb, rc))) = split_node(
+            self.config,
+            task,
+            range,
+            tris,
+            &mut |_, _, _| object,
+            &mut [],
+        ) else {
             return Ok(None);
         };
         // Share the room in proportion to the references, and move the right side up.

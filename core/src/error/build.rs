@@ -58,7 +58,8 @@ pub enum BuildError {
         triangles: usize,
     },
     /// A [`BuildConfig`](crate::bvh::BuildConfig) field is out of its documented range. Fix: see
-    /// that field's documentation.
+    /// that field's documentation. `split` names a
+    /// [`SplitStrategy::Sweep`](crate::bvh::SplitStrategy::Sweep) asked for with spatial splits.
     InvalidConfig {
         /// The field's name.
         field: &'static str,

@@ -27,6 +27,8 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const bvh = MeshBvh.build(positions, indices);
   const grid = MeshBvh.build(positions, indices, options);
   const soup = MeshBvh.build([0, 0, 0, 1, 0, 0, 0, 1, 0]);
+  const swept = MeshBvh.build(positions, indices, { sweepSah: true } satisfies MeshBvhOptions);
+  MeshBvh.build(positions, indices, { sweepSah: 32 }).free();
   const loaded = MeshBvh.fromBlob(blob);
 
   const origin: Vec3Like = [0, 0, 1];
@@ -94,6 +96,7 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   const measured: number = remeshed.distanceSamplesMeasured + remeshed.distanceSamples;
   const tree = bvh.treeArrays();
   soup.free();
+  swept.free();
 
   const pool = await MeshqPool.fromBlob(blob, { workers: 2, eightWide: true });
   const pooled: { t: Float32Array; triangles: Uint32Array; hits: number } = await pool.raycastBatch(rays, 0, 1);
