@@ -662,7 +662,7 @@ fn remesh_writes_a_better_mesh_and_refuses_a_non_manifold_one() {
 
 #[test]
 fn check_reports_self_intersections_and_contacts_as_brute_force_finds_them() {
-    use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+    use meshq::geom::{TriangleTriangle, intersect_triangle_triangle, triangles_meet};
     let spot = asset("spot.obj");
     let parse = |s: String| serde_json::from_str::<serde_json::Value>(&s).unwrap();
     let clean = parse(ok(&[&"check", &spot, &"--json"]));
@@ -690,13 +690,12 @@ fn check_reports_self_intersections_and_contacts_as_brute_force_finds_them() {
     let (mut meeting, mut crossing) = (0usize, 0usize);
     for a in &tris {
         for b in &moved {
-            match intersect_triangle_triangle(a, b) {
-                TriangleTriangle::Disjoint => {}
-                TriangleTriangle::Segment { .. } => {
-                    meeting += 1;
+            // Meeting decided exactly; crossing where the tolerant test places a segment.
+            if triangles_meet(a, b) {
+                meeting += 1;
+                if let TriangleTriangle::Segment { .. } = intersect_triangle_triangle(a, b) {
                     crossing += 1;
                 }
-                TriangleTriangle::Coplanar => meeting += 1,
             }
         }
     }

@@ -11,7 +11,7 @@ use meshq::collide::{
     Affine, CrossingSegment, PairBudget, TrianglePair, intersecting_pairs, intersection_segments,
     meshes_intersect, self_intersecting_pairs, self_intersects, touching_pairs_unfiltered,
 };
-use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+use meshq::geom::{TriangleTriangle, intersect_triangle_triangle, triangles_meet};
 use meshq::math::{Aabb, Triangle};
 use meshq::mesh::{MeshRef, ValidMesh};
 use meshq::owned::MeshBvh;
@@ -27,7 +27,7 @@ fn bounds_of(tris: &[Triangle]) -> Aabb {
     tris.iter().fold(Aabb::EMPTY, |b, t| b.union(t.bounds()))
 }
 
-/// Every meeting pair by brute force, over the triangles of `a` listed in `only_a` (all when
+/// Every meeting pair by brute force (with whether the pair has a crossing segment), over the triangles of `a` listed in `only_a` (all when
 /// `None`); `b` placed by `place`. Triangles whose bounds miss the other mesh's bounds are
 /// skipped first: they can meet nothing.
 fn brute_pairs(
@@ -49,14 +49,14 @@ fn brute_pairs(
             continue;
         }
         for &j in &near_b {
-            match intersect_triangle_triangle(&ta, &b[j as usize]) {
-                TriangleTriangle::Disjoint => {}
-                TriangleTriangle::Segment { .. } => {
-                    out.insert((i, j, true));
-                }
-                TriangleTriangle::Coplanar => {
-                    out.insert((i, j, false));
-                }
+            // Meeting decided exactly; a segment where the tolerant test places one.
+            let tb = &b[j as usize];
+            if triangles_meet(&ta, tb) {
+                let crossing = matches!(
+                    intersect_triangle_triangle(&ta, tb),
+                    TriangleTriangle::Segment { .. }
+                );
+                out.insert((i, j, crossing));
             }
         }
     }

@@ -11,7 +11,7 @@ use meshq::collide::{
     PairBudget, TrianglePair, intersecting_pairs, meshes_intersect, self_intersecting_pairs,
     self_intersects,
 };
-use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+use meshq::geom::triangles_meet;
 use meshq::math::Triangle;
 use meshq::mesh::{MeshRef, ValidMesh};
 use meshq::owned::MeshBvh;
@@ -32,14 +32,15 @@ fn triangles(mesh: &ValidMesh<'_>) -> Vec<Triangle> {
         .collect()
 }
 
-/// Pairs `(i, j)`, `i < j`, of triangles that meet: brute force, right for triangles sharing
-/// no corner by index or position (`point` and `overlap`; `same` is counted apart, and
-/// `crossing`'s opposite slivers share corners by position).
+/// Pairs `(i, j)`, `i < j`, of triangles that meet, by the self-intersection walk's exact
+/// predicate over every pair: right for triangles sharing no corner by index or position
+/// (`point` and `overlap`; `same` is counted apart, and `crossing`'s opposite slivers share
+/// corners by position).
 fn brute_self_pairs(tris: &[Triangle]) -> usize {
     let mut meeting = 0;
     for i in 0..tris.len() {
         for j in i + 1..tris.len() {
-            if intersect_triangle_triangle(&tris[i], &tris[j]) != TriangleTriangle::Disjoint {
+            if triangles_meet(&tris[i], &tris[j]) {
                 meeting += 1;
             }
         }
@@ -49,11 +50,7 @@ fn brute_self_pairs(tris: &[Triangle]) -> usize {
 
 fn brute_pairs(a: &[Triangle], b: &[Triangle]) -> usize {
     a.iter()
-        .map(|ta| {
-            b.iter()
-                .filter(|tb| intersect_triangle_triangle(ta, tb) != TriangleTriangle::Disjoint)
-                .count()
-        })
+        .map(|ta| b.iter().filter(|tb| triangles_meet(ta, tb)).count())
         .sum()
 }
 

@@ -17,6 +17,7 @@ mod degenerate_pairs;
 mod doc_links;
 mod edge_cases;
 mod eight_wide;
+mod exact_self_intersection;
 mod geom_properties;
 mod large_trees;
 mod mesh_distance;

@@ -9,7 +9,7 @@ use meshq::advanced::{BlobHeader, BvhNode, PrimRef, reseal};
 use meshq::bvh::{BuildConfig, Bvh, SpatialSplits};
 use meshq::collide::{PairBudget, intersecting_pairs, self_intersecting_pairs};
 use meshq::error::{BufferKind, BuildError};
-use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+use meshq::geom::triangles_meet;
 use meshq::math::Triangle;
 use meshq::mesh::ValidMesh;
 use meshq::owned::MeshBvh;
@@ -297,7 +297,7 @@ fn triangle_pairs_come_once_from_spatial_split_trees() {
             if i / 12 == j / 12 {
                 continue;
             }
-            if intersect_triangle_triangle(&tris[i], &tris[j]) != TriangleTriangle::Disjoint {
+            if triangles_meet(&tris[i], &tris[j]) {
                 want.insert((i as u32, j as u32));
             }
         }
@@ -334,7 +334,7 @@ fn triangle_pairs_come_once_from_spatial_split_trees() {
     let mut want = BTreeSet::new();
     for (i, a) in tris.iter().enumerate() {
         for (j, b) in other_tris.iter().enumerate() {
-            if intersect_triangle_triangle(a, b) != TriangleTriangle::Disjoint {
+            if triangles_meet(a, b) {
                 want.insert((i as u32, j as u32));
             }
         }

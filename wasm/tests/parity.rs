@@ -630,7 +630,7 @@ fn remeshing_matches_the_golden_remesh_file() {
 #[wasm_bindgen_test]
 fn mesh_mesh_checks_match_brute_force_here_too() {
     use meshq::collide::Affine;
-    use meshq::geom::{TriangleTriangle, intersect_triangle_triangle};
+    use meshq::geom::{TriangleTriangle, intersect_triangle_triangle, triangles_meet};
     use meshq::math::Triangle;
     let obj = include_str!("../../assets/uv-sphere.obj");
     let (positions, indices) = load(obj);
@@ -650,12 +650,12 @@ fn mesh_mesh_checks_match_brute_force_here_too() {
     let (mut pairs, mut crossing) = (Vec::new(), 0usize);
     for (i, a) in tris.iter().enumerate() {
         for (j, b) in tris.iter().enumerate() {
-            match intersect_triangle_triangle(a, &place.apply_triangle(b)) {
-                TriangleTriangle::Disjoint => {}
-                how => {
-                    pairs.push((i as u32, j as u32));
-                    crossing += usize::from(matches!(how, TriangleTriangle::Segment { .. }));
-                }
+            // Meeting decided exactly; crossing where the tolerant test places a segment.
+            let placed = place.apply_triangle(b);
+            if triangles_meet(a, &placed) {
+                pairs.push((i as u32, j as u32));
+                let how = intersect_triangle_triangle(a, &placed);
+                crossing += usize::from(matches!(how, TriangleTriangle::Segment { .. }));
             }
         }
     }

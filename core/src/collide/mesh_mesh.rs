@@ -8,7 +8,7 @@ use super::tree_pairs::for_each_leaf_pair;
 use super::{Affine, CrossingSegment, Found, PairBudget, TrianglePair};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::PairBudgetSpent;
-use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
+use crate::geom::{TriangleTriangle, intersect_triangle_triangle, triangles_meet};
 use crate::math::Aabb;
 use crate::query::{LeafTriangles, With};
 
@@ -55,7 +55,6 @@ where
                         continue;
                     };
                     *tested += 1;
-                    let how = intersect_triangle_triangle(&ta, &tb);
                     // Of the leaf pairs holding references of both triangles (spatial
                     // splits), one reports: the first that this walk pairs and whose `a`
                     // leaf meets `b`'s triangle as placed.
@@ -69,7 +68,9 @@ where
                             },
                         )
                     };
-                    if how != TriangleTriangle::Disjoint && reports() {
+                    // Decided exactly; where they meet is worked out for those that do.
+                    if triangles_meet(&ta, &tb) && reports() {
+                        let how = intersect_triangle_triangle(&ta, &tb);
                         on(TrianglePair { a: id_a, b: id_b }, how)?;
                     }
                 }
@@ -80,10 +81,10 @@ where
 }
 
 /// Whether any triangle of `a` meets any triangle of `b`, with `b` placed in `a`'s frame by
-/// `b_to_a` (`None`: as it is). Touching counts: a shared point, a corner on a face, a
-/// coplanar overlap (see
-/// [`intersect_triangle_triangle`](crate::geom::intersect_triangle_triangle) for the
-/// rules). Degenerate triangles and triangles with NaN corners meet nothing.
+/// `b_to_a` (`None`: as it is). Decided exactly on the corners (`b`'s as placed, in `f32`) by
+/// [`triangles_meet`](crate::geom::triangles_meet): touching counts (a shared point, a corner
+/// on a face, a coplanar overlap), a miss by any margin does not. Degenerate triangles and
+/// triangles with NaN corners meet nothing.
 ///
 /// `a` and `b` are BVHs with their triangles (`bvh.with(&mesh)`, a blob's tree and mesh, or a
 /// tree with [`PackedTriangles`](crate::query::PackedTriangles)). Both trees are walked
@@ -138,10 +139,13 @@ where
     collect(a, b, b_to_a, budget, out, |pair, _| Some(pair))
 }
 
-/// Where the meshes cross: for every pair of triangles whose planes cross and that meet, the
-/// segment they share (a point for a touch), in `a`'s frame, written to the front of `out` in
-/// walk order, counted as in [`intersecting_pairs`]. Pairs that lie in one plane and overlap
-/// share an area, not a segment: they are left out here ([`intersecting_pairs`] lists them).
+/// Where the meshes cross: for every pair of triangles that meets (as in
+/// [`intersecting_pairs`]) and whose planes cross, the segment they share (a point for a
+/// touch) as [`intersect_triangle_triangle`](crate::geom::intersect_triangle_triangle) places
+/// it, in `a`'s frame, written to the front of `out` in walk order, counted as in
+/// [`intersecting_pairs`]. Pairs that lie in one plane and overlap share an area, not a
+/// segment: they are left out here ([`intersecting_pairs`] lists them), as are touches that
+/// `intersect_triangle_triangle`'s tolerance judges in the plane or apart.
 /// Drawn together, the segments trace the curves where the surfaces cross.
 ///
 /// # Errors

@@ -1,101 +1,91 @@
 //! When two triangles of one mesh that share corners count as intersecting: only when they
-//! meet somewhere they should not.
+//! meet somewhere besides what they share, decided exactly
+//! ([`triangles_meet`](crate::geom::triangles_meet)'s predicates).
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
-use crate::geom::TriangleTriangle;
-use crate::geom::onto_dominant_plane;
+use crate::geom::exact_orientation::{dropped, orient2d, orient3d, projection_axis};
+use crate::geom::triangles_meet::{proper_corners, proper_triangles_meet, segment_meets_triangle};
 use crate::math::Triangle;
 
 /// Whether triangles `t1` and `t2` of one mesh, with corner indices `i1` and `i2`, meet
-/// somewhere besides what they share, given `how` they intersect
-/// ([`intersect_triangle_triangle`](crate::geom::intersect_triangle_triangle)):
+/// somewhere besides what they share, decided exactly on their `f32` corners:
 ///
 /// - sharing no corner: whenever they meet at all (touching counts);
-/// - sharing one corner `v`: when they cross along more than the point `v` (an end farther
-///   than about 2⁻²⁰ of the coordinates' magnitude from it), or lie in one plane and overlap
-///   with positive area (a neighbour folded over);
-/// - sharing an edge: only when they lie in one plane and overlap with positive area (folded
-///   onto each other); crossing planes meet on the shared edge alone;
-/// - sharing all three corners (a doubled face): whenever they meet.
+/// - sharing one corner `v`: when they meet anywhere else, which is exactly when the edge of
+///   either opposite `v` meets the other triangle (crossing beyond `v`, or in one plane with
+///   overlapping wedges or edges running along each other);
+/// - sharing an edge: only when they lie in one plane with the other corners on the same side
+///   of the edge (folded onto each other); otherwise they meet on the edge alone;
+/// - sharing all three corners (a doubled face): always.
 ///
-/// A corner is shared when both triangles use its vertex index, or have a corner at its
-/// position (within about 2⁻²⁰ of the coordinates' magnitude), so the seams of an unwelded
-/// mesh, such as a UV sphere's, are neighbours too.
+/// A corner is shared when both triangles use its vertex index, or have a corner at exactly
+/// its position, so the seams of an unwelded mesh are neighbours too. Triangles without area
+/// (collinear corners) or with a non-finite corner meet nothing.
 pub(crate) fn meets_beyond_shared(
     t1: &Triangle,
     t2: &Triangle,
     i1: [u32; 3],
     i2: [u32; 3],
-    how: TriangleTriangle,
 ) -> bool {
-    let corners2 = [t2.a, t2.b, t2.c];
-    let tol = magnitude(t1, t2) * (1.0 / 1_048_576.0);
-    let at_a_corner_of_t2 = |p: Vec3| corners2.iter().any(|q| (*q - p).abs().max_element() <= tol);
-    let mut shared = 0usize;
-    let mut shared_at = Vec3::ZERO;
-    for (&i, p) in i1.iter().zip([t1.a, t1.b, t1.c]) {
-        if i2.contains(&i) || at_a_corner_of_t2(p) {
-            shared += 1;
-            shared_at = p;
-        }
-    }
-    match (shared, how) {
-        (_, TriangleTriangle::Disjoint) => false,
-        (0 | 3, _) => true,
-        (1, TriangleTriangle::Segment { a, b }) => {
-            (a - shared_at).abs().max_element() > tol || (b - shared_at).abs().max_element() > tol
-        }
-        (2, TriangleTriangle::Segment { .. }) => false,
-        (_, TriangleTriangle::Coplanar) => overlap_with_area(t1, t2),
-        _ => false,
-    }
-}
-
-/// The largest coordinate magnitude of the two triangles' corners.
-fn magnitude(t1: &Triangle, t2: &Triangle) -> f32 {
-    [t1.a, t1.b, t1.c, t2.a, t2.b, t2.c]
-        .iter()
-        .fold(0.0f32, |m, p| m.max(p.abs().max_element()))
-}
-
-/// Whether two triangles in one plane overlap with positive area: no edge direction of
-/// either separates them, touching (within about 2⁻²⁰ of the coordinates' magnitude)
-/// counting as separated. Projected onto the plane of `t1`'s two minor normal axes.
-fn overlap_with_area(t1: &Triangle, t2: &Triangle) -> bool {
-    let n = t1.normal();
-    let flat = |p: Vec3| onto_dominant_plane(n, p);
-    let p = [t1.a, t1.b, t1.c].map(flat);
-    let q = [t2.a, t2.b, t2.c].map(flat);
-    let tol = magnitude(t1, t2) * (1.0 / 1_048_576.0);
-    let separates = |from: Vec2, to: Vec2| {
-        let edge = to - from;
-        let axis = Vec2::new(-edge.y, edge.x);
-        let reach = tol * axis.abs().max_element() * 2.0;
-        let span = |pts: &[Vec2; 3]| {
-            pts.iter()
-                .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
-                    let s = axis.dot(*x);
-                    (lo.min(s), hi.max(s))
-                })
-        };
-        let ((lo1, hi1), (lo2, hi2)) = (span(&p), span(&q));
-        hi1 <= lo2 + reach || hi2 <= lo1 + reach
+    let (Some(c1), Some(c2)) = (proper_corners(t1), proper_corners(t2)) else {
+        return false;
     };
-    let edges = |t: &[Vec2; 3]| {
-        let [a, b, c] = *t;
-        [(a, b), (b, c), (c, a)]
+    if !t1.bounds().overlaps(&t2.bounds()) {
+        return false;
+    }
+    // For each corner of t1, the corner of t2 it is (by index or position), if any.
+    let partner = |k: usize| {
+        let (i, p) = (i1.get(k).copied(), c1.get(k).copied());
+        (0..3).find(|&m| {
+            (i.is_some() && i2.get(m).copied() == i) || (p.is_some() && c2.get(m).copied() == p)
+        })
     };
-    !edges(&p)
-        .into_iter()
-        .chain(edges(&q))
-        .any(|(from, to)| separates(from, to))
+    let matched = [partner(0), partner(1), partner(2)];
+    let shared = matched.iter().flatten().count();
+    let corner = |c: [Vec3; 3], k: usize| c.get(k).copied().unwrap_or(Vec3::ZERO);
+    match shared {
+        0 => proper_triangles_meet(c1, c2),
+        1 => {
+            let (Some(k1), Some(Some(k2))) = (
+                matched.iter().position(Option::is_some),
+                matched.iter().find(|m| m.is_some()),
+            ) else {
+                return false;
+            };
+            let opposite =
+                |c: [Vec3; 3], k: usize| (corner(c, (k + 1) % 3), corner(c, (k + 2) % 3));
+            let (p1, q1) = opposite(c1, k1);
+            let (p2, q2) = opposite(c2, *k2);
+            segment_meets_triangle(p1, q1, c2) || segment_meets_triangle(p2, q2, c1)
+        }
+        2 => {
+            let Some(free1) = matched.iter().position(Option::is_none) else {
+                return false;
+            };
+            let Some(free2) = (0..3).find(|m| !matched.contains(&Some(*m))) else {
+                return false;
+            };
+            let (p, q) = (corner(c1, (free1 + 1) % 3), corner(c1, (free1 + 2) % 3));
+            let (r1, r2) = (corner(c1, free1), corner(c2, free2));
+            if orient3d(p, q, r1, r2) != 0 {
+                return false;
+            }
+            // In one plane: folded over when both free corners lie on one side of the edge,
+            // seen in a projection that keeps t1's area (and so t2's).
+            let Some(axis) = projection_axis(c1) else {
+                return false;
+            };
+            let side = |r: Vec3| orient2d(dropped(p, axis), dropped(q, axis), dropped(r, axis));
+            side(r1) == side(r2)
+        }
+        _ => true,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::intersect_triangle_triangle;
 
     fn v(x: f32, y: f32, z: f32) -> Vec3 {
         Vec3::new(x, y, z)
@@ -108,7 +98,7 @@ mod tests {
             Triangle::new(a, b, c)
         };
         let (t1, t2) = (tri(i1), tri(i2));
-        meets_beyond_shared(&t1, &t2, i1, i2, intersect_triangle_triangle(&t1, &t2))
+        meets_beyond_shared(&t1, &t2, i1, i2)
     }
 
     #[test]

@@ -9,7 +9,7 @@ use super::tree_pairs::for_each_self_leaf_pair;
 use super::{Found, PairBudget, TrianglePair};
 use crate::bvh::{BvhNode, TreeArrays};
 use crate::error::PairBudgetSpent;
-use crate::geom::{TriangleTriangle, intersect_triangle_triangle};
+use crate::geom::triangles_meet;
 use crate::math::Aabb;
 use crate::mesh::ValidMesh;
 
@@ -64,11 +64,10 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
                     ((tj, cj), (ti, ci))
                 };
                 *tested += 1;
-                let how = intersect_triangle_triangle(&t1, &t2);
                 let meets = if skip_shared {
-                    meets_beyond_shared(&t1, &t2, c1, c2, how)
+                    meets_beyond_shared(&t1, &t2, c1, c2)
                 } else {
-                    how != TriangleTriangle::Disjoint
+                    triangles_meet(&t1, &t2)
                 };
                 // Of the leaf pairs holding references of both (spatial splits), the first
                 // whose boxes meet reports, lower triangle's reference first.
@@ -90,13 +89,16 @@ fn for_each_self_pair<A: TreeArrays + ?Sized>(
 }
 
 /// Whether `mesh` meets itself: whether two of its triangles meet somewhere besides the
-/// corners or edge they share. Neighbours touch along what they share, which does not count;
-/// they count when they cross beyond a shared corner, or lie in one plane and overlap with
-/// positive area (a face folded onto its neighbour). Triangles sharing nothing count when
-/// they meet at all, touching included. A corner is shared by index or by position (within
-/// about 2⁻²⁰ of the coordinates' magnitude), so the seams of an unwelded mesh do not count. Each pair is tested lower index first, so
-/// the answer does not depend on the tree. Degenerate triangles and triangles with NaN
-/// corners meet nothing.
+/// corners or edge they share, decided exactly on their `f32` corners (the signs of exact
+/// orientation determinants, as [`triangles_meet`](crate::geom::triangles_meet)). Neighbours
+/// touch along what they share, which does not count: triangles sharing a corner count when
+/// they meet anywhere else (crossing beyond it, or in one plane with overlapping wedges or
+/// edges running along each other); triangles sharing an edge only when they lie in one plane
+/// with their other corners on the same side of it (a face folded onto its neighbour).
+/// Triangles sharing nothing count when they meet at all, touching included. A corner is
+/// shared by index or by exactly equal position, so the seams of an unwelded mesh do not
+/// count. Each pair is tested lower index first, so the answer does not depend on the tree.
+/// Degenerate triangles (collinear corners) and triangles with NaN corners meet nothing.
 ///
 /// `tree` is a BVH built over `mesh` (a [`Bvh`](crate::bvh::Bvh), or a blob's tree with the
 /// blob's mesh). It is walked against itself, and the walk stops at the first pair. No

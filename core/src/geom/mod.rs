@@ -11,6 +11,7 @@ mod closest_point_plane;
 mod closest_point_segment;
 pub(crate) mod closest_point_triangle;
 mod closest_point_triangle_lanes;
+pub(crate) mod exact_orientation;
 pub(crate) mod line_line;
 pub(crate) mod obb_triangle_distance;
 pub(crate) mod packet_aabb_lanes;
@@ -29,6 +30,7 @@ mod triangle_lanes;
 mod triangle_obb;
 mod triangle_triangle;
 mod triangle_triangle_distance;
+pub(crate) mod triangles_meet;
 
 pub(crate) use clip_triangle_aabb::clip_triangle_aabb;
 pub use closest_pair::ClosestPair;
@@ -48,9 +50,9 @@ pub use segment_triangle_distance::closest_points_segment_triangle;
 pub use solid_angle_triangle::solid_angle_triangle;
 pub use triangle_aabb::overlap_triangle_aabb;
 pub use triangle_obb::overlap_triangle_obb;
-pub(crate) use triangle_triangle::onto_dominant_plane;
 pub use triangle_triangle::{TriangleTriangle, intersect_triangle_triangle};
 pub use triangle_triangle_distance::closest_points_triangle_triangle;
+pub use triangles_meet::triangles_meet;
 
 pub(crate) use closest_point_triangle::closest_point_regions;
 pub(crate) use ray_aabb::SlabRay;

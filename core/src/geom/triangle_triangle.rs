@@ -157,7 +157,7 @@ pub fn intersect_triangle_triangle(t1: &Triangle, t2: &Triangle) -> TriangleTria
 /// `v` projected onto the coordinate plane most nearly parallel to the plane with normal `n`
 /// (the normal's dominant axis dropped: the projection with the largest area), keeping the
 /// orientation of the other two axes in cyclic order.
-pub(crate) fn onto_dominant_plane(n: Vec3, v: Vec3) -> Vec2 {
+fn onto_dominant_plane(n: Vec3, v: Vec3) -> Vec2 {
     let a = n.abs();
     if a.x >= a.y && a.x >= a.z {
         Vec2::new(v.y, v.z)
