@@ -125,6 +125,9 @@ fn build_piece(
         &mut |p, c, k| binning.find_split_parallel(p, c, k),
         &mut spare,
     );
+    // Freed before the children are built: kept, one per level, they would pile up down a
+    // deep tree (unbalanced splits of piled-up triangles).
+    drop(spare);
     let Some((left_count, (lb, lc), (rb, rc))) = children else {
         // A leaf after all (not reached with the presets: a node this large always splits);
         // the sequential builder decides it the same way.
