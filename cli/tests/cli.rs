@@ -1022,6 +1022,48 @@ fn threads_give_the_same_records() {
     }
 }
 
+/// Casts 3,000 random rays at each input (`raycast INPUT-ARGS --rays … --out …`) and checks
+/// every record against brute force on `loaded`.
+fn assert_raycast_records_are_brute_force(
+    dir: &std::path::Path,
+    loaded: &meshq_tests::LoadedMesh,
+    seed: u64,
+    inputs: &[Vec<&dyn AsRef<std::ffi::OsStr>>],
+) {
+    let mesh = loaded.valid();
+    let rays = workload::random_rays(&loaded.positions, 3_000, seed);
+    let ray_file = dir.join("rays.bin");
+    write_f32s(&ray_file, ray_floats(&rays));
+    let brute = BruteForce::new(&mesh);
+    let expected: Vec<(u32, u32)> = rays
+        .iter()
+        .map(|r| {
+            brute
+                .raycast(r, &RayOptions::default())
+                .map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
+                    (h.t.to_bits(), h.tri)
+                })
+        })
+        .collect();
+    let hits = dir.join("hits.bin");
+    for args in inputs {
+        let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"raycast"];
+        all.extend(args.iter().copied());
+        all.extend([
+            &"--rays" as &dyn AsRef<std::ffi::OsStr>,
+            &ray_file,
+            &"--out",
+            &hits,
+        ]);
+        ok(&all);
+        let got: Vec<(u32, u32)> = read_records(&hits)
+            .into_iter()
+            .map(|(t, i)| (t.to_bits(), i))
+            .collect();
+        assert_eq!(got, expected);
+    }
+}
+
 #[test]
 fn spatial_splits_bake_a_version_5_blob_that_answers_as_brute_force() {
     let dir = tempfile::tempdir().unwrap();
@@ -1062,40 +1104,15 @@ fn spatial_splits_bake_a_version_5_blob_that_answers_as_brute_force() {
     assert!(inspect["split_refs"].as_u64().unwrap() > 0);
     assert!(ok(&[&"inspect", &blob]).contains("spatial splits"));
 
-    let rays = workload::random_rays(&loaded.positions, 3_000, 78);
-    let ray_file = dir.path().join("rays.bin");
-    write_f32s(&ray_file, ray_floats(&rays));
-    let brute = BruteForce::new(&mesh);
-    let expected: Vec<(u32, u32)> = rays
-        .iter()
-        .map(|r| {
-            brute
-                .raycast(r, &RayOptions::default())
-                .map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
-                    (h.t.to_bits(), h.tri)
-                })
-        })
-        .collect();
-    let hits = dir.path().join("hits.bin");
-    for args in [
-        vec![&blob as &dyn AsRef<std::ffi::OsStr>],
-        vec![&obj, &"--spatial-splits", &"0.5"],
-    ] {
-        let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"raycast"];
-        all.extend(args);
-        all.extend([
-            &"--rays" as &dyn AsRef<std::ffi::OsStr>,
-            &ray_file,
-            &"--out",
-            &hits,
-        ]);
-        ok(&all);
-        let got: Vec<(u32, u32)> = read_records(&hits)
-            .into_iter()
-            .map(|(t, i)| (t.to_bits(), i))
-            .collect();
-        assert_eq!(got, expected);
-    }
+    assert_raycast_records_are_brute_force(
+        dir.path(),
+        &loaded,
+        78,
+        &[
+            vec![&blob as &dyn AsRef<std::ffi::OsStr>],
+            vec![&obj, &"--spatial-splits", &"0.5"],
+        ],
+    );
     // Out of range, or for another structure: one line, non-zero status.
     for bad in [
         vec![
@@ -1159,40 +1176,15 @@ fn sweep_builds_bake_the_library_tree_and_answer_as_brute_force() {
     assert_eq!(inspect["nodes"], library.bvh().nodes().len());
     assert!(ok(&[&"inspect", &blob]).contains("sweep SAH"));
 
-    let rays = workload::random_rays(&loaded.positions, 3_000, 79);
-    let ray_file = dir.path().join("rays.bin");
-    write_f32s(&ray_file, ray_floats(&rays));
-    let brute = BruteForce::new(&mesh);
-    let expected: Vec<(u32, u32)> = rays
-        .iter()
-        .map(|r| {
-            brute
-                .raycast(r, &RayOptions::default())
-                .map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
-                    (h.t.to_bits(), h.tri)
-                })
-        })
-        .collect();
-    let hits = dir.path().join("hits.bin");
-    for args in [
-        vec![&blob as &dyn AsRef<std::ffi::OsStr>],
-        vec![&obj, &"--sweep-sah", &"1"],
-    ] {
-        let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"raycast"];
-        all.extend(args);
-        all.extend([
-            &"--rays" as &dyn AsRef<std::ffi::OsStr>,
-            &ray_file,
-            &"--out",
-            &hits,
-        ]);
-        ok(&all);
-        let got: Vec<(u32, u32)> = read_records(&hits)
-            .into_iter()
-            .map(|(t, i)| (t.to_bits(), i))
-            .collect();
-        assert_eq!(got, expected);
-    }
+    assert_raycast_records_are_brute_force(
+        dir.path(),
+        &loaded,
+        79,
+        &[
+            vec![&blob as &dyn AsRef<std::ffi::OsStr>],
+            vec![&obj, &"--sweep-sah", &"1"],
+        ],
+    );
     // A step of 0, or with spatial splits: one message naming the option, non-zero status.
     for bad in [
         vec![
