@@ -113,6 +113,9 @@ node web/tests/three-dropin.mjs
 step "the Node package under misuse: bad arguments refused by name, nothing left borrowed"
 node web/tests/misuse.mjs
 
+step "the package's geometry functions against three.js's own math, in Node"
+node web/tests/geometry.mjs
+
 step "demo end to end in headless Chromium: its result"
 e2e_status=0
 wait "$e2e_pid" || e2e_status=$?

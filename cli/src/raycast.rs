@@ -4,11 +4,12 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Result, bail};
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use meshq::math::{Ray, RayHit, Vec3};
 use meshq::owned::MeshIndex;
 use meshq::parallel;
-use meshq::query::{MeshQuery, RayOptions, sorts_ray_batch};
+use meshq::query::{MeshQuery, RayOptions, TriangleTest, sorts_ray_batch};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -67,6 +68,11 @@ pub struct RaycastArgs {
     /// hit written as misses.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub hits: Option<u32>,
+    /// The ray–triangle test: watertight (no ray slips through a closed mesh), Möller–Trumbore
+    /// or two-step (the plane, then barycentric coordinates); they differ only at edges shared
+    /// by two triangles.
+    #[arg(long, value_name = "TEST", default_value = "watertight", value_parser = triangle_test())]
+    pub triangle_test: TriangleTest,
     /// Answer one ray per call instead of in batches (Morton order of the origins, packets
     /// of rays sharing an origin): the same records; for comparing with one-ray-per-call APIs.
     #[arg(long)]
@@ -74,6 +80,16 @@ pub struct RaycastArgs {
     /// Print the figures as one JSON object.
     #[arg(long)]
     pub json: bool,
+}
+
+impl RaycastArgs {
+    /// The ray options the arguments ask for.
+    fn options(&self) -> RayOptions {
+        RayOptions {
+            test: self.triangle_test,
+            ..RayOptions::default()
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -88,6 +104,12 @@ struct Summary {
     /// The queries alone, on those threads.
     query_seconds: f64,
     rays_per_second: f64,
+}
+
+/// Parses a `--triangle-test` name, listing the names in the help.
+fn triangle_test() -> impl TypedValueParser<Value = TriangleTest> {
+    PossibleValuesParser::new(TriangleTest::ALL.map(TriangleTest::name))
+        .try_map(|name: String| TriangleTest::from_name(&name).ok_or("an unknown triangle test"))
 }
 
 /// A miss, as records write it.
@@ -171,7 +193,7 @@ fn query_here(
     scratch: &mut Scratch,
     results: &mut Vec<RayHit>,
 ) -> Result<()> {
-    let options = RayOptions::default();
+    let options = args.options();
     if args.hits.is_some() {
         for r in rays {
             let found = scene.raycast_all(r, &options, nearest);
@@ -180,9 +202,15 @@ fn query_here(
             results.extend((found.written..nearest.len()).map(|_| MISS));
         }
     } else if args.any && args.per_ray {
-        results.extend(rays.iter().map(|r| any_record(scene.raycast_any(r))));
+        results.extend(
+            rays.iter()
+                .map(|r| any_record(scene.raycast_any_with(r, &options))),
+        );
     } else if args.per_ray {
-        results.extend(rays.iter().map(|r| scene.raycast(r).unwrap_or(MISS)));
+        results.extend(
+            rays.iter()
+                .map(|r| scene.raycast_with(r, &options).unwrap_or(MISS)),
+        );
     } else {
         let per_call = rays_per_call(scene, rays);
         scratch.prepare(per_call.min(rays.len()));
@@ -216,7 +244,7 @@ fn query_on_threads(
     answers: &mut Vec<Option<RayHit>>,
     results: &mut Vec<RayHit>,
 ) -> Result<()> {
-    let options = RayOptions::default();
+    let options = args.options();
     if args.hits.is_some() {
         let records: Vec<RayHit> = rays
             .par_iter()

@@ -9,7 +9,7 @@ use meshq::bvh::BuildConfig;
 use meshq::geom::{CullMode, closest_point_triangle, intersect_ray_triangle_watertight};
 use meshq::math::{Ray, Vec3};
 use meshq::mesh::MeshRef;
-use meshq::query::RayOptions;
+use meshq::query::{RayOptions, TriangleTest};
 use meshq::{MeshQuery, Traverse};
 use meshq_tests::oracle::BruteForce;
 use meshq_tests::{checked_bvh, load_mesh, workload};
@@ -1030,6 +1030,22 @@ fn assert_raycast_records_are_brute_force(
     seed: u64,
     inputs: &[Vec<&dyn AsRef<std::ffi::OsStr>>],
 ) {
+    assert_records_with_test_are_brute_force(dir, loaded, seed, inputs, TriangleTest::Watertight);
+}
+
+/// [`assert_raycast_records_are_brute_force`] with `--triangle-test` naming `test`, checked
+/// against the brute-force scan with that test.
+fn assert_records_with_test_are_brute_force(
+    dir: &std::path::Path,
+    loaded: &meshq_tests::LoadedMesh,
+    seed: u64,
+    inputs: &[Vec<&dyn AsRef<std::ffi::OsStr>>],
+    test: TriangleTest,
+) {
+    let options = RayOptions {
+        test,
+        ..RayOptions::default()
+    };
     let mesh = loaded.valid();
     let rays = workload::random_rays(&loaded.positions, 3_000, seed);
     let ray_file = dir.join("rays.bin");
@@ -1039,13 +1055,14 @@ fn assert_raycast_records_are_brute_force(
         .iter()
         .map(|r| {
             brute
-                .raycast(r, &RayOptions::default())
+                .raycast(r, &options)
                 .map_or((f32::INFINITY.to_bits(), u32::MAX), |h| {
                     (h.t.to_bits(), h.tri)
                 })
         })
         .collect();
     let hits = dir.join("hits.bin");
+    let test_name = test.name();
     for args in inputs {
         let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"raycast"];
         all.extend(args.iter().copied());
@@ -1054,6 +1071,8 @@ fn assert_raycast_records_are_brute_force(
             &ray_file,
             &"--out",
             &hits,
+            &"--triangle-test",
+            &test_name,
         ]);
         ok(&all);
         let got: Vec<(u32, u32)> = read_records(&hits)
@@ -1061,6 +1080,26 @@ fn assert_raycast_records_are_brute_force(
             .map(|(t, i)| (t.to_bits(), i))
             .collect();
         assert_eq!(got, expected);
+    }
+}
+
+#[test]
+fn every_triangle_test_answers_as_brute_force_with_that_test() {
+    let dir = tempfile::tempdir().unwrap();
+    let loaded = load_mesh("spot");
+    let obj = asset("spot.obj");
+    for test in TriangleTest::ALL {
+        assert_records_with_test_are_brute_force(
+            dir.path(),
+            &loaded,
+            80,
+            &[
+                vec![&obj as &dyn AsRef<std::ffi::OsStr>],
+                vec![&obj, &"--per-ray"],
+                vec![&obj, &"--structure", &"kdtree"],
+            ],
+            test,
+        );
     }
 }
 

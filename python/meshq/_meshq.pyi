@@ -8,7 +8,7 @@ from numpy.typing import ArrayLike, NDArray
 Structure = Literal["bvh", "kdtree", "octree", "grid"]
 Quality = Literal["fast", "balanced", "high"]
 Side = Literal["both", "front", "back"]
-Test = Literal["watertight", "moller-trumbore"]
+Test = Literal["watertight", "moller-trumbore", "two-step"]
 
 class MeshDistance(TypedDict):
     distance: float

@@ -52,7 +52,7 @@ fn rays(
 }
 
 /// The options of `side` (`"both"`, `"front"`, `"back"`: the faces a ray may hit) and `test`
-/// (`"watertight"` or `"moller-trumbore"`).
+/// (`"watertight"`, `"moller-trumbore"` or `"two-step"`).
 fn options(side: &str, test: &str) -> PyResult<RayOptions> {
     let cull = match side {
         "both" => CullMode::None,
@@ -64,15 +64,11 @@ fn options(side: &str, test: &str) -> PyResult<RayOptions> {
             )));
         }
     };
-    let test = match test {
-        "watertight" => TriangleTest::Watertight,
-        "moller-trumbore" => TriangleTest::MollerTrumbore,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "test must be 'watertight' or 'moller-trumbore', got {other:?}"
-            )));
-        }
-    };
+    let test = TriangleTest::from_name(test).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "test must be 'watertight', 'moller-trumbore' or 'two-step', got {test:?}"
+        ))
+    })?;
     Ok(RayOptions { test, cull })
 }
 
@@ -128,7 +124,7 @@ impl Mesh {
     /// (`-1` for a miss), `u`, `v` the hit's barycentric weights of the triangle's second and
     /// third corners (0 for a miss). `side` picks the faces that count (`"both"`, `"front"`,
     /// `"back"`; counter-clockwise is front), `test` the triangle test (`"watertight"`, no ray
-    /// slips between triangles, or `"moller-trumbore"`). Ties in `t` go to the lower triangle.
+    /// slips between triangles, `"moller-trumbore"` or `"two-step"`). Ties in `t` go to the lower triangle.
     #[pyo3(signature = (origins, directions, *, near = 0.0, far = f64::INFINITY, side = "both", test = "watertight"))]
     #[allow(clippy::too_many_arguments)]
     fn raycast<'py>(

@@ -65,6 +65,8 @@ def test_query_arguments_are_checked_by_name():
         m.raycast([[0, 0, 1]], [[0, 0, -1]], near=2.0, far=1.0)
     with pytest.raises(ValueError, match="side must be"):
         m.raycast([[0, 0, 1]], [[0, 0, -1]], side="up")
+    with pytest.raises(ValueError, match="test must be 'watertight', 'moller-trumbore' or 'two-step'"):
+        m.raycast([[0, 0, 1]], [[0, 0, -1]], test="fast")
     with pytest.raises(ValueError, match="max_distance must be"):
         m.closest_points([[0, 0, 1]], max_distance=-1.0)
     with pytest.raises(ValueError, match="accuracy must be"):

@@ -7,11 +7,12 @@ import meshq
 from conftest import brute_closest, brute_raycast, diagonal, exact_winding, random_rays
 
 
-def test_raycast_matches_brute_force(fandisk):
+@pytest.mark.parametrize("test", ["watertight", "moller-trumbore", "two-step"])
+def test_raycast_matches_brute_force(fandisk, test):
     v, f = fandisk
     m = meshq.Mesh(v, f)
     origins, directions = random_rays(v, 400, seed=1)
-    t, tri, u, w = m.raycast(origins, directions)
+    t, tri, u, w = m.raycast(origins, directions, test=test)
     t_ref, tri_ref, margin = brute_raycast(v, f, origins, directions)
     scale = diagonal(v) / np.linalg.norm(directions, axis=1)
     hit, hit_ref = tri >= 0, tri_ref >= 0

@@ -3,9 +3,9 @@
 
 use glam::Vec3;
 use meshq::geom::{
-    TriangleTriangle, closest_point_triangle, intersect_ray_aabb, intersect_ray_triangle,
-    intersect_ray_triangle_watertight, intersect_triangle_triangle, overlap_triangle_aabb,
-    overlap_triangle_obb,
+    TriangleHit, TriangleTriangle, closest_point_triangle, intersect_ray_aabb,
+    intersect_ray_triangle, intersect_ray_triangle_two_step, intersect_ray_triangle_watertight,
+    intersect_triangle_triangle, overlap_triangle_aabb, overlap_triangle_obb,
 };
 use meshq::math::{Aabb, ClosestPoint, Obb, Ray, RayHit, Triangle};
 use meshq::mesh::ValidMesh;
@@ -94,11 +94,7 @@ impl BruteForce {
     pub fn raycast(&self, ray: &Ray, options: &RayOptions) -> Option<RayHit> {
         let mut best: Option<RayHit> = None;
         for (tri, t) in self.chunked(|b| intersect_ray_aabb(ray, b).is_some()) {
-            let hit = match options.test {
-                TriangleTest::Watertight => intersect_ray_triangle_watertight(ray, t, options.cull),
-                TriangleTest::MollerTrumbore => intersect_ray_triangle(ray, t, options.cull),
-            };
-            if let Some(h) = hit {
+            if let Some(h) = ray_triangle(ray, t, options) {
                 // Smaller t wins; on equal t, the lower triangle index.
                 if best.is_none_or(|b| h.t < b.t || (h.t == b.t && tri < b.tri)) {
                     best = Some(RayHit {
@@ -120,13 +116,7 @@ impl BruteForce {
             .chunked(|b| intersect_ray_aabb(ray, b).is_some())
             .filter(|(_, t)| !t.is_degenerate())
             .filter_map(|(tri, t)| {
-                let hit = match options.test {
-                    TriangleTest::Watertight => {
-                        intersect_ray_triangle_watertight(ray, t, options.cull)
-                    }
-                    TriangleTest::MollerTrumbore => intersect_ray_triangle(ray, t, options.cull),
-                };
-                hit.map(|h| RayHit {
+                ray_triangle(ray, t, options).map(|h| RayHit {
                     t: h.t,
                     tri,
                     u: h.u,
@@ -217,5 +207,14 @@ impl BruteForce {
             .collect::<std::collections::BTreeSet<_>>()
             .into_iter()
             .collect()
+    }
+}
+
+/// The free function of the triangle test `options` names.
+fn ray_triangle(ray: &Ray, t: &Triangle, options: &RayOptions) -> Option<TriangleHit> {
+    match options.test {
+        TriangleTest::Watertight => intersect_ray_triangle_watertight(ray, t, options.cull),
+        TriangleTest::MollerTrumbore => intersect_ray_triangle(ray, t, options.cull),
+        TriangleTest::TwoStep => intersect_ray_triangle_two_step(ray, t, options.cull),
     }
 }

@@ -18,8 +18,8 @@ const RAYS: usize = 400;
 const POINTS: usize = 150;
 const OVERLAPS: usize = 12;
 
-/// Every query of `q` against the brute-force scan `brute` of `loaded`: random rays with both
-/// triangle tests (single, any, batched), closest points with and without a limit (single and
+/// Every query of `q` against the brute-force scan `brute` of `loaded`: random rays with every
+/// triangle test (single, any, batched), closest points with and without a limit (single and
 /// batched), box and sphere overlaps. Panics with `what` and the query on the first mismatch.
 pub fn check_all<Q: MeshQuery + ?Sized>(
     q: &Q,
@@ -36,6 +36,10 @@ pub fn check_all<Q: MeshQuery + ?Sized>(
         RayOptions {
             test: TriangleTest::MollerTrumbore,
             cull: CullMode::Back,
+        },
+        RayOptions {
+            test: TriangleTest::TwoStep,
+            cull: CullMode::Front,
         },
     ];
     for o in &options {

@@ -18,8 +18,9 @@ use meshq_tests::{LoadedMesh, MESHES, checked_bvh, load_mesh, workload};
 
 /// Random rays per mesh with the default (watertight) test, as the issue asks.
 const WATERTIGHT_RAYS: usize = 100_000;
-/// Random rays per mesh with Möller–Trumbore (the brute-force scan dominates the run time).
-const MOLLER_TRUMBORE_RAYS: usize = 25_000;
+/// Random rays per mesh with Möller–Trumbore or the two-step test (the brute-force scan
+/// dominates the run time).
+const OTHER_TEST_RAYS: usize = 25_000;
 
 /// A mesh's binary tree, its packed triangles and the four-wide tree collapsed from it, with
 /// the brute-force scan they must agree with.
@@ -141,7 +142,7 @@ fn run(name: &str, test: TriangleTest) {
         };
         let count = match test {
             TriangleTest::Watertight => WATERTIGHT_RAYS,
-            TriangleTest::MollerTrumbore => MOLLER_TRUMBORE_RAYS,
+            TriangleTest::MollerTrumbore | TriangleTest::TwoStep => OTHER_TEST_RAYS,
         };
         let rays = workload::random_rays(&loaded.positions, count, 0x5EED_0001);
         let hits = assert_same(trees, &rays, &options, name);
@@ -255,5 +256,12 @@ fn rays_from_one_origin_match_brute_force() {
                 }
             }
         });
+    }
+}
+
+#[test]
+fn two_step_small_meshes() {
+    for name in MESHES.iter().filter(|n| **n != "stanford-bunny") {
+        run(name, TriangleTest::TwoStep);
     }
 }

@@ -18,7 +18,7 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "number | null")] near: Option<JsValue>,
         #[wasm_bindgen(unchecked_param_type = "number | null")] far: Option<JsValue>,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | RayOptions | null")] side: Option<JsValue>,
     ) -> Result<js_sys::Array, JsValue> {
         let ray = js_ray(origin, direction, near, far)?;
         let hits = self.storage.raycast_all(&ray, &ray_side(side)?);

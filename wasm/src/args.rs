@@ -8,7 +8,7 @@ use js_sys::{
     Array, Float32Array, Float64Array, RangeError, Reflect, TypeError, Uint8Array, Uint32Array,
 };
 use meshq::geom::CullMode;
-use meshq::query::RayOptions;
+use meshq::query::{RayOptions, TriangleTest};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
@@ -232,29 +232,51 @@ pub fn max_distance(value: &JsValue) -> Result<f32, JsValue> {
     Ok(x as f32)
 }
 
-/// Ray options for a three.js material side: `0` (`THREE.FrontSide`) hits front faces only,
-/// `1` (`THREE.BackSide`) back faces only, `2` (`THREE.DoubleSide`) or omitted both.
-/// Counter-clockwise triangles face front, as in three.js.
+/// Ray options from a `side` argument: a three.js material side, or a `RayOptions` object
+/// `{ side, test }` with both fields optional.
+///
+/// Sides: `0` (`THREE.FrontSide`) hits front faces only, `1` (`THREE.BackSide`) back faces
+/// only, `2` (`THREE.DoubleSide`) or omitted both; counter-clockwise triangles face front, as
+/// in three.js. Tests (`test`): `"watertight"` (the default), `"moller-trumbore"`,
+/// `"two-step"` ([`TriangleTest::name`]).
 pub fn side(value: &JsValue) -> Result<RayOptions, JsValue> {
-    let cull = if value.is_undefined() || value.is_null() {
-        CullMode::None
-    } else {
-        match number(value, "side")? {
-            0.0 => CullMode::Back,
-            1.0 => CullMode::Front,
-            2.0 => CullMode::None,
-            other => {
-                return Err(range_error(&format!(
-                    "side must be 0 (front), 1 (back) or 2 (double), got {}",
-                    JsNumber(other)
-                )));
-            }
-        }
-    };
+    if !value.is_object() {
+        return Ok(RayOptions {
+            cull: cull(value)?,
+            ..RayOptions::default()
+        });
+    }
+    let options = crate::fields::options(
+        value,
+        "side (a number or { side, test })",
+        &["side", "test"],
+    )?;
+    let options = options.as_ref();
+    let names = TriangleTest::ALL.map(TriangleTest::name);
+    let test =
+        crate::fields::optional_choice(&crate::fields::field(options, "test")?, "test", &names)?
+            .and_then(TriangleTest::from_name)
+            .unwrap_or_default();
     Ok(RayOptions {
-        cull,
-        ..RayOptions::default()
+        cull: cull(&crate::fields::field(options, "side")?)?,
+        test,
     })
+}
+
+/// The faces a `side` number lets a ray hit (see [`side`]).
+fn cull(value: &JsValue) -> Result<CullMode, JsValue> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(CullMode::None);
+    }
+    match number(value, "side")? {
+        0.0 => Ok(CullMode::Back),
+        1.0 => Ok(CullMode::Front),
+        2.0 => Ok(CullMode::None),
+        other => Err(range_error(&format!(
+            "side must be 0 (front), 1 (back) or 2 (double), got {}",
+            JsNumber(other)
+        ))),
+    }
 }
 
 /// An input `Float32Array`, copied.

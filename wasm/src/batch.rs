@@ -212,7 +212,7 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] far: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] t: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | RayOptions | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let side = side.unwrap_or(JsValue::UNDEFINED);
         self.batch(rays, near, far, t, triangles, None, &side)
@@ -230,7 +230,7 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] t: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Uint32Array")] triangles: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] barycentrics: &JsValue,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | RayOptions | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let side = side.unwrap_or(JsValue::UNDEFINED);
         self.batch(rays, near, far, t, triangles, Some(barycentrics), &side)
@@ -247,7 +247,7 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] near: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "number | null | undefined")] far: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "Uint8Array")] hits: &JsValue,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | RayOptions | null")] side: Option<JsValue>,
     ) -> Result<u32, JsValue> {
         let options = crate::args::side(&side.unwrap_or(JsValue::UNDEFINED))?;
         let mut input = RayInput::new(rays, near, far)?;

@@ -13,6 +13,7 @@ mod batch;
 mod build;
 mod collide;
 mod fields;
+mod geometry;
 mod inside;
 mod js_objects;
 mod levels;

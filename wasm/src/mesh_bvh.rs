@@ -309,7 +309,8 @@ impl MeshBvh {
     /// or `{x, y, z}` (a three.js `Vector3`), finite, the direction not zero and used as given
     /// (not normalized). `near` and `far` default to `0` and `Infinity`. `side`: `0` front
     /// faces only, `1` back faces only, `2` or omitted both (three.js `FrontSide`, `BackSide`,
-    /// `DoubleSide`). Returns a `RayHit`: `{ t, distance, point, triangle, u, v, normal }`,
+    /// `DoubleSide`), or a `RayOptions` object `{ side, test }` that also picks the triangle
+    /// test (`"watertight"`, the default, `"moller-trumbore"` or `"two-step"`). Returns a `RayHit`: `{ t, distance, point, triangle, u, v, normal }`,
     /// `t` the ray parameter, `distance` the Euclidean distance from the origin
     /// (`t·|direction|`), `u`, `v` the barycentric weights of the triangle's second and third
     /// corners, `normal` the unit geometric normal (front side). On equal `t` the lower
@@ -321,13 +322,14 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "number | null")] near: Option<JsValue>,
         #[wasm_bindgen(unchecked_param_type = "number | null")] far: Option<JsValue>,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | RayOptions | null")] side: Option<JsValue>,
     ) -> Result<JsValue, JsValue> {
         self.cast(&js_ray(origin, direction, near, far)?, side)
     }
 
     /// [`MeshBvh::raycast`] with the ray as plain numbers (`ox, oy, oz, dx, dy, dz`): nothing
-    /// is allocated per call, the fastest single-ray form in a loop. The same result. Unlike
+    /// is allocated per call, the fastest single-ray form in a loop. The same result; `side`
+    /// is a number only (the watertight test). Unlike
     /// the other calls, its arguments are plain numbers that JavaScript converts on the way
     /// in (a string holding a number is read as that number, `null` as 0, `true` as 1); what
     /// converts to NaN is a `RangeError`. Checking each argument's type would double the cost
@@ -362,7 +364,7 @@ impl MeshBvh {
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] direction: &JsValue,
         #[wasm_bindgen(unchecked_param_type = "number | null")] near: Option<JsValue>,
         #[wasm_bindgen(unchecked_param_type = "number | null")] far: Option<JsValue>,
-        #[wasm_bindgen(unchecked_param_type = "Side | null")] side: Option<JsValue>,
+        #[wasm_bindgen(unchecked_param_type = "Side | RayOptions | null")] side: Option<JsValue>,
     ) -> Result<bool, JsValue> {
         let ray = js_ray(origin, direction, near, far)?;
         Ok(self.storage.raycast_any(&ray, &ray_side(side)?))

@@ -19,8 +19,47 @@ export type Matrix4Like = ArrayLike<number> | { readonly elements: ArrayLike<num
  *  `BackSide`, `DoubleSide`). Counter-clockwise triangles face front. */
 export type Side = 0 | 1 | 2;
 
+/** The ray–triangle test: `"watertight"` (the default; no ray slips through a closed mesh),
+ *  `"moller-trumbore"`, or `"two-step"` (the plane, then barycentric coordinates). They
+ *  differ only at edges shared by two triangles. */
+export type TriangleTest = 'watertight' | 'moller-trumbore' | 'two-step';
+
+/** Ray options, in place of a `side` argument: the faces a ray hits and the triangle test,
+ *  both optional. */
+export interface RayOptions { side?: Side | null; test?: TriangleTest | null }
+
 /** Coordinates in a result. */
 export interface XYZ { x: number; y: number; z: number }
+
+/** How `geometry.closestPointTriangle` finds the point: `"regions"` (the default, the
+ *  Voronoi-region walk every mesh query uses), `"projection"` (onto the plane, then half-plane
+ *  tests) or `"rotation"` (onto a plane, solved in 2D, turned back). */
+export type ClosestPointMethod = 'regions' | 'projection' | 'rotation';
+
+/** The point of one triangle nearest a query point (`geometry.closestPointTriangle`): `u`, `v`
+ *  weigh the second and third corners; `feature` says where it lies, `featureIndex` which edge
+ *  (0 = ab, 1 = bc, 2 = ca) or corner (0 = a, 1 = b, 2 = c); 0 for the face. */
+export interface TriangleClosestPoint {
+  point: XYZ;
+  distance: number;
+  u: number;
+  v: number;
+  feature: 'face' | 'edge' | 'vertex';
+  featureIndex: number;
+}
+
+/** The point of a segment nearest a query point: at `a + t·(b − a)`. */
+export interface SegmentClosestPoint { point: XYZ; t: number; distance: number }
+
+/** The closest points of two segments: `pointA = p1 + s·(q1 − p1)`, `pointB = p2 + t·(q2 − p2)`. */
+export interface SegmentPair { pointA: XYZ; pointB: XYZ; s: number; t: number; distance: number }
+
+/** A ray's hit on one triangle: the ray parameter and the weights of the second and third
+ *  corners. */
+export interface TriangleHit { t: number; u: number; v: number }
+
+/** The entry and exit ray parameters of a ray through a box. */
+export interface RaySpan { near: number; far: number }
 
 /** A ray hit. `t` is the ray parameter (the hit is at `origin + t·direction`, `t` in units
  *  of the direction's length); `distance` is the Euclidean distance from the origin to the

@@ -5,7 +5,7 @@
 import assert from 'node:assert/strict';
 import * as meshq from 'meshq-wasm';
 
-const { MeshBvh, randomRays, cameraRays, queryPoints, remesh } = meshq;
+const { MeshBvh, randomRays, cameraRays, queryPoints, remesh, geometry } = meshq;
 
 // A bumpy 40 × 40 grid of quads in the z = 0 plane, seen from +z.
 function grid(n) {
@@ -44,6 +44,23 @@ function throws(f, type, words, label) {
   assert.ok(error, `${label}: no error`);
   assert.ok(error instanceof type, `${label}: ${error?.constructor?.name}: ${error?.message}`);
   assert.match(error.message, words, label);
+}
+
+// A RayOptions object in place of the side: the same side, and the triangle test; every test
+// answers a ray through the middle of a triangle alike (the reference ray meets a grid corner,
+// where the non-watertight tests may slip through).
+assert.deepEqual(bvh.raycast(above, down, 0, Infinity, { side: 0 }), bvh.raycast(above, down, 0, Infinity, 0));
+assert.deepEqual(bvh.raycast(above, down, 0, Infinity, {}), reference);
+{
+  const inside = [0.3 + 0.3 / 40, 0.6 + 0.6 / 40, 1];
+  const want = bvh.raycast(inside, down);
+  for (const test of ['watertight', 'moller-trumbore', 'two-step']) {
+    const hit = bvh.raycast(inside, down, null, null, { test });
+    assert.equal(hit.triangle, want.triangle, test);
+    assert.ok(Math.abs(hit.t - want.t) <= 1e-6, `${test}: t ${hit.t} vs ${want.t}`);
+    assert.equal(bvh.raycastAny(inside, down, null, null, { test, side: 2 }), true);
+    assert.equal(bvh.raycastAll(inside, down, null, null, { test })[0].triangle, want.triangle);
+  }
 }
 
 // Documented defaults: near/far omitted → [0, ∞]; the same ray given as arrays, typed arrays
@@ -289,6 +306,23 @@ const cases = [
   [() => remesh(positions, indices, { maxDistanceTests: -1 }), RangeError, /options.maxDistanceTests must be a whole number/],
   [() => remesh(positions, indices, { maxDistanceTests: '5' }), TypeError, /options.maxDistanceTests must be a number/],
   [() => MeshBvh.build(positions, indices, { structure: 'kdtree' }).compactNodes(), TypeError, /compactNodes applies to a BVH/],
+  [() => bvh.raycast(above, down, 0, Infinity, { test: 'fast' }), RangeError, /test must be one of "watertight", "moller-trumbore", "two-step", got "fast"/],
+  [() => bvh.raycast(above, down, 0, Infinity, { test: 2 }), TypeError, /test must be a string/],
+  [() => bvh.raycastAll(above, down, 0, Infinity, { side: 3 }), RangeError, /side must be 0 \(front\), 1 \(back\) or 2/],
+  [() => bvh.raycastAny(above, down, 0, Infinity, { cull: 0 }), RangeError, /unknown option "cull" \(the options are side, test\)/],
+  [() => bvh.raycast(above, down, 0, Infinity, [0]), TypeError, /side \(a number or \{ side, test \}\) must be an object, got/],
+  [() => geometry.closestPointTriangle([0, 0, 0], [0, 0, 0], [1, 0, 0], [0, 1, 0], 'voronoi'), RangeError, /method must be one of "regions", "projection", "rotation"/],
+  [() => geometry.closestPointTriangle([0, 0, 0], [0, 0, 0], [1, 0, 0]), TypeError, /c must be \[x, y, z\]/],
+  [() => geometry.intersectRayTriangle([0, 0, 1], [0, 0, 0], [0, 0, 0], [1, 0, 0], [0, 1, 0]), RangeError, /direction must not be zero/],
+  [() => geometry.intersectRayTriangle([0, 0, 1], [0, 0, -1], [0, 0, 0], [1, 0, 0], [0, 1, 0], { test: 'exact' }), RangeError, /test must be one of/],
+  [() => geometry.intersectRayPlane([0, 0, 1], [0, 0, -1], [0, 0, 0], 0), RangeError, /normal must not be zero/],
+  [() => geometry.closestPointPlane([0, 0, 1], [0, 0, 1], 'zero'), TypeError, /offset must be a number/],
+  [() => geometry.pointOnPlane([0, 0, 1], [0, 0, 1], 0, -1), RangeError, /relative must be a number ≥ 0/],
+  [() => geometry.pointOnSegment([0, 0, 1], [0, 0, 0], [1, 0, 0], NaN), RangeError, /tolerance must be a finite number/],
+  [() => geometry.intersectRayAabb([0, 0, 1], [0, 0, -1], [1, 1, 1], [0, 0, 0]), RangeError, /min must not exceed max/],
+  [() => geometry.overlapTriangleAabb([0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 0], { x: 1, y: 1 }), TypeError, /max.z must be a number/],
+  [() => geometry.trianglesMeet([[0, 0, 0], [1, 0, 0]], [[0, 0, 0], [1, 0, 0], [0, 1, 0]]), TypeError, /first must be an array of three corners/],
+  [() => geometry.trianglesMeet([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [1, 0, 0], [0, 1, Infinity]]), RangeError, /second\[2\].z must be a finite number/],
   [() => MeshBvh.build(positions, indices, { structure: 'grid' }).eightWideNodes(), TypeError, /eightWideNodes applies to a BVH/],
   [() => MeshBvh.build(positions, indices, { structure: 'octree' }).fourWideNodes(), TypeError, /fourWideNodes applies to a BVH/],
 ];

@@ -42,22 +42,27 @@ for (const [build, dts, module] of [
   ['node, ES module', 'node/meshq_wasm.d.ts', meshq],
 ]) {
   const text = readFileSync(`${installed}/${dts}`, 'utf8');
-  const classBlock = /export class MeshBvh \{([\s\S]*?)\n\}/.exec(text)[1].replace(/\/\*\*[\s\S]*?\*\//g, '');
-  const declared = declaredMethods(classBlock);
-  declared.delete('private constructor');
-  const runtime = new Map();
-  for (const name of Object.getOwnPropertyNames(module.MeshBvh.prototype)) {
-    if (name === 'constructor' || name === '__destroy_into_raw') continue;
-    const d = Object.getOwnPropertyDescriptor(module.MeshBvh.prototype, name);
-    runtime.set(name, d.get ? 'property' : d.value.length);
+  // Each class's declared methods and statics equal the run-time ones.
+  const members = {};
+  for (const name of ['MeshBvh', 'geometry']) {
+    const classBlock = new RegExp(`export class ${name} \\{([\\s\\S]*?)\\n\\}`).exec(text)[1].replace(/\/\*\*[\s\S]*?\*\//g, '');
+    const declared = declaredMethods(classBlock);
+    declared.delete('private constructor');
+    const runtime = new Map();
+    for (const key of Object.getOwnPropertyNames(module[name].prototype)) {
+      if (key === 'constructor' || key === '__destroy_into_raw') continue;
+      const d = Object.getOwnPropertyDescriptor(module[name].prototype, key);
+      runtime.set(key, d.get ? 'property' : d.value.length);
+    }
+    for (const key of Object.getOwnPropertyNames(module[name])) {
+      if (['length', 'name', 'prototype', '__wrap'].includes(key)) continue;
+      const d = Object.getOwnPropertyDescriptor(module[name], key);
+      runtime.set(`static ${key}`, d.get ? 'property' : d.value.length);
+    }
+    // `[Symbol.dispose]` is a symbol, not a name; `free` is declared and present.
+    assert.deepEqual(new Map([...declared].sort()), new Map([...runtime].sort()), `${build}: ${name} typings = run time`);
+    members[name] = declared.size;
   }
-  for (const name of Object.getOwnPropertyNames(module.MeshBvh)) {
-    if (['length', 'name', 'prototype', '__wrap'].includes(name)) continue;
-    const d = Object.getOwnPropertyDescriptor(module.MeshBvh, name);
-    runtime.set(`static ${name}`, d.get ? 'property' : d.value.length);
-  }
-  // `[Symbol.dispose]` is a symbol, not a name; `free` is declared and present.
-  assert.deepEqual(new Map([...declared].sort()), new Map([...runtime].sort()), `${build}: MeshBvh typings = run time`);
 
   const functions = [...text.matchAll(/^export function ([A-Za-z_$][\w$]*)\s*\((.*)\)\s*:/gm)]
     .map(([, name, params]) => [name, params.trim() === '' ? 0 : params.split(/,(?![^<{(\[]*[>})\]])/).length])
@@ -66,10 +71,10 @@ for (const [build, dts, module] of [
     assert.equal(typeof module[name], 'function', `${build}: ${name} declared but missing`);
     assert.equal(module[name].length, count, `${build}: ${name} parameters`);
   }
-  const exported = Object.keys(module).filter((k) => typeof module[k] === 'function' && k !== 'MeshBvh'
+  const exported = Object.keys(module).filter((k) => typeof module[k] === 'function' && !['MeshBvh', 'geometry'].includes(k)
     && !['default', 'initSync'].includes(k));
   assert.deepEqual(exported.sort(), functions.map(([n]) => n).sort(), `${build}: every exported function is declared`);
-  console.log(`typings (${build}): ${declared.size} MeshBvh members and ${functions.length} functions, as at run time`);
+  console.log(`typings (${build}): ${members.MeshBvh} MeshBvh members, ${members.geometry} geometry members and ${functions.length} functions, as at run time`);
 }
 
 function compile(config) {

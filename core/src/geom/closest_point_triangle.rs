@@ -26,7 +26,7 @@ use crate::math::{ClosestPoint, Triangle, TriangleFeature, cross, dot, unit_scal
 #[must_use]
 pub fn closest_point_triangle(p: Vec3, tri: &Triangle) -> ClosestPoint {
     if tri.is_degenerate() {
-        return closest_point_degenerate(p, tri);
+        return closest_point_on_edges(p, tri);
     }
     let (point, u, v, feature) = closest_point_regions(p, tri.a, tri.b, tri.c);
     let d = p - point;
@@ -55,6 +55,38 @@ pub fn closest_point_triangle_2d(
     let tri = Triangle::new(a.extend(0.0), b.extend(0.0), c.extend(0.0));
     let r = closest_point_triangle(p.extend(0.0), &tri);
     (r.point.truncate(), r.u, r.v, r.feature)
+}
+
+/// `solve(p, tri)` at a scale where products of four lengths stay inside `f32`: as given when
+/// the triangle's edges lie within 2^±20 and the point within 2⁴⁰ of its first corner,
+/// otherwise on the point and triangle multiplied by the power of two that brings the edges
+/// near 1 (or the point's offset under 2⁶⁰), with the point scaled back and its squared
+/// distance measured again. Multiplying by a power of two rounds nothing.
+pub(super) fn at_working_scale(
+    p: Vec3,
+    tri: &Triangle,
+    solve: impl Fn(Vec3, &Triangle) -> ClosestPoint,
+) -> ClosestPoint {
+    let size = |v: Vec3| exponent(v.x.abs().max(v.y.abs()).max(v.z.abs()));
+    let edges = size(tri.b - tri.a)
+        .max(size(tri.c - tri.b))
+        .max(size(tri.a - tri.c));
+    let reach = size(p - tri.a);
+    if (-20..=20).contains(&edges) && reach <= 40 {
+        return solve(p, tri);
+    }
+    let s = f32::from_bits(((127 - edges.max(reach - 60)).clamp(1, 254) as u32) << 23);
+    let scaled = Triangle::new(tri.a * s, tri.b * s, tri.c * s);
+    let mut c = solve(p * s, &scaled);
+    c.point *= 1.0 / s;
+    let d = p - c.point;
+    c.distance_squared = dot(d, d);
+    c
+}
+
+/// The unbiased binary exponent of `x ≥ 0` (−127 for zero, 128 for infinity and NaN).
+fn exponent(x: f32) -> i32 {
+    ((x.to_bits() >> 23) & 0xff) as i32 - 127
 }
 
 /// The Voronoi-region walk for a non-degenerate triangle. Returns `(point, u, v, feature)`.
@@ -228,8 +260,10 @@ fn normal_across(ab: Vec3, ac: Vec3) -> Vec3 {
     cross(ab, ac - ab * (dot(ab, ac) / dot(ab, ab)))
 }
 
-/// Closest point on a zero-area triangle: the nearest of its three edges.
-fn closest_point_degenerate(p: Vec3, tri: &Triangle) -> ClosestPoint {
+/// The nearest point of the three edges of `tri` (the first of equals in the order ab, bc,
+/// ca): the answer for a zero-area triangle, and for a point whose projection falls outside
+/// the face.
+pub(super) fn closest_point_on_edges(p: Vec3, tri: &Triangle) -> ClosestPoint {
     let edges = [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)];
     let mut best: Option<ClosestPoint> = None;
     for (i, (s, e)) in (0u8..).zip(edges) {

@@ -9,6 +9,7 @@ use super::{LeafTriangleIds, LeafTriangles, Traverse, Visitor, VisitorHints};
 use crate::geom::aabb_lanes::{LaneRay, LaneRay8, MARGIN, near_far, near_far_values};
 use crate::geom::{
     CullMode, LaneHits, SlabRay, TriangleHit, TriangleLanes, WatertightRay, moller_trumbore,
+    two_step,
 };
 use crate::math::{Aabb, Aabb4, Aabb8, Ray, RayHit, Triangle};
 
@@ -23,6 +24,32 @@ pub enum TriangleTest {
     /// [`intersect_ray_triangle`](crate::geom::intersect_ray_triangle) (Möller–Trumbore):
     /// slightly fewer operations, may miss at shared edges.
     MollerTrumbore,
+    /// [`intersect_ray_triangle_two_step`](crate::geom::intersect_ray_triangle_two_step): the
+    /// ray meets the triangle's plane, then the crossing point's barycentric coordinates
+    /// decide; may miss (or hit twice) at shared edges.
+    TwoStep,
+}
+
+impl TriangleTest {
+    /// Every test, the default first.
+    pub const ALL: [Self; 3] = [Self::Watertight, Self::MollerTrumbore, Self::TwoStep];
+
+    /// The name the command line, JavaScript and Python use: `"watertight"`,
+    /// `"moller-trumbore"`, `"two-step"`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Watertight => "watertight",
+            Self::MollerTrumbore => "moller-trumbore",
+            Self::TwoStep => "two-step",
+        }
+    }
+
+    /// The test named `name` (as [`TriangleTest::name`] spells it), if any.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|t| t.name() == name)
+    }
 }
 
 /// Options of a ray query.
@@ -63,6 +90,22 @@ impl Kernel for Mt {
     #[inline(always)]
     fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit> {
         moller_trumbore(&self.ray, a, b, c, self.cull)
+    }
+    #[inline(always)]
+    fn shrink(&mut self, t_max: f32) {
+        self.ray.t_max = t_max;
+    }
+}
+
+struct TwoStep {
+    ray: Ray,
+    cull: CullMode,
+}
+
+impl Kernel for TwoStep {
+    #[inline(always)]
+    fn test(&self, a: Vec3, b: Vec3, c: Vec3) -> Option<TriangleHit> {
+        two_step(&self.ray, a, b, c, self.cull)
     }
     #[inline(always)]
     fn shrink(&mut self, t_max: f32) {
@@ -477,6 +520,7 @@ pub(super) fn walk<A: Traverse + ?Sized, S: LeafTriangles + ?Sized, G: Goal>(
             },
             goal,
         ),
+        TriangleTest::TwoStep => walk_with(tree, source, ray, two_step_kernel(ray, options), goal),
     }
 }
 
@@ -511,6 +555,15 @@ impl<'m, 't, S: ?Sized, K: Kernel, G: Goal> RayVisitor<'m, 't, S, K, G> {
 pub(super) fn watertight(ray: &Ray, options: &RayOptions) -> impl Kernel + use<> {
     Wt {
         ray: WatertightRay::new(ray),
+        cull: options.cull,
+    }
+}
+
+/// The two-step kernel for `ray` with the options' culling.
+#[inline(always)]
+pub(super) fn two_step_kernel(ray: &Ray, options: &RayOptions) -> impl Kernel + use<> {
+    TwoStep {
+        ray: *ray,
         cull: options.cull,
     }
 }

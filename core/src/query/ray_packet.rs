@@ -14,7 +14,10 @@ use wide::f32x8;
 
 use super::batch_order::query_index;
 use super::leaf_batches::for_each_batch;
-use super::ray::{Goal, Kernel, RayTester, moller_trumbore_kernel, walk, watertight, within_reach};
+use super::ray::{
+    Goal, Kernel, RayTester, moller_trumbore_kernel, two_step_kernel, walk, watertight,
+    within_reach,
+};
 use super::{
     LeafTriangleIds, LeafTriangles, RayOptions, Traverse, TriangleTest, Visitor, VisitorHints,
 };
@@ -318,6 +321,13 @@ where
             source,
             rays,
             |r| RayTester::new(r, moller_trumbore_kernel(r, options), goal()),
+            take,
+        ),
+        TriangleTest::TwoStep => walk_packet_with(
+            tree,
+            source,
+            rays,
+            |r| RayTester::new(r, two_step_kernel(r, options), goal()),
             take,
         ),
     }

@@ -7,7 +7,11 @@ import init, {
   queryPoints,
   randomRays,
   remesh,
+  geometry,
   type BlobLayout,
+  type RayOptions,
+  type TriangleClosestPoint,
+  type TriangleHit,
   type ClosestPoint,
   type MeshBvhOptions,
   type MeshDistance,
@@ -39,6 +43,26 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
   bvh.raycastXyz(0, 0, 1, 0, 0, -1);
   bvh.raycastXyz(0, 0, 1, 0, 0, -1, 0, Infinity, 0);
   const any: boolean = bvh.raycastAny(origin, [0, 0, -1]);
+  const twoStep: RayOptions = { test: 'two-step', side: 0 };
+  bvh.raycast(origin, [0, 0, -1], null, null, twoStep);
+  bvh.raycastAll(origin, [0, 0, -1], null, null, { test: 'moller-trumbore' });
+  const onTriangle: TriangleClosestPoint = geometry.closestPointTriangle(origin, [0, 0, 0], [1, 0, 0], [0, 1, 0], 'rotation');
+  const feature: 'face' | 'edge' | 'vertex' = onTriangle.feature;
+  const crossing: TriangleHit | null = geometry.intersectRayTriangle(origin, [0, 0, -1], [0, 0, 0], [1, 0, 0], [0, 1, 0], { test: 'two-step' });
+  const planeT: number | undefined = geometry.intersectRayPlane(origin, [0, 0, -1], [0, 0, 1], 0);
+  const span = geometry.intersectRayAabb(origin, [0, 0, -1], [0, 0, 0], [1, 1, 1]);
+  const meet: boolean = geometry.trianglesMeet([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [1, 0, 0], [0, 0, 1]]);
+  const flat: boolean = geometry.pointOnPlane(origin, [0, 0, 1], 1, 1e-6);
+  const angle: number = geometry.solidAngleTriangle(origin, [0, 0, 0], [1, 0, 0], [0, 1, 0]);
+  geometry.closestPointSegment(origin, [0, 0, 0], [1, 0, 0]).t;
+  geometry.closestPointsSegmentSegment(origin, [0, 0, 0], [1, 0, 0], [1, 1, 1]).pointB.x;
+  geometry.closestPointPlane(origin, [0, 0, 1], 0).z;
+  geometry.pointOnSegment(origin, [0, 0, 0], [1, 0, 0], 0.1);
+  geometry.overlapTriangleAabb([0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 0], [1, 1, 1]);
+  // @ts-expect-error the triangle test is one of three names
+  bvh.raycast(origin, [0, 0, -1], null, null, { test: 'fast' });
+  // @ts-expect-error the closest-point method is one of three names
+  geometry.closestPointTriangle(origin, [0, 0, 0], [1, 0, 0], [0, 1, 0], 'voronoi');
   const all: RayHit[] = bvh.raycastAll(origin, [0, 0, -1], null, null, 1);
   const near: ClosestPoint | null = bvh.closestPoint([1, 2, 3]);
   bvh.closestPoint({ x: 1, y: 2, z: 3 }, 0.5);
@@ -125,5 +149,6 @@ export async function everyCall(positions: Float32Array, indices: Uint32Array, b
 
   return measured + (t ?? 0) + (distance ?? 0) + Number(any) + all.length + hits + misses + bytes.length
     + pairs.total + boxes.length + structure.length + remeshed.after.valence6Percent + tree.first.length
-    + pooled.hits + flags.length + nearest.length + nodeBytes;
+    + pooled.hits + flags.length + nearest.length + nodeBytes + (crossing?.t ?? 0) + (planeT ?? 0)
+    + (span?.far ?? 0) + Number(meet) + Number(flat) + angle + feature.length;
 }
