@@ -38,6 +38,18 @@ impl ReferencePad {
         corner_inside || overlap_triangle_aabb(tri, &padded)
     }
 
+    /// Whether a triangle with bounds `bounds` may touch the side of the plane `axis = at`
+    /// (above it when `above`, else below) once that side's cell is padded: false when its
+    /// bounds end more than the pad short of the plane, so no overlap test is needed.
+    #[inline]
+    pub(crate) fn reaches_side(self, bounds: &Aabb, axis: usize, at: f32, above: bool) -> bool {
+        if above {
+            !(bounds.max[axis] < at - self.0)
+        } else {
+            !(bounds.min[axis] > at + self.0)
+        }
+    }
+
     /// `aabb` grown by the pad.
     #[inline]
     pub(crate) fn grow(self, aabb: &Aabb) -> Aabb {

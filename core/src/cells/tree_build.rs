@@ -7,6 +7,7 @@
 //! if its children's lists fit in the free middle, so the build never needs more than the buffer
 //! and the tree it makes depends only on the mesh, the config and the buffer lengths.
 
+use super::TreeSizes;
 use crate::error::{BufferKind, BuildError};
 use crate::query::Cell;
 
@@ -78,6 +79,18 @@ pub(crate) struct Built {
     pub(crate) peak: usize,
     /// False when some cell stayed a leaf only because a buffer ran out.
     pub(crate) complete: bool,
+}
+
+impl Built {
+    /// The sizes a caller sees: nodes, references, the room the build used, completeness.
+    pub(crate) const fn sizes(&self) -> TreeSizes {
+        TreeSizes {
+            nodes: self.nodes,
+            items: self.references,
+            work: self.peak,
+            complete: self.complete,
+        }
+    }
 }
 
 #[derive(Clone, Copy)]

@@ -47,13 +47,18 @@ impl KdSplitter<'_> {
             let Some(t) = self.mesh.triangle(tri) else {
                 continue;
             };
-            let part = clip_triangle_aabb(&t, b);
-            // A reference held only through the pad clips to nothing: its bounds stand in.
-            let pb = if part.is_empty() {
-                let tb = t.bounds();
-                Aabb::new(tb.min.clamp(b.min, b.max), tb.max.clamp(b.min, b.max))
+            let tb = t.bounds();
+            // A triangle inside the cell clips to itself: most do, and need no clipping.
+            let pb = if b.contains_aabb(&tb) {
+                tb
             } else {
-                part.bounds()
+                let part = clip_triangle_aabb(&t, b);
+                // A reference held only through the pad clips to nothing: its bounds stand in.
+                if part.is_empty() {
+                    Aabb::new(tb.min.clamp(b.min, b.max), tb.max.clamp(b.min, b.max))
+                } else {
+                    part.bounds()
+                }
             };
             let (pmin, pmax) = (pb.min.to_array(), pb.max.to_array());
             let axes = lo.iter().zip(&ext).zip(pmin.iter().zip(&pmax));
@@ -127,12 +132,21 @@ impl KdSplitter<'_> {
         let (below, above) = cell.split(plane.axis, plane.at);
         let mut written = 0usize;
         let mut lens = [0u32; MAX_ARITY];
-        for (side, len) in [below, above].iter().zip(lens.iter_mut()) {
+        for ((side, len), is_above) in [below, above]
+            .iter()
+            .zip(lens.iter_mut())
+            .zip([false, true])
+        {
             for &tri in refs {
                 let Some(t) = self.mesh.triangle(tri) else {
                     continue;
                 };
-                if self.pad.touches(&t, side.aabb()) {
+                // Most references lie clear of the plane: they touch one side only, and the
+                // other needs no overlap test.
+                let reaches = self
+                    .pad
+                    .reaches_side(&t.bounds(), plane.axis, plane.at, is_above);
+                if reaches && self.pad.touches(&t, side.aabb()) {
                     if let Some(slot) = out.get_mut(written) {
                         *slot = tri;
                     }

@@ -50,12 +50,7 @@ impl<'a> KdTree<&'a [KdNode], &'a [u32]> {
             work,
             None,
         )?;
-        Ok(TreeSizes {
-            nodes: built.nodes,
-            items: built.references,
-            work: built.peak,
-            complete: built.complete,
-        })
+        Ok(built.sizes())
     }
 
     /// Builds the k-d tree of `mesh` into `nodes` and `items`, which it borrows (their used
@@ -76,6 +71,17 @@ impl<'a> KdTree<&'a [KdNode], &'a [u32]> {
         nodes: &'a mut [KdNode],
         items: &'a mut [u32],
     ) -> Result<Self, BuildError> {
+        Self::build_sized(mesh, config, nodes, items).map(|(tree, _)| tree)
+    }
+
+    /// [`KdTree::build`], with the sizes [`KdTree::measure`] would report for these buffer
+    /// lengths: `complete` when no cell stayed a leaf for lack of room.
+    pub(crate) fn build_sized(
+        mesh: &ValidMesh<'_>,
+        config: &KdConfig,
+        nodes: &'a mut [KdNode],
+        items: &'a mut [u32],
+    ) -> Result<(Self, TreeSizes), BuildError> {
         config.validate()?;
         let splitter = splitter(mesh, config);
         let built = build_tree(
@@ -87,11 +93,12 @@ impl<'a> KdTree<&'a [KdNode], &'a [u32]> {
         )?;
         let nodes: &'a [KdNode] = nodes.get(..built.nodes).unwrap_or_default();
         let items: &'a [u32] = items.get(..built.references).unwrap_or_default();
-        Ok(Self {
+        let tree = Self {
             bounds: mesh.bounds(),
             nodes,
             items,
-        })
+        };
+        Ok((tree, built.sizes()))
     }
 }
 

@@ -49,12 +49,7 @@ impl<'a> Octree<&'a [OctreeNode], &'a [u32]> {
         let splitter = splitter(mesh, config);
         let root = Cell::root(root_cube(&mesh.bounds()));
         let built = build_tree(&splitter, mesh.triangle_count(), root, work, None)?;
-        Ok(TreeSizes {
-            nodes: built.nodes,
-            items: built.references,
-            work: built.peak,
-            complete: built.complete,
-        })
+        Ok(built.sizes())
     }
 
     /// Builds the octree of `mesh` into `nodes` and `items`, which it borrows (their used
@@ -75,6 +70,17 @@ impl<'a> Octree<&'a [OctreeNode], &'a [u32]> {
         nodes: &'a mut [OctreeNode],
         items: &'a mut [u32],
     ) -> Result<Self, BuildError> {
+        Self::build_sized(mesh, config, nodes, items).map(|(tree, _)| tree)
+    }
+
+    /// [`Octree::build`], with the sizes [`Octree::measure`] would report for these buffer
+    /// lengths: `complete` when no cell stayed a leaf for lack of room.
+    pub(crate) fn build_sized(
+        mesh: &ValidMesh<'_>,
+        config: &OctreeConfig,
+        nodes: &'a mut [OctreeNode],
+        items: &'a mut [u32],
+    ) -> Result<(Self, TreeSizes), BuildError> {
         config.validate()?;
         let splitter = splitter(mesh, config);
         let root = root_cube(&mesh.bounds());
@@ -87,7 +93,7 @@ impl<'a> Octree<&'a [OctreeNode], &'a [u32]> {
         )?;
         let nodes: &'a [OctreeNode] = nodes.get(..built.nodes).unwrap_or_default();
         let items: &'a [u32] = items.get(..built.references).unwrap_or_default();
-        Ok(Self { root, nodes, items })
+        Ok((Self { root, nodes, items }, built.sizes()))
     }
 }
 

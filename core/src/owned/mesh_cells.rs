@@ -7,7 +7,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Debug;
 
-use super::cell_scene::{CellScene, measure_fully};
+use super::cell_scene::{CellScene, measure_fully, node_room, work_room};
 use super::mesh_grid::fill_in_one_pass;
 use crate::cells::CellStats;
 use crate::error::BuildError;
@@ -188,11 +188,21 @@ macro_rules! tree_cell_kind {
             type View<'a> = $tree<&'a [$node], &'a [u32]>;
 
             fn build(mesh: &ValidMesh<'_>, config: &$config) -> Result<Self::Arrays, BuildError> {
-                let sizes =
-                    measure_fully(mesh.triangle_count(), |w| $tree::measure(mesh, config, w))?;
-                let mut nodes = vec![$node::default(); sizes.nodes];
-                let mut items = vec![0u32; sizes.work];
-                let bounds = *$tree::build(mesh, config, &mut nodes, &mut items)?.bounds();
+                // One pass, into the room an ordinary mesh never outgrows; a mesh that does
+                // is measured first and built into the lengths measured, as before.
+                let triangles = mesh.triangle_count();
+                let mut nodes = vec![$node::default(); node_room(triangles)];
+                let mut items = vec![0u32; work_room(triangles)];
+                let (tree, mut sizes) = $tree::build_sized(mesh, config, &mut nodes, &mut items)?;
+                let mut bounds = *tree.bounds();
+                if !sizes.complete {
+                    sizes = measure_fully(triangles, |w| $tree::measure(mesh, config, w))?;
+                    nodes = vec![$node::default(); sizes.nodes];
+                    items = vec![0u32; sizes.work];
+                    bounds = *$tree::build(mesh, config, &mut nodes, &mut items)?.bounds();
+                }
+                nodes.truncate(sizes.nodes);
+                nodes.shrink_to_fit();
                 items.truncate(sizes.items);
                 items.shrink_to_fit();
                 Ok(TreeArrays {
