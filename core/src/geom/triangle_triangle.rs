@@ -1,6 +1,7 @@
 use glam::{Vec2, Vec3};
 
 use super::point_in_triangle_2d;
+use super::triangles_meet::segments_meet_2d;
 use crate::math::{Triangle, cross, dot};
 
 /// How two triangles intersect.
@@ -168,44 +169,21 @@ fn onto_dominant_plane(n: Vec3, v: Vec3) -> Vec2 {
     }
 }
 
-/// Overlap of two triangles known to share the plane with normal `n`, decided in 2D.
+/// Overlap of two triangles known to share the plane with normal `n`, decided in 2D (edge
+/// crossings on exact orientation signs of the projected corners, which dropping a coordinate
+/// leaves exact).
 fn coplanar_overlap(t1: &Triangle, t2: &Triangle, n: Vec3) -> bool {
     let project = |v: Vec3| onto_dominant_plane(n, v);
     let [p0, p1, p2] = [t1.a, t1.b, t1.c].map(project);
     let [q0, q1, q2] = [t2.a, t2.b, t2.c].map(project);
     for (a, b) in [(p0, p1), (p1, p2), (p2, p0)] {
         for (c, d) in [(q0, q1), (q1, q2), (q2, q0)] {
-            if segments_cross_2d(a, b, c, d) {
+            if segments_meet_2d(a, b, c, d) {
                 return true;
             }
         }
     }
     point_in_triangle_2d(p0, q0, q1, q2) || point_in_triangle_2d(q0, p0, p1, p2)
-}
-
-fn orient_2d(a: Vec2, b: Vec2, c: Vec2) -> f32 {
-    (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
-}
-
-fn on_segment_2d(a: Vec2, b: Vec2, p: Vec2) -> bool {
-    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
-}
-
-/// True when the closed segments `[a, b]` and `[c, d]` share a point.
-fn segments_cross_2d(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> bool {
-    let o1 = orient_2d(a, b, c);
-    let o2 = orient_2d(a, b, d);
-    let o3 = orient_2d(c, d, a);
-    let o4 = orient_2d(c, d, b);
-    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))
-        && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
-    {
-        return true;
-    }
-    (o1 == 0.0 && on_segment_2d(a, b, c))
-        || (o2 == 0.0 && on_segment_2d(a, b, d))
-        || (o3 == 0.0 && on_segment_2d(c, d, a))
-        || (o4 == 0.0 && on_segment_2d(c, d, b))
 }
 
 #[cfg(test)]

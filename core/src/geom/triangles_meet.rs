@@ -21,7 +21,7 @@ fn within_box_2d(a: Vec2, b: Vec2, x: Vec2) -> bool {
 }
 
 /// Whether the closed segments `[a, b]` and `[c, d]` of the plane share a point.
-fn segments_meet_2d(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> bool {
+pub(super) fn segments_meet_2d(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> bool {
     let o1 = orient2d(a, b, c);
     let o2 = orient2d(a, b, d);
     let o3 = orient2d(c, d, a);
