@@ -67,8 +67,17 @@ fn aabb(min: &JsValue, max: &JsValue) -> Result<Aabb, JsValue> {
     Ok(Aabb::new(min, max))
 }
 
-/// `{ point, distance, u, v, feature, featureIndex }` of a closest point on a triangle.
-fn closest_object(c: &ClosestPoint) -> Result<JsValue, JsValue> {
+/// The distance between two points, in `f64` (an `f32` square would overflow past 1.8e19).
+fn distance(p: Vec3, q: Vec3) -> f64 {
+    let dx = f64::from(p.x) - f64::from(q.x);
+    let dy = f64::from(p.y) - f64::from(q.y);
+    let dz = f64::from(p.z) - f64::from(q.z);
+    (dx * dx + dy * dy + dz * dz).sqrt()
+}
+
+/// `{ point, distance, u, v, feature, featureIndex }` of the closest point `c` to `p` on a
+/// triangle.
+fn closest_object(p: Vec3, c: &ClosestPoint) -> Result<JsValue, JsValue> {
     let (feature, index) = match c.feature {
         TriangleFeature::Face => ("face", 0),
         TriangleFeature::Edge(i) => ("edge", i),
@@ -76,7 +85,7 @@ fn closest_object(c: &ClosestPoint) -> Result<JsValue, JsValue> {
     };
     let o = Object::new();
     set(&o, "point", xyz(c.point)?)?;
-    set(&o, "distance", c.distance())?;
+    set(&o, "distance", distance(p, c.point))?;
     set(&o, "u", c.u)?;
     set(&o, "v", c.v)?;
     set(&o, "feature", feature)?;
@@ -92,7 +101,9 @@ impl Geometry {
     /// or `"vertex"` (0 = a, 1 = b, 2 = c). `method`: `"regions"` (the default, Ericson's
     /// Voronoi-region walk, which every mesh query uses), `"projection"` (onto the plane, then
     /// half-plane tests) or `"rotation"` (turned onto a plane, solved in 2D, turned back); the
-    /// same answer up to rounding. A zero-area triangle is handled as its edges.
+    /// same answer up to rounding. A zero-area triangle is handled as its edges. `"regions"`
+    /// takes triangles up to about 10¹⁸ across (beyond, its squared edges overflow and the
+    /// result is NaN); the other two rescale and take any size.
     #[wasm_bindgen(js_name = closestPointTriangle, unchecked_return_type = "TriangleClosestPoint")]
     pub fn closest_point_triangle(
         #[wasm_bindgen(unchecked_param_type = "Vec3Like")] point: &JsValue,
@@ -109,7 +120,7 @@ impl Geometry {
             Some("rotation") => closest_point_triangle_rotation(p, &tri),
             _ => closest_point_triangle(p, &tri),
         };
-        closest_object(&found)
+        closest_object(p, &found)
     }
 
     /// The point of segment `a, b` closest to `point`: `{ point, t, distance }`, the point at
@@ -125,7 +136,7 @@ impl Geometry {
         let o = Object::new();
         set(&o, "point", xyz(q)?)?;
         set(&o, "t", t)?;
-        set(&o, "distance", (p - q).length())?;
+        set(&o, "distance", distance(p, q))?;
         Ok(o.into())
     }
 
@@ -149,7 +160,7 @@ impl Geometry {
         set(&o, "pointB", xyz(r.on_second)?)?;
         set(&o, "s", r.s)?;
         set(&o, "t", r.t)?;
-        set(&o, "distance", (r.on_first - r.on_second).length())?;
+        set(&o, "distance", distance(r.on_first, r.on_second))?;
         Ok(o.into())
     }
 

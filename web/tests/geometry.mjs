@@ -139,6 +139,25 @@ for (let i = 0; i < CASES; i++) {
   assert.ok(Math.abs(angle - omega) <= 1e-4, `solid angle case ${i}: ${angle} vs ${omega}`);
 }
 
+// Huge coordinates: the distance stays finite and right (an f32 square would overflow past
+// 1.8e19); the projection and rotation methods rescale at any size, the region walk up to
+// triangles about 1e18 across (its squared edges overflow beyond: documented); the two-step
+// ray test hits a triangle 1e15 across, where the other two tests' products of three
+// coordinates overflow.
+for (const [big, methods] of [[1e18, ['regions', 'projection', 'rotation']], [1e30, ['projection', 'rotation']]]) {
+  for (const method of methods) {
+    const got = geometry.closestPointTriangle([big / 4, big / 4, big], [0, 0, 0], [big, 0, 0], [0, big, 0], method);
+    assert.equal(got.feature, 'face', method);
+    assert.ok(Math.abs(got.distance - big) <= 1e-6 * big, `${method}: distance ${got.distance}`);
+    assert.ok(Math.abs(got.point.x - big / 4) <= 1e-6 * big && got.point.z === 0, `${method}: point`);
+  }
+}
+{
+  const s = 1e15;
+  const hit = geometry.intersectRayTriangle([s / 4, s / 4, s], [0, 0, -1], [0, 0, 0], [s, 0, 0], [0, s, 0], { test: 'two-step' });
+  assert.deepEqual(hit, { t: Math.fround(s), u: 0.25, v: 0.25 });
+}
+
 function normal0(d, e, f) {
   return new THREE.Triangle(d, e, f).getNormal(new THREE.Vector3());
 }

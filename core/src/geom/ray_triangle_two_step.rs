@@ -1,7 +1,7 @@
 use glam::Vec3;
 
 use super::{CullMode, TriangleHit};
-use crate::math::{Ray, Triangle, cross, dot};
+use crate::math::{Ray, Triangle, cross, dot, unit_scale};
 
 /// The two-step ray–triangle test: where the ray crosses the triangle's plane (step one, as
 /// [`intersect_ray_plane`](super::intersect_ray_plane) finds it), then whether that point's
@@ -14,7 +14,9 @@ use crate::math::{Ray, Triangle, cross, dot};
 /// degenerate triangles, rays parallel to the plane and invalid rays. Not watertight: near a
 /// shared edge the rounding of the crossing point decides the side, so a ray can slip between
 /// two triangles (or hit both). Its `t` is the plane's, so on a sliver it is the most accurate
-/// of the three tests; the barycentrics carry the crossing point's rounding.
+/// of the three tests; the barycentrics carry the crossing point's rounding. The normal is
+/// scaled to unit size by a power of two before use, so its products stay within `f32` for
+/// coordinates up to about 10¹⁸ (where the other two tests overflow past about 10¹²).
 ///
 /// ```
 /// use meshq::{geom::{intersect_ray_triangle_two_step, CullMode}, math::{Ray, Triangle, Vec3}};
@@ -45,7 +47,11 @@ pub(crate) fn two_step(
 ) -> Option<TriangleHit> {
     let e1 = b - a;
     let e2 = c - a;
-    let n = cross(e1, e2);
+    // The normal scaled by a power of two (exactly) to its largest coordinate in [1, 2): `t`
+    // and the barycentrics are ratios in which its length cancels, and unscaled its square
+    // would overflow for triangles a few billion units across.
+    let normal = cross(e1, e2);
+    let n = normal * unit_scale(normal.abs().max_element());
     // Front hits have `dir · n < 0`.
     let facing = dot(n, ray.dir);
     let facing_ok = match cull {
@@ -61,9 +67,9 @@ pub(crate) fn two_step(
         return None;
     }
     let along = ray.origin + ray.dir * t - a;
-    let nn = dot(n, n);
-    let u = dot(n, cross(along, e2)) / nn;
-    let v = dot(n, cross(e1, along)) / nn;
+    let area = dot(n, normal);
+    let u = dot(n, cross(along, e2)) / area;
+    let v = dot(n, cross(e1, along)) / area;
     (u >= 0.0 && v >= 0.0 && u + v <= 1.0).then_some(TriangleHit { t, u, v })
 }
 
@@ -99,6 +105,16 @@ mod tests {
             intersect_ray_triangle_two_step(&outside, &tri(), CullMode::None),
             None
         );
+    }
+
+    #[test]
+    fn huge_triangles_are_hit() {
+        for s in [1e6f32, 1e10, 1e12, 1e15] {
+            let big = Triangle::new(Vec3::ZERO, Vec3::X * s, Vec3::Y * s);
+            let ray = Ray::new(Vec3::new(0.25 * s, 0.25 * s, s), -Vec3::Z);
+            let hit = intersect_ray_triangle_two_step(&ray, &big, CullMode::None);
+            assert_eq!(hit.map(|h| (h.t, h.u, h.v)), Some((s, 0.25, 0.25)), "{s}");
+        }
     }
 
     #[test]
