@@ -5,14 +5,17 @@
 # file's), prove the query path panic-free, and print the
 # memory each part needs. Then the same for remeshing: the UV sphere's blob in flash,
 # remeshed in RAM arrays, its digest against tests/golden/remesh.txt.
-# MESHQ_CLI_PROFILE picks the cargo profile the meshq command is built with (default release).
+# MESHQ_BIN: the meshq binary to bake with (default: build it in release). Any build bakes
+# the same bytes, so the golden digests hold whichever it is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-profile=${MESHQ_CLI_PROFILE:-release}
-case "$profile" in dev | test) profile_dir=debug ;; *) profile_dir=$profile ;; esac
-cargo build --locked --quiet -p meshq-cli --profile "$profile"
-meshq=$PWD/target/$profile_dir/meshq
+meshq=${MESHQ_BIN:-}
+if [ -z "$meshq" ]; then
+  cargo build --locked --quiet --release -p meshq-cli
+  meshq=target/release/meshq
+fi
+meshq=$(realpath "$meshq")
 
 blobs=$PWD/target/firmware-blobs
 mkdir -p "$blobs"

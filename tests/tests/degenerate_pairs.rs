@@ -1,9 +1,11 @@
 //! Mesh–mesh and self-intersection walks on geometry no box separates — copies of one
 //! triangle, slivers all crossing one point, zero-area triangles at one point, triangles
-//! spanning the whole box — at 1k, 10k and 50k triangles: the pairs tested never exceed the
+//! spanning the whole box — at 1k and 10k triangles: the pairs tested never exceed the
 //! [`PairBudget`] (so work grows linearly with the default budget, counted, not timed), a
 //! spent budget is the typed error with what was found so far, and where the budget suffices
-//! the answer is brute force's.
+//! the answer is brute force's. At 10k the unbudgeted walks would face 50M pairs, eight times
+//! the default budget: what a larger count adds is only more of the same walk, at a cost that
+//! grows with the budget.
 
 use meshq::Traverse;
 use meshq::bvh::BuildConfig;
@@ -57,7 +59,7 @@ fn brute_pairs(a: &[Triangle], b: &[Triangle]) -> usize {
 #[test]
 fn pair_walks_stay_within_their_budget_on_degenerate_geometry() {
     for (family, make) in FAMILIES {
-        for n in [1_000u32, 10_000, 50_000] {
+        for n in [1_000u32, 10_000] {
             let (positions, tris) = make(n);
             let mesh = MeshRef::new(&positions, &tris).validate().unwrap();
             let bvh = MeshBvh::build(&mesh, &BuildConfig::default()).unwrap();
@@ -66,7 +68,7 @@ fn pair_walks_stay_within_their_budget_on_degenerate_geometry() {
             let count = n as usize;
             let budget = PairBudget::for_triangles(count, count);
             // Triangle pairs this walk would face without a budget, when every leaf box
-            // overlaps every other: the square of the count, far past the budget at 50k.
+            // overlaps every other: the square of the count, far past the budget at 10k.
             let self_found = self_intersecting_pairs(&tree, &mesh, budget, &mut []);
             let tested = self_found.map_or_else(|spent| spent.tested, |found| found.tested);
             assert!(tested <= budget.max_tests, "{what}: {self_found:?}");
@@ -93,14 +95,14 @@ fn pair_walks_stay_within_their_budget_on_degenerate_geometry() {
                         "{what}: mesh against itself"
                     );
                 }
-                ("same" | "point", 50_000) => {
+                ("same" | "point", 10_000) => {
                     // Nothing separates these: the budget runs out, as an error.
                     assert!(self_found.is_err(), "{what}: {self_found:?}");
                     assert!(other.is_err(), "{what}: {other:?}");
                 }
                 _ => {}
             }
-            if (family, n) == ("point", 50_000) {
+            if (family, n) == ("point", 10_000) {
                 // Zero-area triangles meet nothing: the yes/no walk finds no pair to stop
                 // at, and the budget ends it.
                 let spent = meshes_intersect(with, with, None, budget).unwrap_err();
@@ -108,7 +110,7 @@ fn pair_walks_stay_within_their_budget_on_degenerate_geometry() {
                 assert_eq!(spent.max_tests, budget.max_tests);
                 assert!(self_intersects(&tree, &mesh, budget).is_err());
             }
-            if (family, n) == ("same", 50_000) {
+            if (family, n) == ("same", 10_000) {
                 // A yes found before the budget runs out is an answer.
                 assert_eq!(meshes_intersect(with, with, None, budget), Ok(true));
                 assert_eq!(self_intersects(&tree, &mesh, budget), Ok(true));

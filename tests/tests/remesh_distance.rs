@@ -218,14 +218,14 @@ fn the_report_scales_with_the_mesh() {
 
 #[test]
 fn the_report_stays_within_a_budget_linear_in_the_meshes_at_every_size() {
-    // The two families of separate triangles no box separates, at 1k, 10k and 50k: the tests
-    // made are counted against the default budget, which grows with the triangles, not their
-    // square (a full report would take a test per triangle per sample).
+    // The two families of separate triangles no box separates, at 1k and 10k (where a full
+    // report, a test per sample per triangle, is far past the budget): the tests made are
+    // counted against the default budget, which grows with the triangles, not their square.
     for (family, make) in [
         ("overlap", overlap as fn(u32) -> Mesh),
         ("crossing", crossing as fn(u32) -> Mesh),
     ] {
-        for n in [1_000, 10_000, 50_000] {
+        for n in [1_000, 10_000] {
             let input = make(n);
             let out = remeshed(&input, &RemeshConfig::default());
             let mesh = MeshRef::new(&input.0, &input.1).validate().unwrap();
