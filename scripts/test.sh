@@ -42,7 +42,8 @@ side_lane() {
   step "side lane: the wide trees built for AVX2 (eight lanes in one instruction), against brute force"
   # The default x86-64 build runs eight lanes as two SSE halves; an AVX2 build takes the `wide`
   # crate's AVX path for them. Its answers must be the same, bit for bit: the wide-tree suites
-  # and the query layer's again, built for x86-64-v3, where the CPU has AVX2. The blob suites
+  # and the query layer's again (tests/tests/lanes.rs, a binary of only those), built for
+  # x86-64-v3, where the CPU has AVX2. The blob suites
   # run there too, and the core's blob unit tests without `std`: a build for SSSE3 without
   # `std` checksums blobs by byte shuffles (`crc_lanes`), not by tables. Naming the host as the
   # target keeps the flags off build scripts and proc macros; a target directory of its own
@@ -51,9 +52,7 @@ side_lane() {
     local host
     host=$(rustc -vV | sed -n 's/^host: //p')
     CARGO_TARGET_DIR=target/avx2 RUSTFLAGS="-C target-cpu=x86-64-v3" \
-      cargo test --locked --target "$host" -p meshq-tests --test integration -- eight_wide:: \
-      compact_nodes:: raycast_vs_brute_force:: query_layer:: spatial_splits:: large_trees:: \
-      blob_corruption:: blob_round_trip::
+      cargo test --locked --target "$host" -p meshq-tests --test lanes
     CARGO_TARGET_DIR=target/avx2 RUSTFLAGS="-C target-cpu=x86-64-v3" \
       cargo test --locked --target "$host" -p meshq --features blob,alloc --lib blob::
   else

@@ -165,7 +165,14 @@ export function setUpCollide(view) {
     dragging: () => drag !== null,
     /** Called when another mesh is shown. */
     meshChanged: () => { toggle(); },
-    /** Called once per frame: answers at most once per frame, however fast the pointer. */
-    frame: () => { if (dirty) update(); },
+    /**
+     * Called once per frame: answers at most once per frame, however fast the pointer. True
+     * when it changed the scene.
+     */
+    frame: () => {
+      if (!dirty) return false;
+      update();
+      return true;
+    },
   };
 }

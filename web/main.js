@@ -44,11 +44,24 @@ for (const o of [marker, picked, probe, probeHit, probeLine, boxes, wire]) {
 
 let state = null; // { bvh, mesh, positions, centre, radius }
 
+// Frames are drawn on demand: after an input event, a camera move or a change to what is shown.
+// An idle page then costs nothing, and a deep octree level (tens of thousands of boxes) is not
+// redrawn sixty times a second while nothing moves.
+let needsRender = true;
+function invalidate() {
+  needsRender = true;
+}
+for (const type of ['pointerdown', 'pointermove', 'pointerup', 'wheel', 'keydown', 'input', 'change', 'click', 'drop']) {
+  window.addEventListener(type, invalidate, { capture: true, passive: true });
+}
+controls.addEventListener('change', invalidate);
+
 function resize() {
   const { clientWidth: w, clientHeight: h } = canvas;
   renderer.setSize(w, h, false);
   camera.aspect = w / Math.max(h, 1);
   camera.updateProjectionMatrix();
+  invalidate();
 }
 window.addEventListener('resize', resize);
 
@@ -58,6 +71,7 @@ function format(x, digits = 6) {
 
 /** Shows a MeshBvh: display geometry from its triangles, camera framed on its bounds. */
 function show(bvh, source, timeLabel, ms, blobBytes) {
+  invalidate();
   if (state) {
     scene.remove(state.mesh);
     state.mesh.geometry.dispose();
@@ -103,6 +117,7 @@ function show(bvh, source, timeLabel, ms, blobBytes) {
 /** Shows the input or the remeshed mesh (after a remesh), with its wireframe if asked. */
 function updateWire() {
   if (!state) return;
+  invalidate();
   state.displayed ??= state.mesh.geometry;
   const input = remeshed !== null && $('remesh-before').checked;
   state.mesh.geometry = input ? remeshed.input : state.displayed;
@@ -112,6 +127,7 @@ function updateWire() {
 }
 
 function updateBoxes() {
+  invalidate();
   const level = Number($('bvh-level').value);
   $('bvh-level-text').textContent = `level ${level}`;
   boxes.visible = $('bvh-show').checked && state !== null;
@@ -369,9 +385,12 @@ const collide = setUpCollide({
 
 function frame() {
   updateProbe();
-  collide.frame();
+  if (collide.frame()) invalidate();
   controls.update();
-  renderer.render(scene, camera);
+  if (needsRender) {
+    needsRender = false;
+    renderer.render(scene, camera);
+  }
   requestAnimationFrame(frame);
 }
 

@@ -431,3 +431,71 @@ fn packing_needs_one_slot_per_triangle() {
         assert_eq!(packed.as_slice()[slot].b, t.b.to_array());
     }
 }
+
+/// Every structure and every triangle test on spot moved to 2⁴⁵ times its size (coordinates
+/// near 10¹⁴, where a triangle test's products of three lengths pass `f32`'s range) with the
+/// rays' origins scaled and their directions not: each ray's answer is the unit-size answer
+/// with `t` times 2⁴⁵ and the same triangle, `u` and `v`, bit for bit — closest hits, any hits
+/// and batches. (Multiplying by a power of two rounds nothing, so an exact implementation must
+/// agree; one whose products overflow answers `t = ∞` or misses.)
+#[test]
+fn power_of_two_scales_past_f32_products_give_the_unit_hits_scaled() {
+    use meshq::owned::{MeshIndex, StructureKind};
+    use meshq::query::TriangleTest;
+    let loaded = load_mesh("spot");
+    let scale = 2f32.powi(45);
+    let big: Vec<[f32; 3]> = loaded
+        .positions
+        .iter()
+        .map(|p| p.map(|c| c * scale))
+        .collect();
+    let unit_mesh = loaded.valid();
+    let big_mesh = MeshRef::new(&big, &loaded.triangles).validate().unwrap();
+    let rays = workload::random_rays(&loaded.positions, 2_000, 31);
+    let big_rays: Vec<Ray> = rays
+        .iter()
+        .map(|r| Ray::new(r.origin * scale, r.dir).with_range(r.t_min * scale, r.t_max * scale))
+        .collect();
+    let bits = |h: Option<meshq::math::RayHit>, by: f32| {
+        h.map(|h| ((h.t * by).to_bits(), h.tri, h.u.to_bits(), h.v.to_bits()))
+    };
+    for kind in StructureKind::ALL {
+        let unit = MeshIndex::build(&unit_mesh, kind).unwrap();
+        let index = MeshIndex::build(&big_mesh, kind).unwrap();
+        for test in TriangleTest::ALL {
+            let o = RayOptions {
+                test,
+                ..RayOptions::default()
+            };
+            let what = format!("{kind} {}", test.name());
+            let mut hits = 0;
+            for (i, (r, b)) in rays.iter().zip(&big_rays).enumerate() {
+                let want = unit.raycast_with(r, &o);
+                hits += usize::from(want.is_some());
+                assert_eq!(
+                    bits(index.raycast_with(b, &o), 1.0),
+                    bits(want, scale),
+                    "{what}: ray {i}"
+                );
+                assert_eq!(
+                    index.raycast_any_with(b, &o),
+                    want.is_some(),
+                    "{what}: any {i}"
+                );
+            }
+            assert!(hits > 400, "{what}: {hits} hits");
+            let mut keys = vec![0u64; rays.len()];
+            let mut got = vec![None; rays.len()];
+            index
+                .raycast_batch(&big_rays, &o, &mut keys, &mut got)
+                .unwrap();
+            let mut want = vec![None; rays.len()];
+            unit.raycast_batch(&rays, &o, &mut keys, &mut want).unwrap();
+            assert_eq!(
+                got.into_iter().map(|h| bits(h, 1.0)).collect::<Vec<_>>(),
+                want.into_iter().map(|h| bits(h, scale)).collect::<Vec<_>>(),
+                "{what}: batch"
+            );
+        }
+    }
+}

@@ -1,6 +1,6 @@
 use glam::Vec3;
 
-use crate::math::{Ray, Triangle, cross, dot};
+use crate::math::{Ray, Triangle, cross, dot, unit_scale};
 
 /// Which faces a ray–triangle test ignores.
 ///
@@ -33,7 +33,9 @@ pub struct TriangleHit {
 /// Reports a hit when `t ∈ [t_min, t_max]`, `u ≥ 0`, `v ≥ 0`, `u + v ≤ 1` (edges and corners
 /// count) and the face is not culled by `cull`. Returns `None` for degenerate triangles
 /// ([`Triangle::is_degenerate`]), rays parallel to the triangle's plane, and invalid rays
-/// ([`Ray::is_valid`]).
+/// ([`Ray::is_valid`]). Any size works: where the products would leave the range of `f32`, the
+/// test runs on the edges, the origin's offset and the direction rescaled by powers of two
+/// (exact), so the answer is the one an `f32` with an unbounded exponent would give.
 ///
 /// This test is fast but not watertight: a ray through a shared edge can slip between two
 /// triangles because each side rounds differently. Use
@@ -64,32 +66,88 @@ pub(crate) fn moller_trumbore(
     c: Vec3,
     cull: CullMode,
 ) -> Option<TriangleHit> {
-    let e1 = b - a;
-    let e2 = c - a;
-    let p = cross(ray.dir, e2);
+    let (edges, offset) = ([b - a, c - a], ray.origin - a);
+    match solve(edges, offset, ray.dir, cull) {
+        Solved::Hit(hit) => (hit.t >= ray.t_min && hit.t <= ray.t_max).then_some(hit),
+        Solved::Miss => None,
+        Solved::OutOfRange => moller_trumbore_rescaled(ray, edges, offset, cull),
+    }
+}
+
+/// [`moller_trumbore`] for a triangle whose products left the range of `f32` (edges and
+/// offsets past about 10¹² with a unit direction, or a determinant too small to invert): the
+/// edges and the origin's offset multiplied by the power of two that brings the largest near
+/// 1, the direction likewise, solved as before, and `t` scaled back. Multiplying by a power of
+/// two rounds nothing, so the answer is the one an `f32` with an unbounded exponent would give.
+#[cold]
+#[inline(never)]
+fn moller_trumbore_rescaled(
+    ray: &Ray,
+    [e1, e2]: [Vec3; 2],
+    offset: Vec3,
+    cull: CullMode,
+) -> Option<TriangleHit> {
+    let largest = |v: Vec3| v.abs().max_element();
+    let size = unit_scale(largest(e1).max(largest(e2)).max(largest(offset)));
+    let along = unit_scale(largest(ray.dir));
+    let Solved::Hit(mut hit) = solve([e1 * size, e2 * size], offset * size, ray.dir * along, cull)
+    else {
+        return None;
+    };
+    // Lengths came in `size` times larger and the direction `along` times: `t` is `size / along`
+    // times the true one.
+    hit.t = hit.t * along * (1.0 / size);
+    (hit.t.is_finite() && hit.t >= ray.t_min && hit.t <= ray.t_max).then_some(hit)
+}
+
+/// What the test decides, before the ray's interval is checked.
+enum Solved {
+    /// The ray's line crosses the triangle (at any `t`).
+    Hit(TriangleHit),
+    /// It does not, or the face is culled, or the ray lies in the plane.
+    Miss,
+    /// A product or the determinant's inverse left the range of `f32`: decide again at another
+    /// scale.
+    OutOfRange,
+}
+
+/// Möller–Trumbore on the triangle's edges `e1 = b − a`, `e2 = c − a` and the ray's origin
+/// offset `origin − a`. Inlined into every walk where code size is free; on bare metal the walks
+/// and the rescaled test share one copy, for the firmware's flash budget.
+#[cfg_attr(not(target_os = "none"), inline(always))]
+#[cfg_attr(target_os = "none", inline(never))]
+fn solve([e1, e2]: [Vec3; 2], offset: Vec3, dir: Vec3, cull: CullMode) -> Solved {
+    let p = cross(dir, e2);
     // det = e1 · (d × e2) = −d · (e1 × e2): positive for a front-face hit.
     let det = dot(e1, p);
+    // Rounding keeps signs, and an overflow is ±∞ with the right sign or NaN: the culling
+    // tests reject only a sign that is surely wrong, so a NaN goes on to the final check. The
+    // same for `u` and `v` below: only a finite value out of range is a miss.
     let facing_ok = match cull {
         CullMode::None => det != 0.0,
-        CullMode::Back => det > 0.0,
-        CullMode::Front => det < 0.0,
+        CullMode::Back => det > 0.0 || det.is_nan(),
+        CullMode::Front => det < 0.0 || det.is_nan(),
     };
     if !facing_ok {
-        return None;
+        return Solved::Miss;
     }
     let inv_det = 1.0 / det;
-    let s = ray.origin - a;
-    let u = dot(s, p) * inv_det;
-    if !(0.0..=1.0).contains(&u) {
-        return None;
+    let u = dot(offset, p) * inv_det;
+    if !(0.0..=1.0).contains(&u) && u.is_finite() {
+        return Solved::Miss;
     }
-    let q = cross(s, e1);
-    let v = dot(ray.dir, q) * inv_det;
-    if !(v >= 0.0 && u + v <= 1.0) {
-        return None;
+    let q = cross(offset, e1);
+    let v = dot(dir, q) * inv_det;
+    if (v < 0.0 || u + v > 1.0) && v.is_finite() && u.is_finite() {
+        return Solved::Miss;
     }
     let t = dot(e2, q) * inv_det;
-    (t >= ray.t_min && t <= ray.t_max).then_some(TriangleHit { t, u, v })
+    // A finite determinant, `u`, `v` and `t` mean nothing overflowed on the way (an infinite
+    // determinant would make `t` zero, not infinite).
+    if !(det.is_finite() && u.is_finite() && v.is_finite() && t.is_finite()) {
+        return Solved::OutOfRange;
+    }
+    Solved::Hit(TriangleHit { t, u, v })
 }
 
 #[cfg(test)]
@@ -173,5 +231,51 @@ mod tests {
         assert!(
             intersect_ray_triangle(&ray.with_range(1.01, 9.0), &tri(), CullMode::None).is_none()
         );
+    }
+
+    /// Random rays at random triangles, with every cull mode: the triangle and the ray's origin
+    /// scaled by `size` and its direction by `along` (powers of two, some far past where the
+    /// products overflow `f32`) give the unit answer's `u` and `v`, and its `t` times
+    /// `size / along`, bit for bit.
+    #[test]
+    fn power_of_two_scales_give_the_unit_answer_scaled() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+        };
+        let mut vec = || Vec3::new(next(), next(), next());
+        let scales = [
+            (2f32.powi(45), 1.0),
+            (2f32.powi(62), 2f32.powi(-40)),
+            (2f32.powi(40), 2f32.powi(100)),
+        ];
+        let mut hits = 0;
+        for round in 0..20_000 {
+            let tri = Triangle::new(vec(), vec(), vec());
+            let origin = vec() * 3.0;
+            let target = (tri.a + tri.b + tri.c) / 3.0 + vec() * 0.4;
+            let ray = Ray::new(origin, target - origin);
+            let cull = [CullMode::None, CullMode::Back, CullMode::Front][round % 3];
+            let unit = moller_trumbore(&ray, tri.a, tri.b, tri.c, cull);
+            hits += usize::from(unit.is_some());
+            for (size, along) in scales {
+                let far = Ray::new(origin * size, (target - origin) * along);
+                let got = moller_trumbore(&far, tri.a * size, tri.b * size, tri.c * size, cull);
+                let expected = unit.map(|h| TriangleHit {
+                    t: h.t * size / along,
+                    ..h
+                });
+                let bits = |h: TriangleHit| [h.t, h.u, h.v].map(f32::to_bits);
+                assert_eq!(
+                    got.map(bits),
+                    expected.map(bits),
+                    "{size} {along}: {tri:?} {ray:?} {cull:?}"
+                );
+            }
+        }
+        assert!(hits > 4_000, "only {hits} hits");
     }
 }

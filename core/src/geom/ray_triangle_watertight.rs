@@ -1,7 +1,7 @@
 use glam::Vec3;
 
 use super::{CullMode, TriangleHit};
-use crate::math::{Ray, Triangle};
+use crate::math::{Ray, Triangle, max_f32, unit_scale};
 
 /// A ray prepared for the watertight test: the permutation and shear that map its direction to
 /// `+z` (Woop, Benthin & Wald 2013, "Watertight Ray/Triangle Intersection", JCGT 2(1)).
@@ -84,41 +84,91 @@ impl WatertightRay {
         let by = pick(&pb, self.ky) - self.sy * bz;
         let cx = pick(&pc, self.kx) - self.sx * cz;
         let cy = pick(&pc, self.ky) - self.sy * cz;
-
-        // Scaled barycentrics: signed edge functions of the sheared triangle at the origin.
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
-        // An exact zero may be a rounding casualty; recompute all three in f64, where the
-        // products of f32 values are exact, so neighbours sharing an edge agree on its side.
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            [u, v, w] = edge_functions_in_f64([ax, ay], [bx, by], [cx, cy]);
+        let sheared = [ax, ay, az, bx, by, bz, cx, cy, cz];
+        match solve_sheared(&sheared, self.sz, cull) {
+            Sheared::Hit(hit) => (hit.t >= self.t_min && hit.t <= self.t_max).then_some(hit),
+            Sheared::Miss => None,
+            Sheared::OutOfRange => self.intersect_rescaled(sheared, cull),
         }
-        let inside = match cull {
-            CullMode::None => !((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)),
-            CullMode::Back => u >= 0.0 && v >= 0.0 && w >= 0.0,
-            CullMode::Front => u <= 0.0 && v <= 0.0 && w <= 0.0,
-        };
-        if !inside {
-            return None;
-        }
-        let det = u + v + w;
-        // NaN or zero: no hit. (In this frame det > 0 is a front-face hit, as in Möller–Trumbore.)
-        if det == 0.0 || det.is_nan() {
-            return None;
-        }
-        let t_scaled = u * (self.sz * az) + v * (self.sz * bz) + w * (self.sz * cz);
-        let inv_det = 1.0 / det;
-        let t = t_scaled * inv_det;
-        if !(t >= self.t_min && t <= self.t_max) {
-            return None;
-        }
-        Some(TriangleHit {
-            t,
-            u: v * inv_det,
-            v: w * inv_det,
-        })
     }
+
+    /// [`Self::intersect`] for a triangle whose products left the range of `f32` (coordinates
+    /// past about 10¹² from the origin, or a determinant too small to invert): the sheared
+    /// corners multiplied by the power of two that brings the largest near 1, solved as before,
+    /// and `t` multiplied back. Multiplying by a power of two rounds nothing, so the answer is
+    /// the one an `f32` with an unbounded exponent would give, and the edge signs neighbours
+    /// share are unchanged: the test stays watertight at every scale.
+    #[cold]
+    #[inline(never)]
+    fn intersect_rescaled(&self, sheared: [f32; 9], cull: CullMode) -> Option<TriangleHit> {
+        let largest = sheared.iter().fold(0.0, |m, x| max_f32(m, x.abs()));
+        let scale = unit_scale(largest);
+        let Sheared::Hit(mut hit) = solve_sheared(&sheared.map(|x| x * scale), self.sz, cull)
+        else {
+            return None;
+        };
+        hit.t *= 1.0 / scale;
+        (hit.t.is_finite() && hit.t >= self.t_min && hit.t <= self.t_max).then_some(hit)
+    }
+}
+
+/// What the test decides about a sheared triangle, before the ray's interval is checked.
+enum Sheared {
+    /// The ray's line crosses it (at any `t`).
+    Hit(TriangleHit),
+    /// It does not, or it is culled, or the ray lies in its plane.
+    Miss,
+    /// A product overflowed or the determinant's inverse did: decide again at another scale.
+    OutOfRange,
+}
+
+/// The watertight test on the sheared corners `[ax, ay, az, bx, by, bz, cx, cy, cz]` (relative to
+/// the ray's origin, the ray along +z with `t = z · sz`). Inlined into every walk where code size
+/// is free; on bare metal the walks and the rescaled test share one copy, for the firmware's
+/// flash budget. (Inlining never changes a result: no operation is fused or reordered.)
+#[cfg_attr(not(target_os = "none"), inline(always))]
+#[cfg_attr(target_os = "none", inline(never))]
+fn solve_sheared(corners: &[f32; 9], sz: f32, cull: CullMode) -> Sheared {
+    let [ax, ay, az, bx, by, bz, cx, cy, cz] = *corners;
+    // Scaled barycentrics: signed edge functions of the sheared triangle at the origin.
+    let mut u = cx * by - cy * bx;
+    let mut v = ax * cy - ay * cx;
+    let mut w = bx * ay - by * ax;
+    // An exact zero may be a rounding casualty; recompute all three in f64, where the products
+    // of f32 values are exact, so neighbours sharing an edge agree on its side.
+    if u == 0.0 || v == 0.0 || w == 0.0 {
+        [u, v, w] = edge_functions_in_f64([ax, ay], [bx, by], [cx, cy]);
+    }
+    // A finite edge function has the sign of the exact one (rounding is monotone); an overflow
+    // gives ±∞ with the right sign, or NaN. The tests ask "is one of them on the wrong side",
+    // so a NaN passes them and is caught by the determinant below, never taken for a miss.
+    let inside = match cull {
+        CullMode::None => !((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)),
+        CullMode::Back => !(u < 0.0 || v < 0.0 || w < 0.0),
+        CullMode::Front => !(u > 0.0 || v > 0.0 || w > 0.0),
+    };
+    if !inside {
+        return Sheared::Miss;
+    }
+    let det = u + v + w;
+    // Zero: the ray lies in the plane, no hit. (In this frame det > 0 is a front-face hit, as in
+    // Möller–Trumbore.)
+    if det == 0.0 {
+        return Sheared::Miss;
+    }
+    let t_scaled = u * (sz * az) + v * (sz * bz) + w * (sz * cz);
+    let inv_det = 1.0 / det;
+    let t = t_scaled * inv_det;
+    // A finite determinant means finite edge functions; a finite `t` then means nothing
+    // overflowed on the way.
+    if !(det.is_finite() && t.is_finite()) {
+        return Sheared::OutOfRange;
+    }
+    Sheared::Hit(TriangleHit {
+        t,
+        u: v * inv_det,
+        v: w * inv_det,
+    })
 }
 
 /// The three edge functions of the sheared triangle `a`, `b`, `c` at the origin, as
@@ -142,6 +192,11 @@ fn edge_functions_in_f64(a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> [f32; 3] {
 /// one of them, with no cracks. Edge functions that round to zero are recomputed in `f64`
 /// (exact for products of `f32`), as the paper prescribes. Returns `None` for degenerate
 /// triangles, rays parallel to the plane and invalid rays.
+///
+/// Any size works: where the test's products would leave the range of `f32` (coordinates past
+/// about 10¹² from the ray's origin with a unit direction), it rescales the triangle by a power
+/// of two, which rounds nothing, so the answer is the one an `f32` with an unbounded exponent
+/// would give, and stays watertight.
 ///
 /// ```
 /// use meshq::{geom::{intersect_ray_triangle_watertight, CullMode}, math::{Ray, Triangle, Vec3}};
@@ -254,5 +309,56 @@ mod tests {
         assert!(intersect_ray_triangle_watertight(&nan, &tri(), CullMode::None).is_none());
         let behind = Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::Z);
         assert!(intersect_ray_triangle_watertight(&behind, &tri(), CullMode::None).is_none());
+    }
+
+    /// As for Möller–Trumbore: the triangle and the ray's origin scaled by `size`, its
+    /// direction by `along` (powers of two, some far past where the products overflow `f32`),
+    /// give the unit answer's `u` and `v`, and its `t` times `size / along`, bit for bit —
+    /// including rays through shared edges, where the exact edge signs decide.
+    #[test]
+    fn power_of_two_scales_give_the_unit_answer_scaled() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+        };
+        let mut vec = || Vec3::new(next(), next(), next());
+        let scales = [
+            (2f32.powi(45), 1.0),
+            (2f32.powi(62), 2f32.powi(-40)),
+            (2f32.powi(40), 2f32.powi(100)),
+        ];
+        let mut hits = 0;
+        for round in 0..20_000 {
+            let tri = Triangle::new(vec(), vec(), vec());
+            let origin = vec() * 3.0;
+            // Every fourth ray aims at a corner, every fourth at an edge's midpoint.
+            let target = match round % 4 {
+                0 => tri.a,
+                1 => (tri.b + tri.c) * 0.5,
+                _ => (tri.a + tri.b + tri.c) / 3.0 + vec() * 0.4,
+            };
+            let ray = Ray::new(origin, target - origin);
+            let cull = [CullMode::None, CullMode::Back, CullMode::Front][round % 3];
+            let unit = WatertightRay::new(&ray).intersect(tri.a, tri.b, tri.c, cull);
+            hits += usize::from(unit.is_some());
+            for (size, along) in scales {
+                let far = WatertightRay::new(&Ray::new(origin * size, (target - origin) * along));
+                let got = far.intersect(tri.a * size, tri.b * size, tri.c * size, cull);
+                let expected = unit.map(|h| TriangleHit {
+                    t: h.t * size / along,
+                    ..h
+                });
+                let bits = |h: TriangleHit| [h.t, h.u, h.v].map(f32::to_bits);
+                assert_eq!(
+                    got.map(bits),
+                    expected.map(bits),
+                    "{size} {along}: {tri:?} {ray:?} {cull:?}"
+                );
+            }
+        }
+        assert!(hits > 4_000, "only {hits} hits");
     }
 }
