@@ -152,23 +152,8 @@ impl TriangleLanes {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::test_support::Rng;
     use crate::math::Triangle;
-
-    /// A small deterministic generator (xorshift), so the test needs no dependency.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            ((self.0 >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-        }
-
-        fn vec(&mut self, scale: f32) -> Vec3 {
-            Vec3::new(self.next(), self.next(), self.next()) * scale
-        }
-    }
 
     fn scalar_distance_squared(p: Vec3, t: &Triangle) -> f32 {
         let (q, ..) = closest_point_regions(p, t.a, t.b, t.c);

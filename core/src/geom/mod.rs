@@ -29,6 +29,8 @@ mod ray_triangle_watertight_lanes;
 mod segment_segment;
 mod segment_triangle_distance;
 mod solid_angle_triangle;
+#[cfg(test)]
+mod test_support;
 mod triangle_aabb;
 mod triangle_lanes;
 mod triangle_obb;

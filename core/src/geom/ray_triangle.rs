@@ -233,49 +233,11 @@ mod tests {
         );
     }
 
-    /// Random rays at random triangles, with every cull mode: the triangle and the ray's origin
-    /// scaled by `size` and its direction by `along` (powers of two, some far past where the
-    /// products overflow `f32`) give the unit answer's `u` and `v`, and its `t` times
-    /// `size / along`, bit for bit.
+    /// See [`check_power_of_two_scales`](crate::geom::test_support::check_power_of_two_scales).
     #[test]
     fn power_of_two_scales_give_the_unit_answer_scaled() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-        };
-        let mut vec = || Vec3::new(next(), next(), next());
-        let scales = [
-            (2f32.powi(45), 1.0),
-            (2f32.powi(62), 2f32.powi(-40)),
-            (2f32.powi(40), 2f32.powi(100)),
-        ];
-        let mut hits = 0;
-        for round in 0..20_000 {
-            let tri = Triangle::new(vec(), vec(), vec());
-            let origin = vec() * 3.0;
-            let target = (tri.a + tri.b + tri.c) / 3.0 + vec() * 0.4;
-            let ray = Ray::new(origin, target - origin);
-            let cull = [CullMode::None, CullMode::Back, CullMode::Front][round % 3];
-            let unit = moller_trumbore(&ray, tri.a, tri.b, tri.c, cull);
-            hits += usize::from(unit.is_some());
-            for (size, along) in scales {
-                let far = Ray::new(origin * size, (target - origin) * along);
-                let got = moller_trumbore(&far, tri.a * size, tri.b * size, tri.c * size, cull);
-                let expected = unit.map(|h| TriangleHit {
-                    t: h.t * size / along,
-                    ..h
-                });
-                let bits = |h: TriangleHit| [h.t, h.u, h.v].map(f32::to_bits);
-                assert_eq!(
-                    got.map(bits),
-                    expected.map(bits),
-                    "{size} {along}: {tri:?} {ray:?} {cull:?}"
-                );
-            }
-        }
-        assert!(hits > 4_000, "only {hits} hits");
+        crate::geom::test_support::check_power_of_two_scales(|ray, tri, cull| {
+            moller_trumbore(ray, tri.a, tri.b, tri.c, cull)
+        });
     }
 }

@@ -311,54 +311,12 @@ mod tests {
         assert!(intersect_ray_triangle_watertight(&behind, &tri(), CullMode::None).is_none());
     }
 
-    /// As for Möller–Trumbore: the triangle and the ray's origin scaled by `size`, its
-    /// direction by `along` (powers of two, some far past where the products overflow `f32`),
-    /// give the unit answer's `u` and `v`, and its `t` times `size / along`, bit for bit —
-    /// including rays through shared edges, where the exact edge signs decide.
+    /// See [`check_power_of_two_scales`](crate::geom::test_support::check_power_of_two_scales):
+    /// rays through shared edges too, where the exact edge signs decide.
     #[test]
     fn power_of_two_scales_give_the_unit_answer_scaled() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-        };
-        let mut vec = || Vec3::new(next(), next(), next());
-        let scales = [
-            (2f32.powi(45), 1.0),
-            (2f32.powi(62), 2f32.powi(-40)),
-            (2f32.powi(40), 2f32.powi(100)),
-        ];
-        let mut hits = 0;
-        for round in 0..20_000 {
-            let tri = Triangle::new(vec(), vec(), vec());
-            let origin = vec() * 3.0;
-            // Every fourth ray aims at a corner, every fourth at an edge's midpoint.
-            let target = match round % 4 {
-                0 => tri.a,
-                1 => (tri.b + tri.c) * 0.5,
-                _ => (tri.a + tri.b + tri.c) / 3.0 + vec() * 0.4,
-            };
-            let ray = Ray::new(origin, target - origin);
-            let cull = [CullMode::None, CullMode::Back, CullMode::Front][round % 3];
-            let unit = WatertightRay::new(&ray).intersect(tri.a, tri.b, tri.c, cull);
-            hits += usize::from(unit.is_some());
-            for (size, along) in scales {
-                let far = WatertightRay::new(&Ray::new(origin * size, (target - origin) * along));
-                let got = far.intersect(tri.a * size, tri.b * size, tri.c * size, cull);
-                let expected = unit.map(|h| TriangleHit {
-                    t: h.t * size / along,
-                    ..h
-                });
-                let bits = |h: TriangleHit| [h.t, h.u, h.v].map(f32::to_bits);
-                assert_eq!(
-                    got.map(bits),
-                    expected.map(bits),
-                    "{size} {along}: {tri:?} {ray:?} {cull:?}"
-                );
-            }
-        }
-        assert!(hits > 4_000, "only {hits} hits");
+        crate::geom::test_support::check_power_of_two_scales(|ray, tri, cull| {
+            WatertightRay::new(ray).intersect(tri.a, tri.b, tri.c, cull)
+        });
     }
 }

@@ -110,26 +110,10 @@ impl WatertightRay {
 
 #[cfg(test)]
 mod tests {
-    use glam::Vec3;
-
     use super::*;
     use crate::geom::TriangleHit;
+    use crate::geom::test_support::Rng;
     use crate::math::{Ray, Triangle};
-
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            ((self.0 >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-        }
-
-        fn vec(&mut self) -> Vec3 {
-            Vec3::new(self.next(), self.next(), self.next())
-        }
-    }
 
     /// Every lane the scalar test accepts is sure with exactly its hit, or unsure; a sure lane
     /// is always one the scalar test accepts; and few lanes are unsure: on random rays through
@@ -145,22 +129,22 @@ mod tests {
             // Passes beyond hits, outside the rounds aimed at a shared corner.
             let mut extra_off_corner = 0;
             for round in 0..40_000 {
-                let centre = rng.vec();
+                let centre = rng.vec(1.0);
                 let tris: [Triangle; 4] = core::array::from_fn(|i| {
-                    let a = centre + rng.vec() * 0.3;
+                    let a = centre + rng.vec(1.0) * 0.3;
                     // A shared edge now and then: rays through it stress the zero-edge case.
                     let b = if i % 2 == 1 && round % 3 == 0 {
                         centre
                     } else {
-                        a + rng.vec() * 0.3
+                        a + rng.vec(1.0) * 0.3
                     };
-                    Triangle::new(a, b, a + rng.vec() * 0.3)
+                    Triangle::new(a, b, a + rng.vec(1.0) * 0.3)
                 });
-                let origin = rng.vec() * 3.0;
+                let origin = rng.vec(1.0) * 3.0;
                 let target = if round % 4 == 0 {
                     centre
                 } else {
-                    centre + rng.vec() * 0.2
+                    centre + rng.vec(1.0) * 0.2
                 };
                 let mut unit_ray = Ray::new(origin, target - origin);
                 unit_ray.t_max = if round % 5 == 0 { 0.9 } else { f32::INFINITY };
