@@ -3,9 +3,9 @@
 # bare-metal and WebAssembly builds of the core, all tests, the Python package's tests (with a
 # two-worker Dask cluster), the WebAssembly tests in Node, the npm package installed from its
 # tarball, its TypeScript typings, the three.js drop-in test, the demo in headless Chromium,
-# and short runs of the Node and browser benchmarks; beside them, at a lower priority, the
-# AVX2 build's tests, the profile-guided build (compared with the test build at the end),
-# fuzzing and the firmware in QEMU. (Clippy with --all-targets type-checks the criterion benchmarks;
+# short runs of the Node and browser benchmarks and fuzzing; beside them, at a lower priority,
+# the AVX2 build's tests, the profile-guided build (compared with the test build at the end)
+# and the firmware in QEMU. (Clippy with --all-targets type-checks the criterion benchmarks;
 # `cargo bench` runs them.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,7 +32,7 @@ step() {
 }
 
 # The side lane: checks that share no cargo target directory with the main lane below (the
-# AVX2 build, the profile-guided build, fuzzing, the firmware), run beside it at a lower
+# AVX2 build, the profile-guided build, the firmware), run beside it at a lower
 # priority. The main lane's builds and tests keep both cores when they can use them; the side
 # lane takes what they leave (linking, single-threaded tests, Node and the browser). Its log is
 # printed where the main lane waits for it, at the end.
@@ -61,13 +61,6 @@ side_lane() {
 
   step "side lane: profile-guided build (scripts/pgo.sh), compared with the test build at the end"
   ./scripts/pgo.sh
-
-  step "side lane: fuzz blob parsing and the mesh loaders briefly"
-  if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null 2>&1; then
-    ./scripts/fuzz.sh "${MESHQ_FUZZ_SECONDS:-30}"
-  else
-    echo "skipped: no nightly toolchain"
-  fi
 
   step "side lane: firmware, Cortex-M4F in QEMU, parity with the golden files (queries, remeshing), panic-free proofs, memory"
   # Baked by the profile-guided build: any build bakes the same bytes, which the golden digests
@@ -168,6 +161,13 @@ MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_POINTS=4000 node bench/node/pool-balance.mjs
 step "browser benchmark runs in headless Chromium (small counts; the real run is node bench/browser/bench.mjs)"
 MESHQ_BENCH_RAYS=20000 MESHQ_BENCH_POINTS=2000 MESHQ_BENCH_ROUNDS=2 node bench/browser/bench.mjs
 node bench/browser/first.mjs 1
+
+step "fuzz blob parsing and the mesh loaders briefly (beside the side lane's last steps)"
+if rustup toolchain list | grep -q '^nightly' && cargo fuzz --version >/dev/null 2>&1; then
+  ./scripts/fuzz.sh "${MESHQ_FUZZ_SECONDS:-30}"
+else
+  echo "skipped: no nightly toolchain"
+fi
 
 step "the side lane: its result"
 side_status=0
